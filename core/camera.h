@@ -1,0 +1,41 @@
+// Pinhole camera with OpenCV's 5-parameter distortion (k1 k2 p1 p2 k3).
+// Pixels follow architecture.md: the top-left pixel's centre is (0, 0), u right, v down.
+#pragma once
+
+#include <array>
+#include <string>
+
+#include <Eigen/Core>
+#include <Eigen/LU>
+
+namespace markerbench {
+
+struct Camera {
+  std::string name = "default";
+  int width = 640;
+  int height = 480;
+  double fx = 600.0;
+  double fy = 600.0;
+  double cx = 319.5;
+  double cy = 239.5;
+  // OpenCV order: k1, k2, p1, p2, k3.
+  std::array<double, 5> distortion{};
+
+  bool HasDistortion() const;
+  Eigen::Matrix3d K() const;
+
+  // Pixel of a camera-frame point (z > 0), distortion applied.
+  Eigen::Vector2d ImgFromCam(const Eigen::Vector3d& x_cam) const;
+  // Undistorted normalized ray (x, y, 1) through a pixel; inverse of ImgFromCam up to scale.
+  Eigen::Vector3d CamFromImg(const Eigen::Vector2d& px) const;
+
+  // Distortion on normalized coordinates, its 2x2 Jacobian, and its inverse (Newton).
+  Eigen::Vector2d Distort(const Eigen::Vector2d& undistorted) const;
+  Eigen::Matrix2d DistortJacobian(const Eigen::Vector2d& undistorted) const;
+  Eigen::Vector2d Undistort(const Eigen::Vector2d& distorted) const;
+
+  // Checks sizes and focal lengths; the message names the field, value and constraint.
+  bool IsValid(std::string* error) const;
+};
+
+}  // namespace markerbench

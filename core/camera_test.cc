@@ -1,0 +1,68 @@
+#include "core/camera.h"
+
+#include <gtest/gtest.h>
+
+#include <random>
+
+namespace markerbench {
+namespace {
+
+constexpr double kPixelRoundTripTol = 1e-9;  // Newton undistortion converges to ~1e-14
+
+Camera DistortedCamera() {
+  Camera camera;
+  camera.distortion = {-0.28, 0.09, 0.0012, -0.0008, -0.015};  // a typical wide-ish lens
+  return camera;
+}
+
+TEST(Camera, ProjectUnprojectRoundTripWithDistortion) {
+  const Camera camera = DistortedCamera();
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<double> u(0.0, camera.width - 1.0), v(0.0, camera.height - 1.0);
+  for (int i = 0; i < 500; ++i) {
+    const Eigen::Vector2d px(u(rng), v(rng));
+    const Eigen::Vector3d ray = camera.CamFromImg(px);
+    EXPECT_DOUBLE_EQ(ray.z(), 1.0);
+    const Eigen::Vector2d back = camera.ImgFromCam(2.7 * ray);
+    EXPECT_LE((back - px).norm(), kPixelRoundTripTol) << "pixel " << px.transpose();
+  }
+}
+
+TEST(Camera, PrincipalPointProjectsOnAxis) {
+  const Camera camera = DistortedCamera();
+  const Eigen::Vector2d px = camera.ImgFromCam({0.0, 0.0, 1.0});
+  EXPECT_DOUBLE_EQ(px.x(), camera.cx);
+  EXPECT_DOUBLE_EQ(px.y(), camera.cy);
+}
+
+TEST(Camera, DistortJacobianMatchesFiniteDifferences) {
+  const Camera camera = DistortedCamera();
+  const Eigen::Vector2d n(0.31, -0.22);
+  const Eigen::Matrix2d analytic = camera.DistortJacobian(n);
+  constexpr double kStep = 1e-6;
+  for (int c = 0; c < 2; ++c) {
+    const Eigen::Vector2d step = Eigen::Vector2d::Unit(c) * kStep;
+    const Eigen::Vector2d numeric =
+        (camera.Distort(n + step) - camera.Distort(n - step)) / (2.0 * kStep);
+    EXPECT_LE((analytic.col(c) - numeric).norm(), 1e-8);
+  }
+}
+
+TEST(Camera, NoDistortionIsPinhole) {
+  const Camera camera;
+  const Eigen::Vector2d px = camera.ImgFromCam({0.1, -0.05, 2.0});
+  EXPECT_DOUBLE_EQ(px.x(), 600.0 * 0.05 + 319.5);
+  EXPECT_DOUBLE_EQ(px.y(), 600.0 * -0.025 + 239.5);
+}
+
+TEST(Camera, IsValidRejectsBadIntrinsics) {
+  Camera camera;
+  std::string error;
+  EXPECT_TRUE(camera.IsValid(&error));
+  camera.fx = -1.0;
+  EXPECT_FALSE(camera.IsValid(&error));
+  EXPECT_NE(error.find("fx=-1"), std::string::npos) << error;
+}
+
+}  // namespace
+}  // namespace markerbench

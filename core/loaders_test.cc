@@ -1,0 +1,215 @@
+// Every loader rejects each kind of bad input with a message that names the file and the key.
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include "core/camera_yaml.h"
+#include "core/marker_yaml.h"
+#include "core/test_files.h"
+#include "core/yaml_reader.h"
+
+namespace markerbench {
+namespace {
+
+using ::testing::HasSubstr;
+
+const char kGoodCamera[] = R"(image_width: 640
+image_height: 480
+camera_name: test
+camera_matrix: {rows: 3, cols: 3, data: [600, 0, 319.5, 0, 600, 239.5, 0, 0, 1]}
+distortion_model: plumb_bob
+distortion_coefficients: {rows: 1, cols: 5, data: [-0.1, 0.01, 0, 0, 0]}
+rectification_matrix: {rows: 3, cols: 3, data: [1, 0, 0, 0, 1, 0, 0, 0, 1]}
+projection_matrix: {rows: 3, cols: 4, data: [600, 0, 319.5, 0, 0, 600, 239.5, 0, 0, 0, 1, 0]}
+)";
+
+const char kGoodCirclesA[] = R"(kind: circles_a
+disks:
+  - {center: [0.0, 0.0], radius: 0.03, color: [1.0, 0.0, 0.0]}
+  - {center: [0.08, 0.0], radius: 0.03, color: [0.0, 0.0, 1.0]}
+background: [1.0, 1.0, 1.0]
+)";
+
+std::string Replace(std::string text, const std::string& from, const std::string& to) {
+  const size_t at = text.find(from);
+  EXPECT_NE(at, std::string::npos) << from;
+  return text.replace(at, from.size(), to);
+}
+
+// Loads `text` with `load` and returns the ConfigError message ("" when it loaded).
+template <typename Load>
+std::string ErrorOf(const std::string& name, const std::string& text, Load load) {
+  const std::string path = WriteTestFile(name, text);
+  try {
+    load(path);
+  } catch (const ConfigError& e) {
+    EXPECT_THAT(e.what(), HasSubstr(path)) << "the message must name the file";
+    return e.what();
+  }
+  return "";
+}
+
+std::string CameraError(const std::string& text) {
+  return ErrorOf("camera.yaml", text, LoadCameraYaml);
+}
+std::string MarkerError(const std::string& text) {
+  return ErrorOf("marker.yaml", text, LoadMarkerYaml);
+}
+
+TEST(CameraYaml, LoadsRosCameraInfo) {
+  const Camera camera = LoadCameraYaml(WriteTestFile("camera.yaml", kGoodCamera));
+  EXPECT_EQ(camera.width, 640);
+  EXPECT_EQ(camera.fx, 600.0);
+  EXPECT_EQ(camera.cy, 239.5);
+  EXPECT_EQ(camera.distortion[0], -0.1);
+  EXPECT_EQ(camera.name, "test");
+}
+
+TEST(CameraYaml, UnknownKey) {
+  EXPECT_THAT(CameraError(std::string(kGoodCamera) + "focal: 3\n"),
+              HasSubstr("key 'focal': unknown key"));
+}
+
+TEST(CameraYaml, MissingKey) {
+  EXPECT_THAT(CameraError(Replace(kGoodCamera, "image_height: 480\n", "")),
+              HasSubstr("key 'image_height': missing"));
+}
+
+TEST(CameraYaml, WrongType) {
+  const std::string message = CameraError(Replace(kGoodCamera, "640", "wide"));
+  EXPECT_THAT(message, HasSubstr("key 'image_width': expected an integer"));
+  EXPECT_THAT(message, HasSubstr(":1:")) << "the message must give the line";
+}
+
+TEST(CameraYaml, OutOfRange) {
+  EXPECT_THAT(CameraError(Replace(kGoodCamera, "[600, 0, 319.5", "[-600, 0, 319.5")),
+              HasSubstr("key 'camera_matrix'"));
+  EXPECT_THAT(CameraError(Replace(kGoodCamera, "image_width: 640", "image_width: 0")),
+              HasSubstr("key 'image_width': expected an integer in [1"));
+}
+
+TEST(CameraYaml, WrongMatrixShape) {
+  EXPECT_THAT(CameraError(Replace(kGoodCamera, "data: [-0.1, 0.01, 0, 0, 0]", "data: [-0.1]")),
+              HasSubstr("key 'distortion_coefficients.data'"));
+}
+
+TEST(CameraYaml, UnsupportedDistortionModel) {
+  EXPECT_THAT(CameraError(Replace(kGoodCamera, "plumb_bob", "equidistant")),
+              HasSubstr("key 'distortion_model': expected 'plumb_bob'"));
+}
+
+TEST(CameraYaml, MissingFileAndBadYaml) {
+  try {
+    LoadCameraYaml("/nonexistent/camera.yaml");
+    FAIL();
+  } catch (const ConfigError& e) {
+    EXPECT_THAT(e.what(), HasSubstr("/nonexistent/camera.yaml: cannot open"));
+  }
+  EXPECT_THAT(CameraError("image_width: [1, 2\n"), HasSubstr("not valid YAML"));
+}
+
+TEST(MarkerYaml, LoadsCirclesA) {
+  const MarkerSpec spec = LoadMarkerYaml(WriteTestFile("circles_a.yaml", kGoodCirclesA));
+  EXPECT_EQ(spec.kind, MarkerKind::kCirclesA);
+  EXPECT_EQ(spec.name, "circles_a");
+  ASSERT_EQ(spec.keypoints.size(), 2u);
+  EXPECT_EQ(spec.keypoints[1], Eigen::Vector2d(0.08, 0.0));
+  EXPECT_TRUE(spec.HasColor());
+  const Eigen::AlignedBox2d ink = spec.InkBounds();
+  EXPECT_NEAR(ink.min().x(), -0.03, 1e-12);
+  EXPECT_NEAR(ink.max().x(), 0.11, 1e-12);
+  EXPECT_NEAR(ink.max().y(), 0.03, 1e-12);
+}
+
+TEST(MarkerYaml, UnknownKey) {
+  EXPECT_THAT(MarkerError(Replace(kGoodCirclesA, "radius: 0.03, color: [1.0",
+                                  "radius: 0.03, label: m0, color: [1.0")),
+              HasSubstr("key 'disks[0].label': unknown key"));
+}
+
+TEST(MarkerYaml, MissingKey) {
+  EXPECT_THAT(MarkerError(Replace(kGoodCirclesA, "kind: circles_a\n", "")),
+              HasSubstr("key 'kind': missing"));
+}
+
+TEST(MarkerYaml, WrongType) {
+  EXPECT_THAT(MarkerError(Replace(kGoodCirclesA, "radius: 0.03, color: [1.0",
+                                  "radius: big, color: [1.0")),
+              HasSubstr("key 'disks[0].radius': expected a number"));
+}
+
+TEST(MarkerYaml, OutOfRange) {
+  EXPECT_THAT(MarkerError(Replace(kGoodCirclesA, "[0.0, 0.0, 1.0]", "[0.0, 0.0, 2.0]")),
+              HasSubstr("key 'disks[1].color': expected an RGB colour"));
+  EXPECT_THAT(MarkerError(Replace(kGoodCirclesA, "radius: 0.03, color: [1.0",
+                                  "radius: -0.03, color: [1.0")),
+              HasSubstr("key 'disks[0].radius': expected a positive number"));
+}
+
+TEST(MarkerYaml, BrokenGeometry) {
+  EXPECT_THAT(MarkerError(Replace(kGoodCirclesA, "[0.08, 0.0]", "[0.08, 0.01]")),
+              HasSubstr("key 'disks': expected a centre on the +x axis"));
+  EXPECT_THAT(MarkerError(Replace(kGoodCirclesA, "[0.08, 0.0]", "[0.05, 0.0]")),
+              HasSubstr("two separate disks"));
+}
+
+TEST(MarkerYaml, UnknownKindNamesTheKinds) {
+  EXPECT_THAT(MarkerError("kind: hexagon\n"), HasSubstr("key 'kind': expected one of circles_a"));
+}
+
+TEST(MarkerYaml, AprilTagIdOutOfRange) {
+  EXPECT_THAT(MarkerError("kind: apriltag\nfamily: tag36h11\nid: 587\nsize_m: 0.1\n"),
+              HasSubstr("key 'id': expected an id in [0, 586]"));
+  EXPECT_THAT(MarkerError("kind: apriltag\nfamily: tag99\nid: 0\nsize_m: 0.1\n"),
+              HasSubstr("key 'family': expected one of the libapriltag families"));
+}
+
+TEST(MarkerYaml, ArucoDictionaryAndGrid) {
+  const MarkerSpec spec = LoadMarkerYaml(
+      WriteTestFile("aruco.yaml", "kind: aruco\ndictionary: DICT_6X6_250\nid: 3\nsize_m: 0.08\n"));
+  ASSERT_EQ(spec.layers.size(), 1u);
+  const auto& grid = std::get<GridShape>(spec.layers[0].shape);
+  EXPECT_EQ(grid.rows, 8);
+  EXPECT_NEAR(spec.InkBounds().sizes().x(), 0.08, 1e-12);
+  ASSERT_EQ(spec.keypoints.size(), 4u);
+  EXPECT_EQ(spec.keypoints[0], Eigen::Vector2d(-0.04, 0.04));  // top-left
+  EXPECT_THAT(MarkerError("kind: aruco\ndictionary: DICT_6X6_250\nid: 250\nsize_m: 0.1\n"),
+              HasSubstr("key 'id': expected an id in [0, 249]"));
+}
+
+TEST(MarkerYaml, AprilTagBlackSquareSpansSize) {
+  const MarkerSpec spec = LoadMarkerYaml(
+      WriteTestFile("tag.yaml", "kind: apriltag\nfamily: tag36h11\nid: 0\nsize_m: 0.1\n"));
+  const auto& grid = std::get<GridShape>(spec.layers[0].shape);
+  EXPECT_EQ(grid.rows, 10);
+  EXPECT_NEAR(grid.cell_m, 0.0125, 1e-15);
+  EXPECT_FALSE(grid.Ink(0, 0));  // white ring
+  EXPECT_TRUE(grid.Ink(1, 1));   // black border
+  EXPECT_NEAR(spec.InkBounds().sizes().x(), 0.1, 1e-12);
+}
+
+TEST(MarkerYaml, BitGridValidatesData) {
+  const std::string good =
+      "kind: bit_grid\nsize_m: 0.1\nborder_cells: 1\nquiet_zone_cells: 1\n"
+      "data: ['#.', '.#']\n";
+  const MarkerSpec spec = LoadMarkerYaml(WriteTestFile("grid.yaml", good));
+  const auto& grid = std::get<GridShape>(spec.layers[0].shape);
+  EXPECT_EQ(grid.rows, 6);
+  EXPECT_TRUE(grid.Ink(2, 2));
+  EXPECT_FALSE(grid.Ink(2, 3));
+  EXPECT_NEAR(spec.InkBounds().sizes().x(), 0.1, 1e-12);
+  EXPECT_THAT(MarkerError(Replace(good, "'.#'", "'.x'")), HasSubstr("key 'data'"));
+}
+
+TEST(MarkerYaml, DotRingsValidatesPattern) {
+  const std::string good =
+      "kind: dot_rings\nradius_m: 0.05\nring_radii: [0.5, 1.0]\nsectors: 4\n"
+      "dot_radius_ratio: 10\npattern: ['1010', '0111']\n";
+  const MarkerSpec spec = LoadMarkerYaml(WriteTestFile("rings.yaml", good));
+  EXPECT_EQ(spec.keypoints.size(), 5u);
+  EXPECT_THAT(MarkerError(Replace(good, "'0111'", "'011'")), HasSubstr("key 'pattern'"));
+  EXPECT_THAT(MarkerError(Replace(good, "[0.5, 1.0]", "[0.5, 1.5]")),
+              HasSubstr("key 'ring_radii'"));
+}
+
+}  // namespace
+}  // namespace markerbench

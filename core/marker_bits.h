@@ -1,0 +1,22 @@
+// Bitmaps of library-defined square markers, as bit grids centred on the marker origin.
+// Third-party headers stay in the .cc (style.md rule 5).
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "core/shapes.h"
+
+namespace markerbench {
+
+// libapriltag's apriltag_to_image(family, id): total_width² cells, with the black square
+// (width_at_border cells) spanning size_m. Throws std::invalid_argument naming the valid
+// families or the id range.
+GridShape AprilTagGrid(const std::string& family, int id, double size_m);
+std::vector<std::string> AprilTagFamilies();
+
+// OpenCV 4.6 cv::aruco::drawMarker with a 1-cell border: (bits + 2)² cells spanning size_m.
+GridShape ArucoGrid(const std::string& dictionary, int id, double size_m);
+std::vector<std::string> ArucoDictionaries();
+
+}  // namespace markerbench

@@ -1,0 +1,35 @@
+// Deterministic, portable randomness (architecture.md, "Randomness"). Every draw comes from
+// an Rng seeded by SeedFor(scenario seed, sweep cell, trial, purpose): no global engines, no
+// time seeds, and no std:: distributions (their output differs between standard libraries).
+#pragma once
+
+#include <array>
+#include <cstdint>
+
+namespace markerbench {
+
+enum class SeedPurpose : uint64_t { kPose = 1, kNoise = 2, kTracker = 3 };
+
+// Mixes the four coordinates with SplitMix64 (Steele, Lea and Flood 2014).
+uint64_t SeedFor(uint64_t scenario_seed, uint64_t cell, uint64_t trial, SeedPurpose purpose);
+
+// xoshiro256** (Blackman and Vigna 2018) with a Ziggurat normal sampler (Marsaglia and Tsang
+// 2000, in Doornik's 2005 ZIGNOR form with 128 blocks).
+class Rng {
+ public:
+  explicit Rng(uint64_t seed);
+
+  uint64_t NextU64();
+  // Uniform in [0, 1).
+  double Uniform() { return static_cast<double>(NextU64() >> 11) * 0x1.0p-53; }
+  double Uniform(double lo, double hi) { return lo + (hi - lo) * Uniform(); }
+  // Standard normal.
+  double Gaussian();
+
+ private:
+  double GaussianTail(bool negative);
+
+  std::array<uint64_t, 4> state_;
+};
+
+}  // namespace markerbench

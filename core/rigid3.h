@@ -1,0 +1,39 @@
+// Rigid transforms named by their frames (COLMAP style): x_b = b_from_a * x_a, and
+// c_from_a = c_from_b * b_from_a. See architecture.md, "Pose".
+#pragma once
+
+#include <Eigen/Core>
+#include <Eigen/Geometry>
+
+namespace markerbench {
+
+struct Rigid3 {
+  Eigen::Matrix3d rotation = Eigen::Matrix3d::Identity();
+  Eigen::Vector3d translation = Eigen::Vector3d::Zero();
+
+  Rigid3() = default;
+  Rigid3(const Eigen::Matrix3d& rotation_in, const Eigen::Vector3d& translation_in)
+      : rotation(rotation_in), translation(translation_in) {}
+
+  // a_from_b for this b_from_a.
+  Rigid3 Inverse() const { return {rotation.transpose(), -rotation.transpose() * translation}; }
+
+  Eigen::Vector3d operator*(const Eigen::Vector3d& x_a) const {
+    return rotation * x_a + translation;
+  }
+
+  // c_from_a = (*this = c_from_b) * b_from_a.
+  Rigid3 operator*(const Rigid3& b_from_a) const {
+    return {rotation * b_from_a.rotation, rotation * b_from_a.translation + translation};
+  }
+};
+
+// The camera centre in the marker frame, -Rᵀt (the paper's localization target).
+inline Eigen::Vector3d CameraCenterInMarker(const Rigid3& cam_from_marker) {
+  return -cam_from_marker.rotation.transpose() * cam_from_marker.translation;
+}
+
+// Angle of the relative rotation between two rotations, in radians, in [0, π].
+double RotationAngleBetween(const Eigen::Matrix3d& a, const Eigen::Matrix3d& b);
+
+}  // namespace markerbench

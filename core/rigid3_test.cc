@@ -1,0 +1,52 @@
+#include "core/rigid3.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+namespace markerbench {
+namespace {
+
+constexpr double kRoundTripTol = 1e-12;  // double precision, a handful of products
+
+Rigid3 RandomRigid(int seed) {
+  std::srand(seed);
+  const Eigen::Quaterniond q = Eigen::Quaterniond::UnitRandom();
+  return {q.toRotationMatrix(), Eigen::Vector3d::Random()};
+}
+
+TEST(Rigid3, InverseComposesToIdentity) {
+  for (int seed = 1; seed <= 20; ++seed) {
+    const Rigid3 b_from_a = RandomRigid(seed);
+    const Rigid3 a_from_a = b_from_a.Inverse() * b_from_a;
+    EXPECT_LE((a_from_a.rotation - Eigen::Matrix3d::Identity()).norm(), kRoundTripTol);
+    EXPECT_LE(a_from_a.translation.norm(), kRoundTripTol);
+  }
+}
+
+TEST(Rigid3, CompositionMatchesSequentialApplication) {
+  const Rigid3 b_from_a = RandomRigid(3);
+  const Rigid3 c_from_b = RandomRigid(4);
+  const Eigen::Vector3d x_a(0.3, -1.2, 2.0);
+  const Eigen::Vector3d direct = (c_from_b * b_from_a) * x_a;
+  const Eigen::Vector3d sequential = c_from_b * (b_from_a * x_a);
+  EXPECT_LE((direct - sequential).norm(), kRoundTripTol);
+  EXPECT_LE((b_from_a.Inverse() * (b_from_a * x_a) - x_a).norm(), kRoundTripTol);
+}
+
+TEST(Rigid3, CameraCenterMapsToCameraOrigin) {
+  const Rigid3 cam_from_marker = RandomRigid(7);
+  const Eigen::Vector3d center = CameraCenterInMarker(cam_from_marker);
+  EXPECT_LE((cam_from_marker * center).norm(), kRoundTripTol);
+}
+
+TEST(Rigid3, RotationAngleBetween) {
+  const Eigen::Matrix3d a = RandomRigid(9).rotation;
+  const Eigen::Matrix3d b = a * Eigen::AngleAxisd(0.25, Eigen::Vector3d(1, 2, 3).normalized())
+                                    .toRotationMatrix();
+  EXPECT_NEAR(RotationAngleBetween(a, b), 0.25, 1e-12);
+  EXPECT_NEAR(RotationAngleBetween(a, a), 0.0, 1e-7);
+}
+
+}  // namespace
+}  // namespace markerbench

@@ -1,0 +1,68 @@
+// Vector shapes in the marker plane (metres, x right, y up; architecture.md). A marker's
+// drawing is a stack of painted layers, bottom first. The renderer rasterises them with exact
+// edges; the geometry queries of MarkerSpec are computed from them.
+#pragma once
+
+#include <cstdint>
+#include <variant>
+#include <vector>
+
+#include <Eigen/Core>
+#include <Eigen/Geometry>
+
+namespace markerbench {
+
+using Rgb = Eigen::Vector3d;  // linear intensities in [0, 1]
+
+struct DiskShape {
+  Eigen::Vector2d center = Eigen::Vector2d::Zero();
+  double radius = 0.0;
+};
+
+// Inside `outer` and outside `inner`: the crescent between two arcs through the same two tips
+// (paper Fig. 3(e), the mouth).
+struct CrescentShape {
+  DiskShape outer;
+  DiskShape inner;
+};
+
+// Pie sector of `radius` about `center`, counter-clockwise from start_rad to end_rad, with a
+// span in (0, π] (paper Fig. 3(f)).
+struct SectorShape {
+  Eigen::Vector2d center = Eigen::Vector2d::Zero();
+  double radius = 0.0;
+  double start_rad = 0.0;
+  double end_rad = 0.0;
+};
+
+// A rows x cols grid of square cells. Row 0 is the top row (largest y). Ink cells take the
+// layer colour, the others `paper_color`; both are opaque.
+struct GridShape {
+  Eigen::Vector2d top_left = Eigen::Vector2d::Zero();
+  double cell_m = 0.0;
+  int rows = 0;
+  int cols = 0;
+  std::vector<uint8_t> ink;  // rows * cols, row-major, 1 = ink
+  Rgb paper_color = Rgb::Ones();
+
+  bool Ink(int row, int col) const { return ink[static_cast<size_t>(row * cols + col)] != 0; }
+};
+
+using Shape = std::variant<DiskShape, CrescentShape, SectorShape, GridShape>;
+
+struct PaintedShape {
+  Shape shape;
+  Rgb color = Rgb::Zero();
+};
+
+// Axis-aligned bounds of a shape in the marker plane.
+Eigen::AlignedBox2d ShapeBounds(const Shape& shape);
+
+// The crescent whose two arcs pass through tip0 and tip1 and bulge to the left of
+// tip0 → tip1 by the given sagittas (outer > inner > 0).
+CrescentShape CrescentFromTips(const Eigen::Vector2d& tip0,
+                               const Eigen::Vector2d& tip1,
+                               double outer_sagitta_m,
+                               double inner_sagitta_m);
+
+}  // namespace markerbench

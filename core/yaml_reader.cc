@@ -1,0 +1,215 @@
+#include "core/yaml_reader.h"
+
+#include <cmath>
+#include <filesystem>
+#include <sstream>
+
+namespace markerbench {
+namespace {
+
+std::string Describe(const YAML::Node& node) {
+  if (!node.IsDefined() || node.IsNull()) return "nothing";
+  if (node.IsScalar()) return "'" + node.Scalar() + "'";
+  if (node.IsSequence()) return "a list of " + std::to_string(node.size());
+  return "a mapping";
+}
+
+template <typename T>
+const char* TypeName();
+template <>
+const char* TypeName<double>() {
+  return "a number";
+}
+template <>
+const char* TypeName<int>() {
+  return "an integer";
+}
+template <>
+const char* TypeName<bool>() {
+  return "true or false";
+}
+template <>
+const char* TypeName<std::string>() {
+  return "a string";
+}
+
+template <typename T>
+bool Convert(const YAML::Node& node, T* out) {
+  if (!node.IsDefined() || !node.IsScalar()) return false;
+  try {
+    *out = node.as<T>();
+  } catch (const YAML::Exception&) {
+    return false;
+  }
+  if constexpr (std::is_same_v<T, double>) return std::isfinite(*out);
+  return true;
+}
+
+}  // namespace
+
+YamlMap YamlMap::LoadFile(const std::string& path) {
+  YAML::Node root;
+  try {
+    root = YAML::LoadFile(path);
+  } catch (const YAML::BadFile&) {
+    throw ConfigError(path + ": cannot open the file");
+  } catch (const YAML::ParserException& e) {
+    throw ConfigError(path + ":" + std::to_string(e.mark.line + 1) +
+                      ": not valid YAML: " + e.msg);
+  }
+  if (!root.IsMap()) {
+    throw ConfigError(path + ": expected a YAML mapping at the top level, got " +
+                      Describe(root));
+  }
+  return YamlMap(root, path, "");
+}
+
+YamlMap::YamlMap(const YAML::Node& node, std::string file, std::string key_path)
+    : node_(node), file_(std::move(file)), key_path_(std::move(key_path)) {}
+
+bool YamlMap::Has(const std::string& key) const { return node_[key].IsDefined(); }
+
+std::string YamlMap::FullKey(const std::string& key) const {
+  return key_path_.empty() ? key : key_path_ + "." + key;
+}
+
+std::string YamlMap::Where(const YAML::Node& node) const {
+  const YAML::Mark mark = node.Mark();
+  if (mark.is_null()) return file_;
+  return file_ + ":" + std::to_string(mark.line + 1);
+}
+
+void YamlMap::Fail(const std::string& key, const std::string& expected) const {
+  const YAML::Node value = node_[key];
+  const bool present = value.IsDefined();
+  std::ostringstream msg;
+  msg << Where(present ? value : node_) << ": key '" << FullKey(key) << "': ";
+  if (present) {
+    msg << "expected " << expected << ", got " << Describe(value);
+  } else {
+    msg << "missing; expected " << expected;
+  }
+  throw ConfigError(msg.str());
+}
+
+YAML::Node YamlMap::Lookup(const std::string& key) const {
+  read_keys_.insert(key);
+  return node_[key];
+}
+
+template <typename T>
+T YamlMap::Get(const std::string& key) const {
+  const YAML::Node value = Lookup(key);
+  if constexpr (std::is_same_v<T, Eigen::Vector2d> || std::is_same_v<T, Eigen::Vector3d>) {
+    const std::string expected = "a list of " + std::to_string(T::RowsAtCompileTime) + " numbers";
+    if (!value.IsDefined() || !value.IsSequence() || value.size() != static_cast<size_t>(T::RowsAtCompileTime)) {
+      Fail(key, expected);
+    }
+    T out;
+    for (int i = 0; i < T::RowsAtCompileTime; ++i) {
+      if (!Convert(value[i], &out[i])) Fail(key, expected);
+    }
+    return out;
+  } else if constexpr (std::is_same_v<T, std::vector<double>> ||
+                       std::is_same_v<T, std::vector<int>> ||
+                       std::is_same_v<T, std::vector<std::string>>) {
+    using E = typename T::value_type;
+    const std::string expected = std::string("a list of ") + TypeName<E>() + " values";
+    if (!value.IsDefined() || !value.IsSequence()) Fail(key, expected);
+    T out(value.size());
+    for (size_t i = 0; i < value.size(); ++i) {
+      E element;
+      if (!Convert(value[i], &element)) Fail(key, expected);
+      out[i] = element;
+    }
+    return out;
+  } else {
+    T out;
+    if (!Convert(value, &out)) Fail(key, TypeName<T>());
+    return out;
+  }
+}
+
+template double YamlMap::Get<double>(const std::string&) const;
+template int YamlMap::Get<int>(const std::string&) const;
+template bool YamlMap::Get<bool>(const std::string&) const;
+template std::string YamlMap::Get<std::string>(const std::string&) const;
+template Eigen::Vector2d YamlMap::Get<Eigen::Vector2d>(const std::string&) const;
+template Eigen::Vector3d YamlMap::Get<Eigen::Vector3d>(const std::string&) const;
+template std::vector<double> YamlMap::Get<std::vector<double>>(const std::string&) const;
+template std::vector<int> YamlMap::Get<std::vector<int>>(const std::string&) const;
+template std::vector<std::string> YamlMap::Get<std::vector<std::string>>(
+    const std::string&) const;
+
+double YamlMap::GetDouble(const std::string& key, double lo, double hi) const {
+  const double value = Get<double>(key);
+  if (!(value >= lo && value <= hi)) {
+    std::ostringstream expected;
+    expected << "a number in [" << lo << ", " << hi << "]";
+    Fail(key, expected.str());
+  }
+  return value;
+}
+
+int YamlMap::GetInt(const std::string& key, int lo, int hi) const {
+  const int value = Get<int>(key);
+  if (value < lo || value > hi) {
+    Fail(key, "an integer in [" + std::to_string(lo) + ", " + std::to_string(hi) + "]");
+  }
+  return value;
+}
+
+double YamlMap::GetPositive(const std::string& key) const {
+  const double value = Get<double>(key);
+  if (!(value > 0.0)) Fail(key, "a positive number");
+  return value;
+}
+
+Eigen::Vector3d YamlMap::GetColor(const std::string& key) const {
+  const Eigen::Vector3d color = Get<Eigen::Vector3d>(key);
+  if (!(color.minCoeff() >= 0.0 && color.maxCoeff() <= 1.0)) {
+    Fail(key, "an RGB colour [r, g, b] with each value in [0, 1]");
+  }
+  return color;
+}
+
+YamlMap YamlMap::GetMap(const std::string& key) const {
+  const YAML::Node value = Lookup(key);
+  if (!value.IsDefined() || !value.IsMap()) Fail(key, "a mapping");
+  return YamlMap(value, file_, FullKey(key));
+}
+
+std::vector<YamlMap> YamlMap::GetMapList(const std::string& key) const {
+  const YAML::Node value = Lookup(key);
+  if (!value.IsDefined() || !value.IsSequence()) Fail(key, "a list of mappings");
+  std::vector<YamlMap> out;
+  for (size_t i = 0; i < value.size(); ++i) {
+    const std::string element_key = FullKey(key) + "[" + std::to_string(i) + "]";
+    if (!value[i].IsMap()) {
+      throw ConfigError(Where(value[i]) + ": key '" + element_key +
+                        "': expected a mapping, got " + Describe(value[i]));
+    }
+    out.emplace_back(value[i], file_, element_key);
+  }
+  return out;
+}
+
+YAML::Node YamlMap::GetNode(const std::string& key) const { return Lookup(key); }
+
+void YamlMap::RejectUnknownKeys() const {
+  for (const auto& entry : node_) {
+    const std::string key = entry.first.as<std::string>();
+    if (read_keys_.count(key) == 0) {
+      throw ConfigError(Where(entry.first) + ": key '" + FullKey(key) +
+                        "': unknown key (check its spelling and the format in README.md)");
+    }
+  }
+}
+
+std::string ResolveRelativeTo(const std::string& yaml_file, const std::string& path) {
+  const std::filesystem::path p(path);
+  if (p.is_absolute()) return path;
+  return (std::filesystem::path(yaml_file).parent_path() / p).lexically_normal().string();
+}
+
+}  // namespace markerbench

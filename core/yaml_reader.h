@@ -1,0 +1,76 @@
+// Strict YAML reading for every user-facing file (architecture.md, "Error handling" tier 2).
+// A YamlMap tracks the keys it hands out; RejectUnknownKeys() reports the rest. Every error
+// names the file, the line, the full key path and what was expected, as a ConfigError.
+#pragma once
+
+#include <set>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include <Eigen/Core>
+#include <yaml-cpp/yaml.h>
+
+namespace markerbench {
+
+// Bad file or option: main prints what() and exits with status 2.
+class ConfigError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+class YamlMap {
+ public:
+  // Parses `path`, whose top level must be a mapping.
+  static YamlMap LoadFile(const std::string& path);
+
+  YamlMap(const YAML::Node& node, std::string file, std::string key_path);
+
+  const std::string& file() const { return file_; }
+  const std::string& key_path() const { return key_path_; }
+  bool Has(const std::string& key) const;
+
+  // Required values. T is double, int, bool, std::string, Eigen::Vector2d, Eigen::Vector3d,
+  // std::vector<double>, std::vector<std::string> or std::vector<int>.
+  template <typename T>
+  T Get(const std::string& key) const;
+  // Optional values with a documented default.
+  template <typename T>
+  T GetOr(const std::string& key, const T& default_value) const {
+    return Has(key) ? Get<T>(key) : default_value;
+  }
+
+  // Required numbers with a closed range [lo, hi].
+  double GetDouble(const std::string& key, double lo, double hi) const;
+  int GetInt(const std::string& key, int lo, int hi) const;
+  // Required number > 0 (finite).
+  double GetPositive(const std::string& key) const;
+  // Colour: three numbers in [0, 1].
+  Eigen::Vector3d GetColor(const std::string& key) const;
+
+  YamlMap GetMap(const std::string& key) const;
+  std::vector<YamlMap> GetMapList(const std::string& key) const;
+  // The raw node, for values whose form depends on context; the key counts as read.
+  YAML::Node GetNode(const std::string& key) const;
+
+  // Throws naming the first key that no getter asked for.
+  void RejectUnknownKeys() const;
+
+  // Throws a ConfigError located at `key` (or at this map when the key is absent).
+  [[noreturn]] void Fail(const std::string& key, const std::string& expected) const;
+
+ private:
+  YAML::Node Lookup(const std::string& key) const;
+  std::string Where(const YAML::Node& node) const;
+  std::string FullKey(const std::string& key) const;
+
+  YAML::Node node_;
+  std::string file_;
+  std::string key_path_;
+  mutable std::set<std::string> read_keys_;
+};
+
+// Resolves a path written inside `yaml_file` relative to that file's folder.
+std::string ResolveRelativeTo(const std::string& yaml_file, const std::string& path);
+
+}  // namespace markerbench
