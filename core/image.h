@@ -2,6 +2,7 @@
 // ImageF is the renderer's linear working buffer (planar float, one plane per channel).
 #pragma once
 
+#include <cstddef>
 #include <cstdint>
 #include <vector>
 

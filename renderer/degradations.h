@@ -1,0 +1,50 @@
+// Image degradations in physical order (architecture.md; applied by RenderFrame):
+// optics (Gaussian blur), motion (linear blur), lighting, sensor noise, 8-bit quantisation,
+// then optional JPEG.
+#pragma once
+
+#include <cstdint>
+#include <string>
+
+#include <Eigen/Core>
+
+#include "core/image.h"
+#include "renderer/rasterizer.h"
+
+namespace markerbench {
+
+struct Degradations {
+  // Gaussian blur σ in pixels (0: none). Kernel sampled at integers, radius ceil(4σ).
+  double blur_sigma_px = 0.0;
+  // Linear motion blur: a box along a segment of this length (px) and angle (deg, from +u
+  // towards +v). 0: none.
+  double motion_blur_px = 0.0;
+  double motion_blur_angle_deg = 0.0;
+  // Lighting: I' = gain·I + offset + gradient·((u - u_c)/W, (v - v_c)/H), (u_c, v_c) the
+  // image centre: gradient is the intensity change across the full width / height.
+  double gain = 1.0;
+  double offset = 0.0;
+  Eigen::Vector2d gradient = Eigen::Vector2d::Zero();
+  // imnoise(I, 'gaussian', 0, var) on [0, 1] intensities, per channel, then clip.
+  double noise_var = 0.0;
+  // JPEG quality 1..100 after quantisation; 0: no JPEG.
+  int jpeg_quality = 0;
+
+  bool IsValid(std::string* error) const;
+  // Pixels of scene needed beyond the image border for exact blur at the border.
+  int MarginPx() const;
+};
+
+// Blurs `image` in place, recomputing only `roi` expanded by the kernel radius (the image is
+// constant outside `roi`). Borders are clamped; RenderFrame renders a margin so the visible
+// image never sees them. Returns the grown non-constant region.
+PixelRect GaussianBlur(double sigma_px, const PixelRect& roi, ImageF* image);
+PixelRect MotionBlur(double length_px, double angle_deg, const PixelRect& roi, ImageF* image);
+void ApplyLighting(const Degradations& degradations, ImageF* image);
+// Adds noise (seeded), clips to [0, 1], and quantises to 8 bits (interleaved channels).
+// When `noisy` is given it receives the clipped float image before quantisation.
+Image8 AddNoiseAndQuantize(const ImageF& image, double noise_var, uint64_t seed, ImageF* noisy);
+// Encodes and decodes with OpenCV's JPEG codec at `quality`.
+void JpegRoundTrip(int quality, Image8* image);
+
+}  // namespace markerbench

@@ -1,0 +1,164 @@
+#include "renderer/degradations.h"
+
+#include <gtest/gtest.h>
+
+#include "core/random.h"
+#include "renderer/render_frame.h"
+#include "renderer/test_scenes.h"
+
+namespace markerbench {
+namespace {
+
+constexpr double kEdgeSpreadRelTol = 0.02;  // issue: edge-spread σ to 2 %
+constexpr double kNoiseVarRelTol = 0.03;    // issue: noise variance to 3 %
+
+// A 0.3 m black square whose left edge falls on the pixel boundary u = 319.5 (fronto-
+// parallel at 1 m), so the unblurred edge is an exact step.
+FrameRequest SquareEdgeRequest(const MarkerSpec& square) {
+  FrameRequest request;
+  request.scene.marker = &square;
+  request.scene.cam_from_marker = TiltedView(1.0, 0.0, 0.0);
+  request.keep_linear = true;
+  return request;
+}
+
+// Standard deviation of the line-spread function (ink derivative) along row 239.
+double EdgeSpreadSigma(const ImageF& image, int from, int to) {
+  double w = 0.0, m1 = 0.0, m2 = 0.0;
+  for (int u = from; u < to; ++u) {
+    const double d = image.at(u, 239) - image.at(u + 1, 239);  // ink rises to the right
+    w += d;
+    m1 += d * (u + 0.5);
+    m2 += d * (u + 0.5) * (u + 0.5);
+  }
+  m1 /= w;
+  return std::sqrt(m2 / w - m1 * m1);
+}
+
+TEST(Degradations, GaussianEdgeSpreadMatchesSigma) {
+  const MarkerSpec square = BlackSquareMarker(0.0, -0.15, 0.3);
+  for (double sigma : {1.0, 2.0, 3.5, 6.0}) {
+    FrameRequest request = SquareEdgeRequest(square);
+    request.degradations.blur_sigma_px = sigma;
+    const RenderedFrame frame = RenderFrame(request);
+    const int reach = static_cast<int>(std::ceil(6 * sigma));
+    const double measured = EdgeSpreadSigma(frame.linear, 319 - reach, 319 + reach);
+    EXPECT_LE(std::abs(measured / sigma - 1.0), kEdgeSpreadRelTol) << "sigma " << sigma;
+  }
+}
+
+TEST(Degradations, MotionBlurSpreadsTheEdgeOverItsLength) {
+  const MarkerSpec square = BlackSquareMarker(0.0, -0.15, 0.3);
+  FrameRequest request = SquareEdgeRequest(square);
+  constexpr double kLength = 12.0;
+  request.degradations.motion_blur_px = kLength;
+  const RenderedFrame frame = RenderFrame(request);
+  // A box of length L has variance L²/12; bilinear sampling adds about 1/6 px².
+  const double sigma = EdgeSpreadSigma(frame.linear, 319 - 12, 319 + 12);
+  const double length = std::sqrt(12.0 * (sigma * sigma - 1.0 / 6.0));
+  EXPECT_LE(std::abs(length / kLength - 1.0), 0.03);
+}
+
+TEST(Degradations, BlurIsExactAtTheImageBorder) {
+  // The same scene seen by a wider camera, cropped, must equal the border render.
+  const MarkerSpec square = BlackSquareMarker(0.0, -0.15, 0.3);
+  FrameRequest request = SquareEdgeRequest(square);
+  request.scene.cam_from_marker.translation.x() = -311.5 / 600.0;  // edge at u = 8
+  request.degradations.blur_sigma_px = 4.0;
+  const RenderedFrame border = RenderFrame(request);
+  FrameRequest wide = request;
+  wide.scene.camera.width += 100;
+  wide.scene.camera.cx += 100;
+  const RenderedFrame reference = RenderFrame(wide);
+  for (int u = 0; u < 40; ++u) {
+    EXPECT_NEAR(border.linear.at(u, 239), reference.linear.at(u + 100, 239), 1e-5) << u;
+  }
+  EXPECT_LT(border.linear.at(0, 239), 0.9999);  // the edge's blur reaches the border
+}
+
+TEST(Degradations, NoiseVarianceInFlatGrey) {
+  MarkerSpec flat = BlackSquareMarker(0.0, 0.0, 0.01);  // tiny square in a corner of view
+  flat.background = Rgb::Constant(0.5);
+  for (double var : {0.005, 0.01, 0.02}) {
+    FrameRequest request;
+    request.scene.marker = &flat;
+    request.scene.cam_from_marker = TiltedView(1.0, 0.0, 0.0);
+    request.scene.cam_from_marker.translation.head<2>() = Eigen::Vector2d(0.4, 0.3);
+    request.degradations.noise_var = var;
+    request.noise_seed = SeedFor(1, 0, 0, SeedPurpose::kNoise);
+    const Image8 image = RenderFrame(request).image;
+    double sum = 0.0, sum2 = 0.0;
+    int n = 0;
+    for (int y = 0; y < 400; ++y) {
+      for (int x = 0; x < 600; ++x) {
+        const double v = image.at(x, y) / 255.0;
+        sum += v;
+        sum2 += v * v;
+        ++n;
+      }
+    }
+    const double mean = sum / n;
+    const double measured = sum2 / n - mean * mean - 1.0 / (12.0 * 255.0 * 255.0);
+    EXPECT_LE(std::abs(measured / var - 1.0), kNoiseVarRelTol) << "var " << var;
+    EXPECT_NEAR(mean, 0.5, 0.002);
+  }
+}
+
+TEST(Degradations, SameSeedSameBytesOtherSeedOtherNoise) {
+  const MarkerSpec square = BlackSquareMarker(-0.05, -0.05, 0.1);
+  FrameRequest request;
+  request.scene.marker = &square;
+  request.scene.cam_from_marker = TiltedView(0.6, 30.0, 10.0);
+  request.degradations.blur_sigma_px = 2.0;
+  request.degradations.noise_var = 0.02;
+  request.noise_seed = 42;
+  const Image8 a = RenderFrame(request).image;
+  const Image8 b = RenderFrame(request).image;
+  EXPECT_EQ(a.pixels, b.pixels);
+  request.noise_seed = 43;
+  const Image8 c = RenderFrame(request).image;
+  EXPECT_NE(a.pixels, c.pixels);
+}
+
+TEST(Degradations, LightingGainOffsetAndGradient) {
+  MarkerSpec flat = BlackSquareMarker(5.0, 5.0, 0.01);  // out of view
+  flat.background = Rgb::Constant(0.5);
+  FrameRequest request;
+  request.scene.marker = &flat;
+  request.scene.cam_from_marker = TiltedView(1.0, 0.0, 0.0);
+  request.degradations.gain = 0.5;
+  request.degradations.offset = 0.1;
+  request.degradations.gradient = Eigen::Vector2d(0.2, 0.0);
+  const Image8 image = RenderFrame(request).image;
+  // 0.5·0.5 + 0.1 ± 0.2·(half width)/width at the left and right edges.
+  EXPECT_NEAR(image.at(0, 100) / 255.0, 0.35 - 0.1 * 639.0 / 640.0, 0.5 / 255);
+  EXPECT_NEAR(image.at(639, 100) / 255.0, 0.35 + 0.1 * 639.0 / 640.0, 0.5 / 255);
+}
+
+TEST(Degradations, JpegKeepsTheImageClose) {
+  const MarkerSpec square = BlackSquareMarker(-0.05, -0.05, 0.1);
+  FrameRequest request;
+  request.scene.marker = &square;
+  request.scene.cam_from_marker = TiltedView(0.6, 20.0, 10.0);
+  const Image8 clean = RenderFrame(request).image;
+  request.degradations.jpeg_quality = 50;
+  const Image8 jpeg = RenderFrame(request).image;
+  EXPECT_NE(clean.pixels, jpeg.pixels);
+  double mse = 0.0;
+  for (size_t i = 0; i < clean.pixels.size(); ++i) {
+    const double d = clean.pixels[i] - jpeg.pixels[i];
+    mse += d * d;
+  }
+  EXPECT_LT(mse / clean.pixels.size(), 20.0);  // quality 50: PSNR above 35 dB
+}
+
+TEST(Degradations, InvalidValuesAreRejected) {
+  Degradations d;
+  std::string error;
+  d.noise_var = -0.1;
+  EXPECT_FALSE(d.IsValid(&error));
+  EXPECT_NE(error.find("noise_var"), std::string::npos);
+}
+
+}  // namespace
+}  // namespace markerbench

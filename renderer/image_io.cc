@@ -1,0 +1,60 @@
+#include "renderer/image_io.h"
+
+#include <OpenImageIO/imageio.h>
+
+#include <stdexcept>
+#include <vector>
+
+namespace markerbench {
+namespace {
+
+void Write(const std::string& path,
+           const OIIO::ImageSpec& spec,
+           OIIO::TypeDesc type,
+           const void* data) {
+  auto out = OIIO::ImageOutput::create(path);
+  if (!out) throw std::runtime_error(path + ": cannot write: " + OIIO::geterror());
+  if (!out->open(path, spec) || !out->write_image(type, data) || !out->close()) {
+    throw std::runtime_error(path + ": cannot write: " + out->geterror());
+  }
+}
+
+}  // namespace
+
+void WriteImage(const std::string& path, const Image8& image, std::optional<double> dpi) {
+  OIIO::ImageSpec spec(image.width, image.height, image.channels, OIIO::TypeDesc::UINT8);
+  if (dpi) {
+    spec.attribute("XResolution", static_cast<float>(*dpi));
+    spec.attribute("YResolution", static_cast<float>(*dpi));
+    spec.attribute("ResolutionUnit", "inch");
+  }
+  Write(path, spec, OIIO::TypeDesc::UINT8, image.pixels.data());
+}
+
+void WriteImageFloat(const std::string& path, const ImageF& image) {
+  std::vector<float> interleaved(image.data.size());
+  for (int c = 0; c < image.channels; ++c) {
+    for (size_t i = 0; i < image.plane_size(); ++i) {
+      interleaved[i * image.channels + c] = image.plane(c)[i];
+    }
+  }
+  OIIO::ImageSpec spec(image.width, image.height, image.channels, OIIO::TypeDesc::FLOAT);
+  Write(path, spec, OIIO::TypeDesc::FLOAT, interleaved.data());
+}
+
+Image8 ReadImage(const std::string& path) {
+  auto in = OIIO::ImageInput::open(path);
+  if (!in) throw std::runtime_error(path + ": cannot read image: " + OIIO::geterror());
+  const OIIO::ImageSpec& spec = in->spec();
+  Image8 image;
+  image.width = spec.width;
+  image.height = spec.height;
+  image.channels = spec.nchannels >= 3 ? 3 : 1;
+  image.pixels.resize(static_cast<size_t>(image.width) * image.height * image.channels);
+  if (!in->read_image(0, 0, 0, image.channels, OIIO::TypeDesc::UINT8, image.pixels.data())) {
+    throw std::runtime_error(path + ": cannot read image: " + in->geterror());
+  }
+  return image;
+}
+
+}  // namespace markerbench

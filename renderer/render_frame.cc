@@ -1,0 +1,79 @@
+#include "renderer/render_frame.h"
+
+#include <cmath>
+#include <stdexcept>
+
+namespace markerbench {
+namespace {
+
+Eigen::Vector2d Project(const Camera& camera, const Rigid3& cam_from_marker, const Eigen::Vector2d& x) {
+  return camera.ImgFromCam(cam_from_marker * Eigen::Vector3d(x.x(), x.y(), 0.0));
+}
+
+ImageF Crop(const ImageF& canvas, int margin, int width, int height) {
+  ImageF out(width, height, canvas.channels);
+  for (int c = 0; c < canvas.channels; ++c) {
+    for (int y = 0; y < height; ++y) {
+      const float* src = canvas.plane(c) + static_cast<size_t>(y + margin) * canvas.width + margin;
+      std::copy(src, src + width, out.plane(c) + static_cast<size_t>(y) * width);
+    }
+  }
+  return out;
+}
+
+}  // namespace
+
+GroundTruth ComputeGroundTruth(const MarkerSpec& marker,
+                               const Camera& camera,
+                               const Rigid3& cam_from_marker) {
+  GroundTruth truth;
+  truth.cam_from_marker = cam_from_marker;
+  for (const Eigen::Vector2d& k : marker.keypoints) {
+    truth.keypoints_px.push_back(Project(camera, cam_from_marker, k));
+  }
+  const Eigen::AlignedBox2d ink = marker.InkBounds();
+  const Eigen::Vector2d q[4] = {
+      Project(camera, cam_from_marker, ink.corner(Eigen::AlignedBox2d::BottomLeft)),
+      Project(camera, cam_from_marker, ink.corner(Eigen::AlignedBox2d::BottomRight)),
+      Project(camera, cam_from_marker, ink.corner(Eigen::AlignedBox2d::TopRight)),
+      Project(camera, cam_from_marker, ink.corner(Eigen::AlignedBox2d::TopLeft))};
+  double twice_area = 0.0;  // shoelace
+  for (int i = 0; i < 4; ++i) {
+    twice_area += q[i].x() * q[(i + 1) % 4].y() - q[(i + 1) % 4].x() * q[i].y();
+  }
+  truth.apparent_size_px = std::sqrt(0.5 * std::abs(twice_area));
+  return truth;
+}
+
+RenderedFrame RenderFrame(const FrameRequest& request) {
+  std::string error;
+  if (!request.degradations.IsValid(&error)) throw std::invalid_argument(error);
+  if (request.channels != 1 && request.channels != 3) {
+    throw std::invalid_argument("channels must be 1 or 3");
+  }
+  const Camera& camera = request.scene.camera;
+  // Render a margin so that blur at the image border sees the scene beyond it.
+  const int margin = request.degradations.MarginPx();
+  Scene canvas_scene = request.scene;
+  canvas_scene.camera.width += 2 * margin;
+  canvas_scene.camera.height += 2 * margin;
+  canvas_scene.camera.cx += margin;
+  canvas_scene.camera.cy += margin;
+
+  RasterResult raster = Rasterize(canvas_scene, request.channels);
+  const Degradations& d = request.degradations;
+  PixelRect changed = GaussianBlur(d.blur_sigma_px, raster.nonuniform, &raster.image);
+  MotionBlur(d.motion_blur_px, d.motion_blur_angle_deg, changed, &raster.image);
+  ImageF image =
+      margin == 0 ? std::move(raster.image) : Crop(raster.image, margin, camera.width, camera.height);
+  ApplyLighting(d, &image);
+
+  RenderedFrame frame;
+  frame.image = AddNoiseAndQuantize(image, d.noise_var, request.noise_seed,
+                                    request.keep_linear ? &frame.linear : nullptr);
+  JpegRoundTrip(d.jpeg_quality, &frame.image);
+  frame.truth = ComputeGroundTruth(*request.scene.marker, camera, request.scene.cam_from_marker);
+  return frame;
+}
+
+}  // namespace markerbench

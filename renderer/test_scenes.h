@@ -1,0 +1,49 @@
+// Small scenes shared by the renderer tests and benchmark.
+#pragma once
+
+#include <cmath>
+
+#include <Eigen/Geometry>
+
+#include "core/marker_spec.h"
+#include "core/rigid3.h"
+
+namespace markerbench {
+
+// A black disk of `radius_m` centred at the origin, on white paper.
+inline MarkerSpec BlackDiskMarker(double radius_m) {
+  MarkerSpec spec;
+  spec.kind = MarkerKind::kCircleD;
+  spec.circles = {{Eigen::Vector2d::Zero(), radius_m, Rgb::Zero()}};
+  spec.layers = {{DiskShape{Eigen::Vector2d::Zero(), radius_m}, Rgb::Zero()}};
+  spec.keypoints = {Eigen::Vector2d::Zero()};
+  return spec;
+}
+
+// A black axis-aligned square with corners (x0, y0) and (x0 + size, y0 + size).
+inline MarkerSpec BlackSquareMarker(double x0, double y0, double size_m) {
+  MarkerSpec spec;
+  spec.kind = MarkerKind::kBitGrid;
+  GridShape grid;
+  grid.rows = grid.cols = 1;
+  grid.cell_m = size_m;
+  grid.top_left = Eigen::Vector2d(x0, y0 + size_m);
+  grid.ink = {1};
+  spec.layers = {{grid, Rgb::Zero()}};
+  spec.size_m = size_m;
+  return spec;
+}
+
+// The camera at `distance_m` looking at the marker origin, tilted by tilt_deg about the
+// marker's x axis and rolled by roll_deg about the optical axis.
+inline Rigid3 TiltedView(double distance_m, double tilt_deg, double roll_deg) {
+  constexpr double kDeg = 3.14159265358979323846 / 180.0;
+  // Fronto-parallel: marker x → camera x, marker y → camera -y, marker z → camera -z.
+  const Eigen::Matrix3d frontal = Eigen::Vector3d(1.0, -1.0, -1.0).asDiagonal();
+  const Eigen::Matrix3d R = Eigen::AngleAxisd(roll_deg * kDeg, Eigen::Vector3d::UnitZ()) *
+                            frontal *
+                            Eigen::AngleAxisd(tilt_deg * kDeg, Eigen::Vector3d::UnitX());
+  return {R, Eigen::Vector3d(0.0, 0.0, distance_m)};
+}
+
+}  // namespace markerbench
