@@ -76,11 +76,43 @@ double Rng::Gaussian() {
     const int i = static_cast<int>(bits & (kBlocks - 1));
     const double u = 2.0 * (static_cast<double>(bits >> 11) * 0x1.0p-53) - 1.0;
     if (std::abs(u) < z.ratio[i]) return u * z.x[i];
-    if (i == 0) return GaussianTail(u < 0.0);
-    const double x = u * z.x[i];
-    const double f0 = std::exp(-0.5 * (z.x[i] * z.x[i] - x * x));
-    const double f1 = std::exp(-0.5 * (z.x[i + 1] * z.x[i + 1] - x * x));
-    if (f1 + Uniform() * (f0 - f1) < 1.0) return x;
+    const double x = GaussianSlowPath(i, u);
+    if (!std::isnan(x)) return x;
+  }
+}
+
+double Rng::GaussianSlowPath(int i, double u) {
+  const ZigguratTables& z = Tables();
+  if (i == 0) return GaussianTail(u < 0.0);
+  const double x = u * z.x[i];
+  const double f0 = std::exp(-0.5 * (z.x[i] * z.x[i] - x * x));
+  const double f1 = std::exp(-0.5 * (z.x[i + 1] * z.x[i + 1] - x * x));
+  if (f1 + Uniform() * (f0 - f1) < 1.0) return x;
+  return std::nan("");  // rejected: draw again
+}
+
+void Rng::FillGaussian(float scale, size_t n, float* out) {
+  const ZigguratTables& z = Tables();
+  float x_f[kBlocks], ratio_f[kBlocks];
+  for (int i = 0; i < kBlocks; ++i) {
+    x_f[i] = static_cast<float>(z.x[i]);
+    ratio_f[i] = static_cast<float>(z.ratio[i]);
+  }
+  size_t k = 0;
+  while (k < n) {
+    const uint64_t bits = NextU64();
+    for (int half = 0; half < 2 && k < n; ++half) {
+      const uint32_t h = static_cast<uint32_t>(bits >> (32 * half));
+      const int i = static_cast<int>(h & (kBlocks - 1));
+      // 24 bits → u in [-1, 1) on a grid of 2^-23.
+      const float u = static_cast<float>(static_cast<int32_t>(h >> 8) - (1 << 23)) * 0x1.0p-23f;
+      if (std::abs(u) < ratio_f[i]) {
+        out[k++] = scale * u * x_f[i];
+        continue;
+      }
+      const double x = GaussianSlowPath(i, u);
+      if (!std::isnan(x)) out[k++] = scale * static_cast<float>(x);
+    }
   }
 }
 

@@ -4,6 +4,7 @@
 #pragma once
 
 #include <array>
+#include <cstddef>
 #include <cstdint>
 
 namespace markerbench {
@@ -25,8 +26,13 @@ class Rng {
   double Uniform(double lo, double hi) { return lo + (hi - lo) * Uniform(); }
   // Standard normal.
   double Gaussian();
+  // n standard normals times `scale`, in single precision: each 64-bit draw feeds two
+  // Ziggurat attempts (7 bits of block, 24 bits of position each). For sensor noise.
+  void FillGaussian(float scale, size_t n, float* out);
 
  private:
+  // The rare Ziggurat branch: block i at position u in (-1, 1) was not inside the box.
+  double GaussianSlowPath(int i, double u);
   double GaussianTail(bool negative);
 
   std::array<uint64_t, 4> state_;

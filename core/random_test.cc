@@ -31,6 +31,26 @@ TEST(Random, GaussianMomentsMatchStandardNormal) {
   EXPECT_NEAR(beyond3 / static_cast<double>(kDraws), 0.0026998, 0.0002);
 }
 
+TEST(Random, FillGaussianMomentsMatchStandardNormal) {
+  Rng rng(SeedFor(4, 5, 6, SeedPurpose::kNoise));
+  constexpr int kDraws = 2'000'000;
+  std::vector<float> z(kDraws);
+  rng.FillGaussian(2.0f, kDraws, z.data());
+  double m1 = 0, m2 = 0, m4 = 0;
+  int beyond3 = 0;
+  for (float v : z) {
+    const double x = v / 2.0;
+    m1 += x;
+    m2 += x * x;
+    m4 += x * x * x * x;
+    beyond3 += std::abs(x) > 3.0;
+  }
+  EXPECT_LE(std::abs(m1 / kDraws), 0.004);
+  EXPECT_LE(std::abs(m2 / kDraws - 1.0), 0.005);
+  EXPECT_LE(std::abs(m4 / kDraws - 3.0), 0.03);
+  EXPECT_NEAR(beyond3 / static_cast<double>(kDraws), 0.0026998, 0.0002);
+}
+
 TEST(Random, UniformInUnitInterval) {
   Rng rng(5);
   double sum = 0;

@@ -163,17 +163,21 @@ Image8 AddNoiseAndQuantize(const ImageF& image, double noise_var, uint64_t seed,
   out.pixels.resize(image.plane_size() * image.channels);
   if (noisy) *noisy = ImageF(image.width, image.height, image.channels);
   Rng rng(seed);
-  const float sigma = static_cast<float>(std::sqrt(noise_var));
   const size_t n = image.plane_size();
-  for (int c = 0; c < image.channels; ++c) {
+  const int channels = image.channels;
+  std::vector<float> value(n);
+  for (int c = 0; c < channels; ++c) {
     const float* src = image.plane(c);
-    float* kept = noisy ? noisy->plane(c) : nullptr;
+    if (noise_var > 0.0) {
+      rng.FillGaussian(static_cast<float>(std::sqrt(noise_var)), n, value.data());
+      for (size_t i = 0; i < n; ++i) value[i] = std::clamp(src[i] + value[i], 0.0f, 1.0f);
+    } else {
+      for (size_t i = 0; i < n; ++i) value[i] = std::clamp(src[i], 0.0f, 1.0f);
+    }
+    if (noisy) std::copy(value.begin(), value.end(), noisy->plane(c));
+    uint8_t* dst = out.pixels.data() + c;
     for (size_t i = 0; i < n; ++i) {
-      float v = src[i];
-      if (sigma > 0.0f) v += sigma * static_cast<float>(rng.Gaussian());
-      v = std::clamp(v, 0.0f, 1.0f);
-      if (kept) kept[i] = v;
-      out.pixels[i * image.channels + c] = static_cast<uint8_t>(v * 255.0f + 0.5f);
+      dst[i * channels] = static_cast<uint8_t>(value[i] * 255.0f + 0.5f);
     }
   }
   return out;

@@ -36,9 +36,16 @@ struct PlanePoint {
   bool on_plane = false;
   Eigen::Vector2d X;
   Eigen::Matrix2d dX_dp;
-  double sigma_max = 0.0;  // singular values of dX_dp
-  double sigma_min = 0.0;
 };
+
+// Singular values of dX_dp (largest, smallest).
+std::pair<double, double> SingularValues(const Eigen::Matrix2d& m) {
+  const double frob2 = m.squaredNorm();
+  const double det = std::abs(m.determinant());
+  const double disc = std::sqrt(std::max(0.0, frob2 * frob2 - 4.0 * det * det));
+  const double sigma_max = std::sqrt(0.5 * (frob2 + disc));
+  return {sigma_max, det / std::max(sigma_max, 1e-300)};
+}
 
 class PlaneMapper {
  public:
@@ -67,11 +74,6 @@ class PlaneMapper {
       dX_dn.col(c) = (plane_from_ray_.col(c).head<2>() - p.X * plane_from_ray_(2, c)) / w.z();
     }
     p.dX_dp = dX_dn * dn_dp;
-    const double frob2 = p.dX_dp.squaredNorm();
-    const double det = std::abs(p.dX_dp.determinant());
-    const double disc = std::sqrt(std::max(0.0, frob2 * frob2 - 4.0 * det * det));
-    p.sigma_max = std::sqrt(0.5 * (frob2 + disc));
-    p.sigma_min = det / std::max(p.sigma_max, 1e-300);
     return p;
   }
 
@@ -139,7 +141,8 @@ Sample ClassifyConstraints(const Layer& layer, const PlanePoint& p, double h) {
   int crossings = 0;
   bool too_curved = false;
   Sample edge;
-  const double anisotropy = p.sigma_max / p.sigma_min;
+  const auto [sigma_max, sigma_min] = SingularValues(p.dX_dp);
+  const double anisotropy = sigma_max / sigma_min;
   for (const Constraint& c : layer.constraints) {
     double s;
     Eigen::Vector2d g;
@@ -151,7 +154,7 @@ Sample ClassifyConstraints(const Layer& layer, const PlanePoint& p, double h) {
       s = c.sign * (rho - c.radius_or_offset);
       g = rho > 0.0 ? Eigen::Vector2d(c.sign * dx / rho) : Eigen::Vector2d(1.0, 0.0);
       // Largest image curvature of the circle, σmax²/(σmin·r) px⁻¹, times h², anisotropy.
-      const double kappa = p.sigma_max * p.sigma_max / (p.sigma_min * c.radius_or_offset);
+      const double kappa = sigma_max * sigma_max / (sigma_min * c.radius_or_offset);
       curvature_term = h * h * kappa * anisotropy;
       reach += curvature_term;  // slack for the linearised distance
     } else {
