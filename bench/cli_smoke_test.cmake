@@ -1,0 +1,55 @@
+# End-to-end: both render forms, marker sheets, and exit status 2 with a located message on
+# bad input. Run by ctest as bench/cli_smoke.
+file(REMOVE_RECURSE ${WORK_DIR})
+file(MAKE_DIRECTORY ${WORK_DIR})
+
+function(run expected_status)
+  execute_process(COMMAND ${MARKERBENCH} ${ARGN} WORKING_DIRECTORY ${SOURCE_DIR}
+                  RESULT_VARIABLE status OUTPUT_VARIABLE out ERROR_VARIABLE err)
+  if(NOT status EQUAL expected_status)
+    message(FATAL_ERROR "markerbench ${ARGN}: status ${status}, expected ${expected_status}\n${out}\n${err}")
+  endif()
+  set(last_error "${err}" PARENT_SCOPE)
+endfunction()
+
+run(0 render scenarios/smoke.yaml --out ${WORK_DIR}/smoke)
+file(STRINGS ${WORK_DIR}/smoke/groundtruth.csv rows)
+list(LENGTH rows n)
+if(NOT n EQUAL 9)
+  message(FATAL_ERROR "smoke groundtruth.csv has ${n} lines, expected 9 (header + 8 frames)")
+endif()
+if(NOT EXISTS ${WORK_DIR}/smoke/frame_000007.png)
+  message(FATAL_ERROR "frame_000007.png missing")
+endif()
+
+run(0 render scenarios/smoke.yaml --out ${WORK_DIR}/limited --limit 3)
+file(GLOB limited ${WORK_DIR}/limited/*.png)
+list(LENGTH limited n)
+if(NOT n EQUAL 3)
+  message(FATAL_ERROR "--limit 3 wrote ${n} images")
+endif()
+
+file(WRITE ${WORK_DIR}/poses.csv "r11,r12,r13,r21,r22,r23,r31,r32,r33,tx,ty,tz\n1,0,0,0,-1,0,0,0,-1,0,0,0.5\n")
+run(0 render --marker scenarios/markers/circle_d.yaml --camera scenarios/cameras/default.yaml
+    --poses ${WORK_DIR}/poses.csv --out ${WORK_DIR}/explicit --noise-var 0.01 --blur-sigma 1 --seed 3)
+if(NOT EXISTS ${WORK_DIR}/explicit/frame_000000.png)
+  message(FATAL_ERROR "explicit render wrote no image")
+endif()
+
+file(WRITE ${WORK_DIR}/bad_poses.csv "r11,r12,r13,r21,r22,r23,r31,r32,r33,tx,ty,tz\n1,0,0,0,-1,0,0,0,-1,0,0,abc\n")
+run(2 render --marker scenarios/markers/circle_d.yaml --camera scenarios/cameras/default.yaml
+    --poses ${WORK_DIR}/bad_poses.csv --out ${WORK_DIR}/bad)
+if(NOT last_error MATCHES "bad_poses.csv:2: column 'tz'")
+  message(FATAL_ERROR "unexpected message: ${last_error}")
+endif()
+
+file(WRITE ${WORK_DIR}/bad.yaml "name: bad\ncamera: ${SOURCE_DIR}/scenarios/cameras/default.yaml\n")
+run(2 render ${WORK_DIR}/bad.yaml --out ${WORK_DIR}/bad)
+if(NOT last_error MATCHES "bad.yaml.*key 'markers': missing")
+  message(FATAL_ERROR "unexpected message: ${last_error}")
+endif()
+
+run(0 markers --out ${WORK_DIR}/sheets --marker scenarios/markers/apriltag.yaml)
+if(NOT EXISTS ${WORK_DIR}/sheets/apriltag.png)
+  message(FATAL_ERROR "marker sheet missing")
+endif()

@@ -1,0 +1,91 @@
+// markerbench command line (architecture.md, "CLI"). Bad input: message naming the file and
+// key, exit status 2.
+#include <CLI/CLI.hpp>
+
+#include <algorithm>
+#include <filesystem>
+#include <iostream>
+
+#include "bench/marker_sheets.h"
+#include "bench/render_command.h"
+#include "core/yaml_reader.h"
+
+namespace {
+
+constexpr int kBadInput = 2;
+
+std::vector<std::string> YamlFilesIn(const std::string& dir) {
+  std::vector<std::string> files;
+  for (const auto& entry : std::filesystem::directory_iterator(dir)) {
+    if (entry.path().extension() == ".yaml") files.push_back(entry.path().string());
+  }
+  std::sort(files.begin(), files.end());
+  return files;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  using namespace markerbench;
+  CLI::App app{"markerbench: synthetic benchmark of fiducial-marker pose tracking"};
+  app.require_subcommand(1);
+
+  CLI::App* render = app.add_subcommand(
+      "render", "Render frames with ground truth: from a SCENARIO, or --marker/--camera/--poses");
+  std::string scenario;
+  int limit = 0;
+  ExplicitRenderOptions explicit_options;
+  render->add_option("scenario", scenario, "Scenario YAML");
+  render->add_option("--out", explicit_options.out_dir, "Output folder")->required();
+  render->add_option("--limit", limit, "Render at most N frames of the scenario")
+      ->check(CLI::NonNegativeNumber);
+  render->add_option("--marker", explicit_options.marker_path, "Marker YAML");
+  render->add_option("--camera", explicit_options.camera_path, "Camera YAML (ROS camera_info)");
+  render->add_option("--poses", explicit_options.poses_path, "POSES.csv (r11..r33, tx, ty, tz)");
+  render->add_option("--noise-var", explicit_options.noise_var, "imnoise variance on [0, 1]");
+  render->add_option("--blur-sigma", explicit_options.blur_sigma_px, "Gaussian blur sigma (px)");
+  render->add_option("--seed", explicit_options.seed, "Noise seed");
+
+  CLI::App* markers = app.add_subcommand("markers", "Print-ready 300 dpi sheets of markers");
+  std::string markers_out;
+  std::string markers_dir = std::string(MARKERBENCH_SOURCE_DIR) + "/scenarios/markers";
+  std::vector<std::string> marker_files;
+  markers->add_option("--out", markers_out, "Output folder")->required();
+  markers->add_option("--markers-dir", markers_dir, "Folder of marker YAML files");
+  markers->add_option("--marker", marker_files, "Marker YAML files (instead of the folder)");
+
+  CLI11_PARSE(app, argc, argv);
+  try {
+    if (render->parsed()) {
+      const bool explicit_form = !explicit_options.marker_path.empty() ||
+                                 !explicit_options.camera_path.empty() ||
+                                 !explicit_options.poses_path.empty();
+      if (explicit_form == !scenario.empty()) {
+        std::cerr << "render: give either SCENARIO or all of --marker, --camera and --poses\n";
+        return kBadInput;
+      }
+      if (explicit_form) {
+        if (explicit_options.marker_path.empty() || explicit_options.camera_path.empty() ||
+            explicit_options.poses_path.empty()) {
+          std::cerr << "render: the explicit form needs --marker, --camera and --poses\n";
+          return kBadInput;
+        }
+        RenderPoses(explicit_options);
+      } else {
+        RenderScenario(scenario, explicit_options.out_dir, limit);
+      }
+    } else if (markers->parsed()) {
+      if (marker_files.empty()) marker_files = YamlFilesIn(markers_dir);
+      for (const std::string& path : WriteMarkerSheets(marker_files, markers_out)) {
+        std::cout << path << '\n';
+      }
+    }
+  } catch (const ConfigError& e) {
+    std::cerr << "error: " << e.what() << '\n';
+    return kBadInput;
+  } catch (const std::exception& e) {
+    std::cerr << "error: " << e.what() << '\n';
+    return 1;
+  }
+  return 0;
+}

@@ -1,0 +1,193 @@
+#include "bench/render_command.h"
+
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+#include "bench/frame_plan.h"
+#include "core/camera_yaml.h"
+#include "core/marker_yaml.h"
+#include "core/random.h"
+#include "core/yaml_reader.h"
+#include "renderer/image_io.h"
+#include "renderer/render_frame.h"
+
+namespace markerbench {
+namespace {
+
+constexpr const char* kPoseColumns[12] = {"r11", "r12", "r13", "r21", "r22", "r23",
+                                          "r31", "r32", "r33", "tx",  "ty",  "tz"};
+constexpr double kRotationTol = 1e-6;  // orthonormality of rotations read from text
+
+std::string Number(double v) {
+  char buffer[32];
+  std::snprintf(buffer, sizeof(buffer), "%.17g", v);
+  return buffer;
+}
+
+// One groundtruth.csv row per rendered frame.
+class GroundTruthCsv {
+ public:
+  explicit GroundTruthCsv(const std::string& dir) : path_(dir + "/groundtruth.csv"), out_(path_) {
+    if (!out_) throw std::runtime_error(path_ + ": cannot write");
+    out_ << "frame,image,marker,sweep_parameter,sweep_value,trial,seed,fx,fy,cx,cy,width,height";
+    for (const char* c : kPoseColumns) out_ << ',' << c;
+    out_ << ",noise_var,blur_sigma_px,motion_blur_px,motion_blur_angle_deg,gain,offset,"
+            "jpeg_quality,channels,apparent_size_px,keypoints_px\n";
+  }
+
+  void Write(int frame,
+             const std::string& image,
+             const std::string& marker,
+             const std::string& sweep_parameter,
+             const std::string& sweep_value,
+             const std::string& trial,
+             uint64_t seed,
+             const Camera& camera,
+             const FrameRequest& request,
+             const GroundTruth& truth) {
+    out_ << frame << ',' << image << ',' << marker << ',' << sweep_parameter << ','
+         << sweep_value << ',' << trial << ',' << seed << ',' << Number(camera.fx) << ','
+         << Number(camera.fy) << ',' << Number(camera.cx) << ',' << Number(camera.cy) << ','
+         << camera.width << ',' << camera.height;
+    const Rigid3& pose = truth.cam_from_marker;
+    for (int r = 0; r < 3; ++r) {
+      for (int c = 0; c < 3; ++c) out_ << ',' << Number(pose.rotation(r, c));
+    }
+    for (int i = 0; i < 3; ++i) out_ << ',' << Number(pose.translation[i]);
+    const Degradations& d = request.degradations;
+    out_ << ',' << Number(d.noise_var) << ',' << Number(d.blur_sigma_px) << ','
+         << Number(d.motion_blur_px) << ',' << Number(d.motion_blur_angle_deg) << ','
+         << Number(d.gain) << ',' << Number(d.offset) << ',' << d.jpeg_quality << ','
+         << request.channels << ',' << Number(truth.apparent_size_px) << ',';
+    for (size_t k = 0; k < truth.keypoints_px.size(); ++k) {
+      out_ << (k ? ";" : "") << Number(truth.keypoints_px[k].x()) << ' '
+           << Number(truth.keypoints_px[k].y());
+    }
+    out_ << '\n';
+    out_.flush();
+  }
+
+ private:
+  std::string path_;
+  std::ofstream out_;
+};
+
+std::string FrameName(int index) {
+  char name[32];
+  std::snprintf(name, sizeof(name), "frame_%06d.png", index);
+  return name;
+}
+
+void MakeDir(const std::string& dir) {
+  std::error_code ec;
+  std::filesystem::create_directories(dir, ec);
+  if (ec) throw std::runtime_error(dir + ": cannot create the output folder: " + ec.message());
+}
+
+}  // namespace
+
+void RenderScenario(const std::string& scenario_path, const std::string& out_dir, int limit) {
+  const Scenario scenario = LoadScenario(scenario_path);
+  std::vector<PlannedFrame> frames;
+  try {
+    frames = PlanFrames(scenario, limit);
+  } catch (const std::runtime_error& e) {
+    throw ConfigError(scenario_path + ": key 'poses': " + e.what());
+  }
+  MakeDir(out_dir);
+  GroundTruthCsv csv(out_dir);
+  for (const PlannedFrame& f : frames) {
+    FrameRequest request;
+    request.scene.marker = &scenario.markers[static_cast<size_t>(f.marker_index)];
+    request.scene.camera = scenario.camera;
+    request.scene.cam_from_marker = f.cam_from_marker;
+    request.scene.sheet_size_m = scenario.render.sheet_size_m;
+    request.scene.backdrop = scenario.render.backdrop;
+    request.degradations = f.degradations;
+    request.channels = f.channels;
+    request.noise_seed = f.noise_seed;
+    const RenderedFrame frame = RenderFrame(request);
+    const std::string image = FrameName(f.index);
+    WriteImage(out_dir + "/" + image, frame.image);
+    csv.Write(f.index, image, request.scene.marker->name, scenario.sweep_parameter,
+              Number(f.sweep_value), std::to_string(f.trial), scenario.seed, scenario.camera,
+              request, frame.truth);
+  }
+}
+
+std::vector<Rigid3> LoadPosesCsv(const std::string& path) {
+  std::ifstream in(path);
+  if (!in) throw ConfigError(path + ": cannot open the file");
+  std::string line;
+  std::getline(in, line);
+  std::string expected_header;
+  for (const char* c : kPoseColumns) expected_header += std::string(expected_header.empty() ? "" : ",") + c;
+  if (line != expected_header && line != expected_header + "\r") {
+    throw ConfigError(path + ":1: header: expected '" + expected_header + "', got '" + line + "'");
+  }
+  std::vector<Rigid3> poses;
+  int line_number = 1;
+  while (std::getline(in, line)) {
+    ++line_number;
+    if (line.empty() || line == "\r") continue;
+    std::stringstream fields(line);
+    double v[12];
+    for (int i = 0; i < 12; ++i) {
+      std::string field;
+      const bool have = static_cast<bool>(std::getline(fields, field, ','));
+      char* end = nullptr;
+      v[i] = have ? std::strtod(field.c_str(), &end) : NAN;
+      if (!have || end == field.c_str() || !std::isfinite(v[i])) {
+        throw ConfigError(path + ":" + std::to_string(line_number) + ": column '" +
+                          kPoseColumns[i] + "': expected a number, got '" + field + "'");
+      }
+    }
+    Rigid3 pose;
+    pose.rotation << v[0], v[1], v[2], v[3], v[4], v[5], v[6], v[7], v[8];
+    pose.translation << v[9], v[10], v[11];
+    if ((pose.rotation.transpose() * pose.rotation - Eigen::Matrix3d::Identity()).norm() >
+            kRotationTol ||
+        pose.rotation.determinant() < 0.0) {
+      throw ConfigError(path + ":" + std::to_string(line_number) +
+                        ": columns 'r11'..'r33': expected a rotation matrix (orthonormal, "
+                        "det +1)");
+    }
+    if (!(pose.translation.z() > 0.0)) {
+      throw ConfigError(path + ":" + std::to_string(line_number) +
+                        ": column 'tz': expected the marker in front of the camera (tz > 0)");
+    }
+    poses.push_back(pose);
+  }
+  if (poses.empty()) throw ConfigError(path + ": expected at least one pose row");
+  return poses;
+}
+
+void RenderPoses(const ExplicitRenderOptions& o) {
+  const MarkerSpec marker = LoadMarkerYaml(o.marker_path);
+  const Camera camera = LoadCameraYaml(o.camera_path);
+  const std::vector<Rigid3> poses = LoadPosesCsv(o.poses_path);
+  FrameRequest request;
+  request.scene.marker = &marker;
+  request.scene.camera = camera;
+  request.degradations.noise_var = o.noise_var;
+  request.degradations.blur_sigma_px = o.blur_sigma_px;
+  std::string error;
+  if (!request.degradations.IsValid(&error)) throw ConfigError("option: " + error);
+  request.channels = ChannelsFor(Channels::kAuto, marker);
+  MakeDir(o.out_dir);
+  GroundTruthCsv csv(o.out_dir);
+  for (size_t i = 0; i < poses.size(); ++i) {
+    request.scene.cam_from_marker = poses[i];
+    request.noise_seed = SeedFor(o.seed, 0, i, SeedPurpose::kNoise);
+    const RenderedFrame frame = RenderFrame(request);
+    const std::string image = FrameName(static_cast<int>(i));
+    WriteImage(o.out_dir + "/" + image, frame.image);
+    csv.Write(static_cast<int>(i), image, marker.name, "", "", "", o.seed, camera, request,
+              frame.truth);
+  }
+}
+
+}  // namespace markerbench

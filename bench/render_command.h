@@ -1,0 +1,32 @@
+// `markerbench render` in its two forms (architecture.md, "CLI"): frames of a scenario, or
+// explicit poses of one marker. Writes frame_NNNNNN.png and groundtruth.csv into a folder.
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "core/rigid3.h"
+
+namespace markerbench {
+
+// Renders the scenario's frames in (cell, trial, marker) order, at most `limit` (0: all).
+void RenderScenario(const std::string& scenario_path, const std::string& out_dir, int limit);
+
+struct ExplicitRenderOptions {
+  std::string marker_path;
+  std::string camera_path;
+  std::string poses_path;
+  std::string out_dir;
+  double noise_var = 0.0;
+  double blur_sigma_px = 0.0;
+  uint64_t seed = 0;
+};
+
+void RenderPoses(const ExplicitRenderOptions& options);
+
+// POSES.csv: header r11,r12,r13,r21,r22,r23,r31,r32,r33,tx,ty,tz, then one cam_from_marker
+// per row. Throws ConfigError naming the file, line and column.
+std::vector<Rigid3> LoadPosesCsv(const std::string& path);
+
+}  // namespace markerbench

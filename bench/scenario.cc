@@ -1,0 +1,146 @@
+#include "bench/scenario.h"
+
+#include <algorithm>
+#include <filesystem>
+
+#include "bench/frame_plan.h"
+#include "core/camera_yaml.h"
+#include "core/marker_yaml.h"
+#include "core/yaml_reader.h"
+
+namespace markerbench {
+namespace {
+
+// Reads [lo, hi] ranges in degrees.
+void ReadRange(const YamlMap& map, const std::string& key, double lo, double hi, double* min,
+               double* max) {
+  if (!map.Has(key)) return;
+  const std::vector<double> range = map.Get<std::vector<double>>(key);
+  if (range.size() != 2 || !(range[0] >= lo && range[1] <= hi && range[0] <= range[1])) {
+    map.Fail(key, "[min, max] with " + std::to_string(lo) + " <= min <= max <= " +
+                      std::to_string(hi));
+  }
+  *min = range[0];
+  *max = range[1];
+}
+
+PoseSamplerOptions ReadPoses(const YamlMap& map) {
+  PoseSamplerOptions poses;
+  const std::string sampler = map.Get<std::string>("sampler");
+  if (sampler != "look_at") map.Fail("sampler", "'look_at' (the paper's protocol)");
+  poses.distance_m = map.GetPositive("distance_m");
+  ReadRange(map, "tilt_deg", 0.0, 89.0, &poses.tilt_min_deg, &poses.tilt_max_deg);
+  ReadRange(map, "azimuth_deg", -360.0, 720.0, &poses.azimuth_min_deg, &poses.azimuth_max_deg);
+  ReadRange(map, "roll_deg", -360.0, 720.0, &poses.roll_min_deg, &poses.roll_max_deg);
+  if (map.Has("max_offset_px")) poses.max_offset_px = map.GetDouble("max_offset_px", 0.0, 1e4);
+  if (map.Has("border_px")) poses.border_px = map.GetDouble("border_px", 0.0, 1e4);
+  map.RejectUnknownKeys();
+  return poses;
+}
+
+RenderDefaults ReadRender(const YamlMap& map) {
+  RenderDefaults render;
+  Degradations& d = render.degradations;
+  if (map.Has("noise_var")) d.noise_var = map.GetDouble("noise_var", 0.0, 10.0);
+  if (map.Has("blur_sigma_px")) d.blur_sigma_px = map.GetDouble("blur_sigma_px", 0.0, 100.0);
+  if (map.Has("motion_blur_px")) d.motion_blur_px = map.GetDouble("motion_blur_px", 0.0, 200.0);
+  if (map.Has("motion_blur_angle_deg")) {
+    d.motion_blur_angle_deg = map.GetDouble("motion_blur_angle_deg", -360.0, 360.0);
+  }
+  if (map.Has("gain")) d.gain = map.GetDouble("gain", 0.0, 100.0);
+  if (map.Has("offset")) d.offset = map.GetDouble("offset", -1.0, 1.0);
+  if (map.Has("gradient")) d.gradient = map.Get<Eigen::Vector2d>("gradient");
+  if (map.Has("jpeg_quality")) d.jpeg_quality = map.GetInt("jpeg_quality", 0, 100);
+  if (map.Has("channels")) {
+    const std::string c = map.Get<std::string>("channels");
+    if (c == "auto") {
+      render.channels = Channels::kAuto;
+    } else if (c == "grey" || c == "gray") {
+      render.channels = Channels::kGrey;
+    } else if (c == "rgb") {
+      render.channels = Channels::kRgb;
+    } else {
+      map.Fail("channels", "auto, grey or rgb");
+    }
+  }
+  if (map.Has("sheet_size_m")) {
+    const Eigen::Vector2d size = map.Get<Eigen::Vector2d>("sheet_size_m");
+    if (!(size.minCoeff() > 0.0)) map.Fail("sheet_size_m", "[width, height] > 0 in metres");
+    render.sheet_size_m = size;
+  }
+  if (map.Has("backdrop")) render.backdrop = map.GetColor("backdrop");
+  map.RejectUnknownKeys();
+  return render;
+}
+
+}  // namespace
+
+const std::vector<std::string>& SweepParameters() {
+  static const std::vector<std::string> kParameters = {
+      "noise_var", "blur_sigma_px", "motion_blur_px", "distance_m", "tilt_deg", "gain",
+      "jpeg_quality"};
+  return kParameters;
+}
+
+int ChannelsFor(Channels channels, const MarkerSpec& marker) {
+  switch (channels) {
+    case Channels::kGrey:
+      return 1;
+    case Channels::kRgb:
+      return 3;
+    default:
+      return marker.HasColor() ? 3 : 1;
+  }
+}
+
+Scenario LoadScenario(const std::string& path) {
+  const YamlMap root = YamlMap::LoadFile(path);
+  Scenario s;
+  s.path = path;
+  s.name = root.GetOr<std::string>("name", std::filesystem::path(path).stem().string());
+  s.camera = LoadCameraYaml(ResolveRelativeTo(path, root.Get<std::string>("camera")));
+  const std::vector<std::string> markers = root.Get<std::vector<std::string>>("markers");
+  if (markers.empty()) root.Fail("markers", "a list of at least one marker file");
+  for (const std::string& m : markers) s.markers.push_back(LoadMarkerYaml(ResolveRelativeTo(path, m)));
+  if (root.Has("trackers")) {
+    for (const YamlMap& t : root.GetMapList("trackers")) {
+      TrackerEntry entry;
+      entry.name = t.Get<std::string>("name");
+      if (t.Has("options")) {
+        entry.options = t.GetNode("options");
+        if (!entry.options.IsMap()) t.Fail("options", "a mapping of tracker options");
+      }
+      t.RejectUnknownKeys();
+      s.trackers.push_back(entry);
+    }
+  }
+  s.poses = ReadPoses(root.GetMap("poses"));
+  s.render = root.Has("render") ? ReadRender(root.GetMap("render")) : RenderDefaults{};
+  const YamlMap sweep = root.GetMap("sweep");
+  s.sweep_parameter = sweep.Get<std::string>("parameter");
+  const auto& names = SweepParameters();
+  if (std::find(names.begin(), names.end(), s.sweep_parameter) == names.end()) {
+    sweep.Fail("parameter",
+               "one of noise_var, blur_sigma_px, motion_blur_px, distance_m, tilt_deg, gain, "
+               "jpeg_quality");
+  }
+  s.sweep_values = sweep.Get<std::vector<double>>("values");
+  if (s.sweep_values.empty()) sweep.Fail("values", "a non-empty list of numbers");
+  for (double value : s.sweep_values) {
+    PoseSamplerOptions poses = s.poses;
+    Degradations degradations = s.render.degradations;
+    try {
+      ApplySweepValue(s.sweep_parameter, value, &poses, &degradations);
+    } catch (const std::invalid_argument& e) {
+      sweep.Fail("values", std::string("values valid for ") + s.sweep_parameter + " (" +
+                               e.what() + ")");
+    }
+  }
+  sweep.RejectUnknownKeys();
+  s.trials = root.GetInt("trials", 1, 1000000);
+  s.seed = static_cast<uint64_t>(root.GetInt("seed", 0, 2147483647));
+  root.RejectUnknownKeys();
+  return s;
+}
+
+}  // namespace markerbench

@@ -1,0 +1,71 @@
+// A scenario file (architecture.md, "Scenario"): camera, markers, trackers, pose sampler,
+// render defaults, one sweep axis, trials and seed. Paths inside it are relative to it.
+#pragma once
+
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <yaml-cpp/yaml.h>
+
+#include "core/camera.h"
+#include "core/marker_spec.h"
+#include "renderer/degradations.h"
+
+namespace markerbench {
+
+// The paper's protocol (experiments.md): the camera looks at the marker centre from
+// distance_m; tilt, azimuth and roll are uniform in their ranges; the marker centre lands
+// uniformly in a disk of max_offset_px around the image centre.
+struct PoseSamplerOptions {
+  double distance_m = 0.6;
+  double tilt_min_deg = 0.0;
+  double tilt_max_deg = 40.0;
+  double azimuth_min_deg = 0.0;
+  double azimuth_max_deg = 360.0;
+  double roll_min_deg = 0.0;
+  double roll_max_deg = 360.0;
+  double max_offset_px = 60.0;
+  // Every marker's ink bounds must stay this far inside the image; else resample.
+  double border_px = 2.0;
+};
+
+enum class Channels { kAuto, kGrey, kRgb };
+
+struct RenderDefaults {
+  Degradations degradations;
+  Channels channels = Channels::kAuto;  // auto: RGB for markers with colour, else grey
+  std::optional<Eigen::Vector2d> sheet_size_m;
+  Rgb backdrop = Rgb::Constant(0.5);
+};
+
+struct TrackerEntry {
+  std::string name;
+  YAML::Node options;  // checked by the tracker factory
+};
+
+// The sweep parameters a scenario may vary.
+const std::vector<std::string>& SweepParameters();
+
+struct Scenario {
+  std::string path;
+  std::string name;
+  Camera camera;
+  std::vector<MarkerSpec> markers;
+  std::vector<TrackerEntry> trackers;
+  PoseSamplerOptions poses;
+  RenderDefaults render;
+  std::string sweep_parameter;
+  std::vector<double> sweep_values;
+  int trials = 1;
+  uint64_t seed = 0;
+};
+
+// Throws ConfigError naming the file, line and key.
+Scenario LoadScenario(const std::string& path);
+
+// The channel count for `marker` under `channels`.
+int ChannelsFor(Channels channels, const MarkerSpec& marker);
+
+}  // namespace markerbench

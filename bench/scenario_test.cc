@@ -1,0 +1,106 @@
+#include "bench/scenario.h"
+
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include "core/test_files.h"
+#include "core/yaml_reader.h"
+
+namespace markerbench {
+namespace {
+
+using ::testing::HasSubstr;
+
+const std::string kRoot = std::filesystem::current_path().string();
+
+std::string GoodScenario() {
+  return "name: t\ncamera: " + kRoot + "/scenarios/cameras/default.yaml\nmarkers:\n  - " + kRoot +
+         "/scenarios/markers/circles_a.yaml\ntrackers:\n  - {name: circle, options: {huber: 1.0}}\n"
+         "poses:\n  sampler: look_at\n  distance_m: 0.6\n  tilt_deg: [0, 40]\n"
+         "render:\n  noise_var: 0.02\n  channels: auto\n"
+         "sweep:\n  parameter: blur_sigma_px\n  values: [0, 1, 2]\ntrials: 3\nseed: 5\n";
+}
+
+std::string Replace(std::string text, const std::string& from, const std::string& to) {
+  const size_t at = text.find(from);
+  EXPECT_NE(at, std::string::npos) << from;
+  return text.replace(at, from.size(), to);
+}
+
+std::string ErrorOf(const std::string& text) {
+  const std::string path = WriteTestFile("scenario.yaml", text);
+  try {
+    LoadScenario(path);
+  } catch (const ConfigError& e) {
+    EXPECT_THAT(e.what(), HasSubstr(path));
+    return e.what();
+  }
+  return "";
+}
+
+TEST(Scenario, LoadsEveryField) {
+  const Scenario s = LoadScenario(WriteTestFile("scenario.yaml", GoodScenario()));
+  EXPECT_EQ(s.name, "t");
+  EXPECT_EQ(s.camera.width, 640);
+  ASSERT_EQ(s.markers.size(), 1u);
+  EXPECT_EQ(s.trackers.at(0).name, "circle");
+  EXPECT_EQ(s.trackers.at(0).options["huber"].as<double>(), 1.0);
+  EXPECT_EQ(s.poses.tilt_max_deg, 40.0);
+  EXPECT_EQ(s.render.degradations.noise_var, 0.02);
+  EXPECT_EQ(s.sweep_parameter, "blur_sigma_px");
+  EXPECT_EQ(s.sweep_values.size(), 3u);
+  EXPECT_EQ(s.trials, 3);
+  EXPECT_EQ(s.seed, 5u);
+}
+
+TEST(Scenario, ShippedScenariosLoad) {
+  for (const char* path : {"scenarios/smoke.yaml", "scenarios/examples/all_markers.yaml",
+                           "scenarios/examples/circle_e.yaml"}) {
+    EXPECT_NO_THROW(LoadScenario(path)) << path;
+  }
+}
+
+TEST(Scenario, UnknownKey) {
+  EXPECT_THAT(ErrorOf(GoodScenario() + "threads: 4\n"), HasSubstr("key 'threads': unknown key"));
+  EXPECT_THAT(ErrorOf(Replace(GoodScenario(), "  distance_m: 0.6", "  distance_m: 0.6\n  dist: 1")),
+              HasSubstr("key 'poses.dist': unknown key"));
+}
+
+TEST(Scenario, MissingKey) {
+  EXPECT_THAT(ErrorOf(Replace(GoodScenario(), "trials: 3\n", "")),
+              HasSubstr("key 'trials': missing"));
+}
+
+TEST(Scenario, WrongType) {
+  EXPECT_THAT(ErrorOf(Replace(GoodScenario(), "seed: 5", "seed: five")),
+              HasSubstr("key 'seed': expected an integer"));
+}
+
+TEST(Scenario, OutOfRange) {
+  EXPECT_THAT(ErrorOf(Replace(GoodScenario(), "noise_var: 0.02", "noise_var: -1")),
+              HasSubstr("key 'render.noise_var': expected a number in [0, 10]"));
+  EXPECT_THAT(ErrorOf(Replace(GoodScenario(), "values: [0, 1, 2]", "values: [0, -1]")),
+              HasSubstr("key 'sweep.values'"));
+  EXPECT_THAT(ErrorOf(Replace(GoodScenario(), "tilt_deg: [0, 40]", "tilt_deg: [0, 95]")),
+              HasSubstr("key 'poses.tilt_deg'"));
+}
+
+TEST(Scenario, UnknownSweepParameter) {
+  EXPECT_THAT(ErrorOf(Replace(GoodScenario(), "parameter: blur_sigma_px", "parameter: fog")),
+              HasSubstr("key 'sweep.parameter': expected one of noise_var"));
+}
+
+TEST(Scenario, BadReferencedFileNamesThatFile) {
+  const std::string marker = WriteTestFile("bad_marker.yaml", "kind: circles_a\n");
+  try {
+    LoadScenario(WriteTestFile(
+        "scenario.yaml", Replace(GoodScenario(), kRoot + "/scenarios/markers/circles_a.yaml", marker)));
+    FAIL();
+  } catch (const ConfigError& e) {
+    EXPECT_THAT(e.what(), HasSubstr(marker));
+    EXPECT_THAT(e.what(), HasSubstr("key 'disks': missing"));
+  }
+}
+
+}  // namespace
+}  // namespace markerbench
