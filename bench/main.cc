@@ -1,7 +1,6 @@
 // markerbench command line (architecture.md, "CLI"). Bad input: message naming the file and
 // key, exit status 2.
 #include <CLI/CLI.hpp>
-
 #include <algorithm>
 #include <filesystem>
 #include <iostream>

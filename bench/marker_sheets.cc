@@ -2,7 +2,6 @@
 
 #include <cstdio>
 #include <filesystem>
-
 #include <opencv2/imgproc.hpp>
 
 #include "core/marker_yaml.h"
@@ -14,7 +13,7 @@ namespace {
 
 constexpr double kDpi = 300.0;
 constexpr double kMetresPerInch = 0.0254;
-constexpr int kPageWidthPx = 2480;   // A4 portrait at 300 dpi
+constexpr int kPageWidthPx = 2480;  // A4 portrait at 300 dpi
 constexpr int kPageHeightPx = 3508;
 constexpr double kCheckBarM = 0.05;
 
@@ -64,11 +63,11 @@ std::vector<std::string> WriteMarkerSheets(const std::vector<std::string>& marke
 
     const cv::Scalar black(0, 0, 0);
     const int left = 150;
-    int y = static_cast<int>(0.42 * kPageHeightPx + 0.5 * marker.InkBounds().sizes().y() *
-                                                        PxPerMetre()) + 200;
+    int y = static_cast<int>(0.42 * kPageHeightPx +
+                             0.5 * marker.InkBounds().sizes().y() * PxPerMetre()) +
+            200;
     auto line = [&](const std::string& text, double scale) {
-      cv::putText(sheet, text, {left, y}, cv::FONT_HERSHEY_SIMPLEX, scale, black, 3,
-                  cv::LINE_AA);
+      cv::putText(sheet, text, {left, y}, cv::FONT_HERSHEY_SIMPLEX, scale, black, 3, cv::LINE_AA);
       y += static_cast<int>(60 * scale);
     };
     line("markerbench: " + marker.name + " (" + ToString(marker.kind) + ")", 2.0);

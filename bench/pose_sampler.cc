@@ -1,9 +1,8 @@
 #include "bench/pose_sampler.h"
 
+#include <Eigen/Geometry>
 #include <cmath>
 #include <stdexcept>
-
-#include <Eigen/Geometry>
 
 namespace markerbench {
 namespace {
@@ -21,7 +20,8 @@ Rigid3 SampleCamFromCenter(const PoseSamplerOptions& o, const Camera& camera, Rn
 
   const Eigen::Vector3d center_cam_pos =
       o.distance_m * Eigen::Vector3d(std::sin(tilt) * std::cos(azimuth),
-                                     std::sin(tilt) * std::sin(azimuth), std::cos(tilt));
+                                     std::sin(tilt) * std::sin(azimuth),
+                                     std::cos(tilt));
   // Camera axes in the marker frame: z towards the centre, x from a reference, then roll.
   const Eigen::Vector3d z = -center_cam_pos.normalized();
   const Eigen::Vector3d ref =
@@ -85,8 +85,8 @@ Rigid3 SamplePairedPose(const PoseSamplerOptions& options,
     const Rigid3 cam_from_center = SampleCamFromCenter(options, camera, &rng);
     bool fits = true;
     for (const MarkerSpec& marker : markers) {
-      fits = fits && MarkerFitsInImage(marker, camera, CamFromMarker(cam_from_center, marker),
-                                       options.border_px);
+      fits = fits && MarkerFitsInImage(
+                         marker, camera, CamFromMarker(cam_from_center, marker), options.border_px);
     }
     if (fits) return cam_from_center;
   }

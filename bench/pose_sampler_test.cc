@@ -74,10 +74,10 @@ TEST(FramePlan, PairsPosesAcrossMarkersAndAppliesTheSweep) {
   EXPECT_EQ(frames[0].trial, frames[1].trial);
   const Eigen::Vector2d c0 = s.markers[0].InkBounds().center();
   const Eigen::Vector2d c1 = s.markers[1].InkBounds().center();
-  const Eigen::Vector3d cam0 = CameraCenterInMarker(frames[0].cam_from_marker) -
-                               Eigen::Vector3d(c0.x(), c0.y(), 0);
-  const Eigen::Vector3d cam1 = CameraCenterInMarker(frames[1].cam_from_marker) -
-                               Eigen::Vector3d(c1.x(), c1.y(), 0);
+  const Eigen::Vector3d cam0 =
+      CameraCenterInMarker(frames[0].cam_from_marker) - Eigen::Vector3d(c0.x(), c0.y(), 0);
+  const Eigen::Vector3d cam1 =
+      CameraCenterInMarker(frames[1].cam_from_marker) - Eigen::Vector3d(c1.x(), c1.y(), 0);
   EXPECT_LE((cam0 - cam1).norm(), 1e-12);
   EXPECT_EQ(frames.back().degradations.noise_var, s.sweep_values.back());
   EXPECT_EQ(frames[0].channels, 3);  // circles_a has colour

@@ -17,8 +17,8 @@
 namespace markerbench {
 namespace {
 
-constexpr const char* kPoseColumns[12] = {"r11", "r12", "r13", "r21", "r22", "r23",
-                                          "r31", "r32", "r33", "tx",  "ty",  "tz"};
+constexpr const char* kPoseColumns[12] = {
+    "r11", "r12", "r13", "r21", "r22", "r23", "r31", "r32", "r33", "tx", "ty", "tz"};
 constexpr double kRotationTol = 1e-6;  // orthonormality of rotations read from text
 
 std::string Number(double v) {
@@ -48,10 +48,10 @@ class GroundTruthCsv {
              const Camera& camera,
              const FrameRequest& request,
              const GroundTruth& truth) {
-    out_ << frame << ',' << image << ',' << marker << ',' << sweep_parameter << ','
-         << sweep_value << ',' << trial << ',' << seed << ',' << Number(camera.fx) << ','
-         << Number(camera.fy) << ',' << Number(camera.cx) << ',' << Number(camera.cy) << ','
-         << camera.width << ',' << camera.height;
+    out_ << frame << ',' << image << ',' << marker << ',' << sweep_parameter << ',' << sweep_value
+         << ',' << trial << ',' << seed << ',' << Number(camera.fx) << ',' << Number(camera.fy)
+         << ',' << Number(camera.cx) << ',' << Number(camera.cy) << ',' << camera.width << ','
+         << camera.height;
     const Rigid3& pose = truth.cam_from_marker;
     for (int r = 0; r < 3; ++r) {
       for (int c = 0; c < 3; ++c) out_ << ',' << Number(pose.rotation(r, c));
@@ -112,9 +112,16 @@ void RenderScenario(const std::string& scenario_path, const std::string& out_dir
     const RenderedFrame frame = RenderFrame(request);
     const std::string image = FrameName(f.index);
     WriteImage(out_dir + "/" + image, frame.image);
-    csv.Write(f.index, image, request.scene.marker->name, scenario.sweep_parameter,
-              Number(f.sweep_value), std::to_string(f.trial), scenario.seed, scenario.camera,
-              request, frame.truth);
+    csv.Write(f.index,
+              image,
+              request.scene.marker->name,
+              scenario.sweep_parameter,
+              Number(f.sweep_value),
+              std::to_string(f.trial),
+              scenario.seed,
+              scenario.camera,
+              request,
+              frame.truth);
   }
 }
 
@@ -124,7 +131,8 @@ std::vector<Rigid3> LoadPosesCsv(const std::string& path) {
   std::string line;
   std::getline(in, line);
   std::string expected_header;
-  for (const char* c : kPoseColumns) expected_header += std::string(expected_header.empty() ? "" : ",") + c;
+  for (const char* c : kPoseColumns)
+    expected_header += std::string(expected_header.empty() ? "" : ",") + c;
   if (line != expected_header && line != expected_header + "\r") {
     throw ConfigError(path + ":1: header: expected '" + expected_header + "', got '" + line + "'");
   }
@@ -185,8 +193,8 @@ void RenderPoses(const ExplicitRenderOptions& o) {
     const RenderedFrame frame = RenderFrame(request);
     const std::string image = FrameName(static_cast<int>(i));
     WriteImage(o.out_dir + "/" + image, frame.image);
-    csv.Write(static_cast<int>(i), image, marker.name, "", "", "", o.seed, camera, request,
-              frame.truth);
+    csv.Write(
+        static_cast<int>(i), image, marker.name, "", "", "", o.seed, camera, request, frame.truth);
   }
 }
 

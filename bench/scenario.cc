@@ -12,13 +12,13 @@ namespace markerbench {
 namespace {
 
 // Reads [lo, hi] ranges in degrees.
-void ReadRange(const YamlMap& map, const std::string& key, double lo, double hi, double* min,
-               double* max) {
+void ReadRange(
+    const YamlMap& map, const std::string& key, double lo, double hi, double* min, double* max) {
   if (!map.Has(key)) return;
   const std::vector<double> range = map.Get<std::vector<double>>(key);
   if (range.size() != 2 || !(range[0] >= lo && range[1] <= hi && range[0] <= range[1])) {
-    map.Fail(key, "[min, max] with " + std::to_string(lo) + " <= min <= max <= " +
-                      std::to_string(hi));
+    map.Fail(key,
+             "[min, max] with " + std::to_string(lo) + " <= min <= max <= " + std::to_string(hi));
   }
   *min = range[0];
   *max = range[1];
@@ -76,9 +76,13 @@ RenderDefaults ReadRender(const YamlMap& map) {
 }  // namespace
 
 const std::vector<std::string>& SweepParameters() {
-  static const std::vector<std::string> kParameters = {
-      "noise_var", "blur_sigma_px", "motion_blur_px", "distance_m", "tilt_deg", "gain",
-      "jpeg_quality"};
+  static const std::vector<std::string> kParameters = {"noise_var",
+                                                       "blur_sigma_px",
+                                                       "motion_blur_px",
+                                                       "distance_m",
+                                                       "tilt_deg",
+                                                       "gain",
+                                                       "jpeg_quality"};
   return kParameters;
 }
 
@@ -101,7 +105,8 @@ Scenario LoadScenario(const std::string& path) {
   s.camera = LoadCameraYaml(ResolveRelativeTo(path, root.Get<std::string>("camera")));
   const std::vector<std::string> markers = root.Get<std::vector<std::string>>("markers");
   if (markers.empty()) root.Fail("markers", "a list of at least one marker file");
-  for (const std::string& m : markers) s.markers.push_back(LoadMarkerYaml(ResolveRelativeTo(path, m)));
+  for (const std::string& m : markers)
+    s.markers.push_back(LoadMarkerYaml(ResolveRelativeTo(path, m)));
   if (root.Has("trackers")) {
     for (const YamlMap& t : root.GetMapList("trackers")) {
       TrackerEntry entry;
@@ -132,8 +137,8 @@ Scenario LoadScenario(const std::string& path) {
     try {
       ApplySweepValue(s.sweep_parameter, value, &poses, &degradations);
     } catch (const std::invalid_argument& e) {
-      sweep.Fail("values", std::string("values valid for ") + s.sweep_parameter + " (" +
-                               e.what() + ")");
+      sweep.Fail("values",
+                 std::string("values valid for ") + s.sweep_parameter + " (" + e.what() + ")");
     }
   }
   sweep.RejectUnknownKeys();

@@ -2,12 +2,12 @@
 // render defaults, one sweep axis, trials and seed. Paths inside it are relative to it.
 #pragma once
 
+#include <yaml-cpp/yaml.h>
+
 #include <cstdint>
 #include <optional>
 #include <string>
 #include <vector>
-
-#include <yaml-cpp/yaml.h>
 
 #include "core/camera.h"
 #include "core/marker_spec.h"

@@ -54,7 +54,8 @@ TEST(Scenario, LoadsEveryField) {
 }
 
 TEST(Scenario, ShippedScenariosLoad) {
-  for (const char* path : {"scenarios/smoke.yaml", "scenarios/examples/all_markers.yaml",
+  for (const char* path : {"scenarios/smoke.yaml",
+                           "scenarios/examples/all_markers.yaml",
                            "scenarios/examples/circle_e.yaml"}) {
     EXPECT_NO_THROW(LoadScenario(path)) << path;
   }
@@ -94,7 +95,8 @@ TEST(Scenario, BadReferencedFileNamesThatFile) {
   const std::string marker = WriteTestFile("bad_marker.yaml", "kind: circles_a\n");
   try {
     LoadScenario(WriteTestFile(
-        "scenario.yaml", Replace(GoodScenario(), kRoot + "/scenarios/markers/circles_a.yaml", marker)));
+        "scenario.yaml",
+        Replace(GoodScenario(), kRoot + "/scenarios/markers/circles_a.yaml", marker)));
     FAIL();
   } catch (const ConfigError& e) {
     EXPECT_THAT(e.what(), HasSubstr(marker));

@@ -2,11 +2,10 @@
 // Pixels follow architecture.md: the top-left pixel's centre is (0, 0), u right, v down.
 #pragma once
 
-#include <array>
-#include <string>
-
 #include <Eigen/Core>
 #include <Eigen/LU>
+#include <array>
+#include <string>
 
 namespace markerbench {
 

@@ -8,10 +8,7 @@ namespace markerbench {
 namespace {
 
 // A {rows, cols, data} matrix block with the given shape.
-std::vector<double> ReadMatrix(const YamlMap& parent,
-                               const std::string& key,
-                               int rows,
-                               int cols) {
+std::vector<double> ReadMatrix(const YamlMap& parent, const std::string& key, int rows, int cols) {
   const YamlMap block = parent.GetMap(key);
   const int r = block.Get<int>("rows");
   const int c = block.Get<int>("cols");

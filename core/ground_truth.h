@@ -1,9 +1,8 @@
 // What the renderer knows about a frame and trackers never see (architecture.md, layering).
 #pragma once
 
-#include <vector>
-
 #include <Eigen/Core>
+#include <vector>
 
 #include "core/rigid3.h"
 

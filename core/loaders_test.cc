@@ -121,9 +121,10 @@ TEST(MarkerYaml, LoadsCirclesA) {
 }
 
 TEST(MarkerYaml, UnknownKey) {
-  EXPECT_THAT(MarkerError(Replace(kGoodCirclesA, "radius: 0.03, color: [1.0",
-                                  "radius: 0.03, label: m0, color: [1.0")),
-              HasSubstr("key 'disks[0].label': unknown key"));
+  EXPECT_THAT(
+      MarkerError(Replace(
+          kGoodCirclesA, "radius: 0.03, color: [1.0", "radius: 0.03, label: m0, color: [1.0")),
+      HasSubstr("key 'disks[0].label': unknown key"));
 }
 
 TEST(MarkerYaml, MissingKey) {
@@ -132,16 +133,16 @@ TEST(MarkerYaml, MissingKey) {
 }
 
 TEST(MarkerYaml, WrongType) {
-  EXPECT_THAT(MarkerError(Replace(kGoodCirclesA, "radius: 0.03, color: [1.0",
-                                  "radius: big, color: [1.0")),
-              HasSubstr("key 'disks[0].radius': expected a number"));
+  EXPECT_THAT(
+      MarkerError(Replace(kGoodCirclesA, "radius: 0.03, color: [1.0", "radius: big, color: [1.0")),
+      HasSubstr("key 'disks[0].radius': expected a number"));
 }
 
 TEST(MarkerYaml, OutOfRange) {
   EXPECT_THAT(MarkerError(Replace(kGoodCirclesA, "[0.0, 0.0, 1.0]", "[0.0, 0.0, 2.0]")),
               HasSubstr("key 'disks[1].color': expected an RGB colour"));
-  EXPECT_THAT(MarkerError(Replace(kGoodCirclesA, "radius: 0.03, color: [1.0",
-                                  "radius: -0.03, color: [1.0")),
+  EXPECT_THAT(MarkerError(Replace(
+                  kGoodCirclesA, "radius: 0.03, color: [1.0", "radius: -0.03, color: [1.0")),
               HasSubstr("key 'disks[0].radius': expected a positive number"));
 }
 

@@ -87,13 +87,13 @@ GridShape AprilTagGrid(const std::string& family, int id, double size_m) {
   for (const auto& entry : kAprilTagFamilies) {
     if (family != entry.name) continue;
     const std::unique_ptr<apriltag_family_t, void (*)(apriltag_family_t*)> fam(entry.create(),
-                                                                              entry.destroy);
+                                                                               entry.destroy);
     if (id < 0 || static_cast<uint32_t>(id) >= fam->ncodes) {
       throw std::invalid_argument("an id in [0, " + std::to_string(fam->ncodes - 1) + "] for " +
                                   family);
     }
-    const std::unique_ptr<image_u8_t, void (*)(image_u8_t*)> image(
-        apriltag_to_image(fam.get(), id), image_u8_destroy);
+    const std::unique_ptr<image_u8_t, void (*)(image_u8_t*)> image(apriltag_to_image(fam.get(), id),
+                                                                   image_u8_destroy);
     const int n = fam->total_width;
     return GridFromBitmap(n, size_m / fam->width_at_border, [&](int r, int c) {
       return image->buf[r * image->stride + c] == 0;
@@ -121,9 +121,8 @@ GridShape ArucoGrid(const std::string& dictionary, int id, double size_m) {
     const int n = dict->markerSize + 2;
     cv::Mat bitmap;
     cv::aruco::drawMarker(dict, id, n, bitmap, 1);
-    return GridFromBitmap(n, size_m / n, [&](int r, int c) {
-      return bitmap.at<uint8_t>(r, c) < 128;
-    });
+    return GridFromBitmap(
+        n, size_m / n, [&](int r, int c) { return bitmap.at<uint8_t>(r, c) < 128; });
   }
   std::string names;
   for (const auto& [n, v] : kArucoDictionaries) names += std::string(names.empty() ? "" : ", ") + n;

@@ -2,12 +2,11 @@
 // geometry that trackers and the harness query. Frames and units: architecture.md.
 #pragma once
 
+#include <Eigen/Core>
+#include <Eigen/Geometry>
 #include <optional>
 #include <string>
 #include <vector>
-
-#include <Eigen/Core>
-#include <Eigen/Geometry>
 
 #include "core/shapes.h"
 
@@ -39,8 +38,8 @@ struct Disk {
 
 struct MarkerSpec {
   MarkerKind kind = MarkerKind::kCirclesA;
-  std::string name;               // the marker file's stem
-  Rgb background = Rgb::Ones();   // the paper the marker is printed on
+  std::string name;              // the marker file's stem
+  Rgb background = Rgb::Ones();  // the paper the marker is printed on
 
   // Circle markers: the circles whose edges carry the pose; circles[0] is centred at m0.
   std::vector<Disk> circles;

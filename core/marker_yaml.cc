@@ -27,8 +27,9 @@ Disk ReadDiskKey(const YamlMap& root, const std::string& key) { return ReadDisk(
 std::vector<Disk> ReadDisks(const YamlMap& root, size_t count) {
   const std::vector<YamlMap> maps = root.GetMapList("disks");
   if (maps.size() != count) {
-    root.Fail("disks", "a list of " + std::to_string(count) + " disks for kind " +
-                           root.Get<std::string>("kind"));
+    root.Fail(
+        "disks",
+        "a list of " + std::to_string(count) + " disks for kind " + root.Get<std::string>("kind"));
   }
   std::vector<Disk> disks;
   for (const YamlMap& m : maps) disks.push_back(ReadDisk(m));
@@ -106,7 +107,8 @@ void LoadCircleMarker(const YamlMap& root, MarkerSpec* spec) {
       PaintDisk(spec, c0);
       const Disk center_dot = ReadDiskKey(root, "center_dot");
       RequireOrigin(root, "center_dot", center_dot.center);
-      if (center_dot.radius_m >= c0.radius_m) root.Fail("center_dot", "a dot smaller than the disk");
+      if (center_dot.radius_m >= c0.radius_m)
+        root.Fail("center_dot", "a dot smaller than the disk");
       PaintDisk(spec, center_dot);
       const Disk dot = ReadDiskKey(root, "feature_dot");
       RequireOnXAxis(root, "feature_dot", dot.center);
@@ -135,7 +137,8 @@ void LoadCircleMarker(const YamlMap& root, MarkerSpec* spec) {
       const Rgb color = mouth.GetColor("color");
       mouth.RejectUnknownKeys();
       const Eigen::Vector2d along = (tip1 - tip0).normalized();
-      const Eigen::Vector2d bulge = 0.5 * (tip0 + tip1) + outer * Eigen::Vector2d(-along.y(), along.x());
+      const Eigen::Vector2d bulge =
+          0.5 * (tip0 + tip1) + outer * Eigen::Vector2d(-along.y(), along.x());
       for (const Eigen::Vector2d& p : {tip0, tip1, bulge}) {
         if (p.norm() >= c0.radius_m) mouth.Fail("tips", "a mouth inside the disk");
       }
@@ -210,8 +213,9 @@ void LoadSquareMarker(const YamlMap& root, MarkerSpec* spec) {
     spec->family = root.Get<std::string>(family_key);
     spec->id = root.Get<int>("id");
     try {
-      grid = spec->kind == MarkerKind::kAprilTag ? AprilTagGrid(spec->family, spec->id, spec->size_m)
-                                                 : ArucoGrid(spec->family, spec->id, spec->size_m);
+      grid = spec->kind == MarkerKind::kAprilTag
+                 ? AprilTagGrid(spec->family, spec->id, spec->size_m)
+                 : ArucoGrid(spec->family, spec->id, spec->size_m);
     } catch (const std::invalid_argument& e) {
       root.Fail(std::string(e.what()).rfind("an id", 0) == 0 ? "id" : family_key, e.what());
     }

@@ -15,7 +15,7 @@ uint64_t SplitMix64(uint64_t x) {
 uint64_t RotateLeft(uint64_t x, int k) { return (x << k) | (x >> (64 - k)); }
 
 constexpr int kBlocks = 128;
-constexpr double kTailStart = 3.442619855899;      // r for 128 blocks (Doornik 2005)
+constexpr double kTailStart = 3.442619855899;       // r for 128 blocks (Doornik 2005)
 constexpr double kBlockArea = 9.91256303526217e-3;  // v, the area of each block
 
 struct ZigguratTables {

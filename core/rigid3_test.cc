@@ -42,8 +42,8 @@ TEST(Rigid3, CameraCenterMapsToCameraOrigin) {
 
 TEST(Rigid3, RotationAngleBetween) {
   const Eigen::Matrix3d a = RandomRigid(9).rotation;
-  const Eigen::Matrix3d b = a * Eigen::AngleAxisd(0.25, Eigen::Vector3d(1, 2, 3).normalized())
-                                    .toRotationMatrix();
+  const Eigen::Matrix3d b =
+      a * Eigen::AngleAxisd(0.25, Eigen::Vector3d(1, 2, 3).normalized()).toRotationMatrix();
   EXPECT_NEAR(RotationAngleBetween(a, b), 0.25, 1e-12);
   EXPECT_NEAR(RotationAngleBetween(a, a), 0.0, 1e-7);
 }

@@ -3,12 +3,11 @@
 // edges; the geometry queries of MarkerSpec are computed from them.
 #pragma once
 
+#include <Eigen/Core>
+#include <Eigen/Geometry>
 #include <cstdint>
 #include <variant>
 #include <vector>
-
-#include <Eigen/Core>
-#include <Eigen/Geometry>
 
 namespace markerbench {
 

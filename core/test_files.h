@@ -1,11 +1,11 @@
 // Test helper: writes a text file into a fresh temporary folder.
 #pragma once
 
+#include <unistd.h>
+
 #include <filesystem>
 #include <fstream>
 #include <string>
-
-#include <unistd.h>
 
 namespace markerbench {
 

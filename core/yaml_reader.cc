@@ -54,12 +54,10 @@ YamlMap YamlMap::LoadFile(const std::string& path) {
   } catch (const YAML::BadFile&) {
     throw ConfigError(path + ": cannot open the file");
   } catch (const YAML::ParserException& e) {
-    throw ConfigError(path + ":" + std::to_string(e.mark.line + 1) +
-                      ": not valid YAML: " + e.msg);
+    throw ConfigError(path + ":" + std::to_string(e.mark.line + 1) + ": not valid YAML: " + e.msg);
   }
   if (!root.IsMap()) {
-    throw ConfigError(path + ": expected a YAML mapping at the top level, got " +
-                      Describe(root));
+    throw ConfigError(path + ": expected a YAML mapping at the top level, got " + Describe(root));
   }
   return YamlMap(root, path, "");
 }
@@ -102,7 +100,8 @@ T YamlMap::Get(const std::string& key) const {
   const YAML::Node value = Lookup(key);
   if constexpr (std::is_same_v<T, Eigen::Vector2d> || std::is_same_v<T, Eigen::Vector3d>) {
     const std::string expected = "a list of " + std::to_string(T::RowsAtCompileTime) + " numbers";
-    if (!value.IsDefined() || !value.IsSequence() || value.size() != static_cast<size_t>(T::RowsAtCompileTime)) {
+    if (!value.IsDefined() || !value.IsSequence() ||
+        value.size() != static_cast<size_t>(T::RowsAtCompileTime)) {
       Fail(key, expected);
     }
     T out;
@@ -138,8 +137,7 @@ template Eigen::Vector2d YamlMap::Get<Eigen::Vector2d>(const std::string&) const
 template Eigen::Vector3d YamlMap::Get<Eigen::Vector3d>(const std::string&) const;
 template std::vector<double> YamlMap::Get<std::vector<double>>(const std::string&) const;
 template std::vector<int> YamlMap::Get<std::vector<int>>(const std::string&) const;
-template std::vector<std::string> YamlMap::Get<std::vector<std::string>>(
-    const std::string&) const;
+template std::vector<std::string> YamlMap::Get<std::vector<std::string>>(const std::string&) const;
 
 double YamlMap::GetDouble(const std::string& key, double lo, double hi) const {
   const double value = Get<double>(key);
@@ -186,8 +184,8 @@ std::vector<YamlMap> YamlMap::GetMapList(const std::string& key) const {
   for (size_t i = 0; i < value.size(); ++i) {
     const std::string element_key = FullKey(key) + "[" + std::to_string(i) + "]";
     if (!value[i].IsMap()) {
-      throw ConfigError(Where(value[i]) + ": key '" + element_key +
-                        "': expected a mapping, got " + Describe(value[i]));
+      throw ConfigError(Where(value[i]) + ": key '" + element_key + "': expected a mapping, got " +
+                        Describe(value[i]));
     }
     out.emplace_back(value[i], file_, element_key);
   }

@@ -3,13 +3,13 @@
 // names the file, the line, the full key path and what was expected, as a ConfigError.
 #pragma once
 
+#include <yaml-cpp/yaml.h>
+
+#include <Eigen/Core>
 #include <set>
 #include <stdexcept>
 #include <string>
 #include <vector>
-
-#include <Eigen/Core>
-#include <yaml-cpp/yaml.h>
 
 namespace markerbench {
 

@@ -2,12 +2,11 @@
 
 #include <algorithm>
 #include <cmath>
-#include <sstream>
-#include <vector>
-
 #include <opencv2/core.hpp>
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
+#include <sstream>
+#include <vector>
 
 #include "core/random.h"
 
@@ -17,7 +16,9 @@ namespace {
 constexpr double kPi = 3.14159265358979323846;
 
 PixelRect Grow(const PixelRect& r, int by, const ImageF& image) {
-  return {std::max(0, r.x0 - by), std::max(0, r.y0 - by), std::min(image.width, r.x1 + by),
+  return {std::max(0, r.x0 - by),
+          std::max(0, r.y0 - by),
+          std::min(image.width, r.x1 + by),
           std::min(image.height, r.y1 + by)};
 }
 
@@ -42,8 +43,7 @@ bool Degradations::IsValid(std::string* error) const {
     msg << "motion_blur_px=" << motion_blur_px << " must be in [0, 200]";
   } else if (!std::isfinite(motion_blur_angle_deg)) {
     msg << "motion_blur_angle_deg must be finite";
-  } else if (!(gain >= 0.0 && gain <= 100.0) || !std::isfinite(offset) ||
-             !gradient.allFinite()) {
+  } else if (!(gain >= 0.0 && gain <= 100.0) || !std::isfinite(offset) || !gradient.allFinite()) {
     msg << "lighting gain=" << gain << " must be in [0, 100], offset and gradient finite";
   } else if (!(noise_var >= 0.0 && noise_var <= 10.0)) {
     msg << "noise_var=" << noise_var << " must be in [0, 10]";
@@ -195,8 +195,8 @@ void JpegRoundTrip(int quality, Image8* image) {
   }
   std::vector<uint8_t> buffer;
   cv::imencode(".jpg", bgr, buffer, {cv::IMWRITE_JPEG_QUALITY, quality});
-  cv::Mat decoded = cv::imdecode(buffer, image->channels == 1 ? cv::IMREAD_GRAYSCALE
-                                                              : cv::IMREAD_COLOR);
+  cv::Mat decoded =
+      cv::imdecode(buffer, image->channels == 1 ? cv::IMREAD_GRAYSCALE : cv::IMREAD_COLOR);
   if (image->channels == 3) cv::cvtColor(decoded, decoded, cv::COLOR_BGR2RGB);
   std::copy(decoded.data, decoded.data + image->pixels.size(), image->pixels.begin());
 }

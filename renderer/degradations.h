@@ -3,10 +3,9 @@
 // then optional JPEG.
 #pragma once
 
+#include <Eigen/Core>
 #include <cstdint>
 #include <string>
-
-#include <Eigen/Core>
 
 #include "core/image.h"
 #include "renderer/rasterizer.h"

@@ -1,11 +1,10 @@
 #include "renderer/rasterizer.h"
 
+#include <Eigen/LU>
 #include <algorithm>
 #include <array>
 #include <cmath>
 #include <vector>
-
-#include <Eigen/LU>
 
 namespace markerbench {
 namespace {
@@ -126,11 +125,8 @@ Sample Edge(const Color* neg, const Color* pos, const Eigen::Vector2d& n, double
 }
 
 // Image-space line from a marker-plane signed distance s with marker gradient g.
-Sample EdgeFromPlane(const Color* neg,
-                     const Color* pos,
-                     const PlanePoint& p,
-                     double s,
-                     const Eigen::Vector2d& g) {
+Sample EdgeFromPlane(
+    const Color* neg, const Color* pos, const PlanePoint& p, double s, const Eigen::Vector2d& g) {
   const Eigen::Vector2d gi = p.dX_dp.transpose() * g;
   const double gn = gi.norm();
   return Edge(neg, pos, gi / gn, s / gn);
@@ -263,7 +259,11 @@ class CellShader {
     } else if (!ShadeCell(u, v, h, &c)) {
       const double q = 0.25 * h;
       for (int i = 0; i < 4; ++i) {
-        Shade(u + ((i & 1) ? q : -q), v + ((i & 2) ? q : -q), 0.5 * h, depth + 1, 0.25f * weight,
+        Shade(u + ((i & 1) ? q : -q),
+              v + ((i & 2) ? q : -q),
+              0.5 * h,
+              depth + 1,
+              0.25f * weight,
               acc);
       }
       return;
@@ -352,10 +352,10 @@ void SetImageBounds(const Eigen::AlignedBox2d& box,
   for (int side = 0; side < 4; ++side) {
     for (int i = 0; i < kStepsPerSide; ++i) {
       const double t = static_cast<double>(i) / kStepsPerSide;
-      const Eigen::Vector2d a = box.corner(static_cast<Eigen::AlignedBox2d::CornerType>(
-          std::array<int, 4>{0, 1, 3, 2}[side]));
-      const Eigen::Vector2d b = box.corner(static_cast<Eigen::AlignedBox2d::CornerType>(
-          std::array<int, 4>{1, 3, 2, 0}[side]));
+      const Eigen::Vector2d a = box.corner(
+          static_cast<Eigen::AlignedBox2d::CornerType>(std::array<int, 4>{0, 1, 3, 2}[side]));
+      const Eigen::Vector2d b = box.corner(
+          static_cast<Eigen::AlignedBox2d::CornerType>(std::array<int, 4>{1, 3, 2, 0}[side]));
       const Eigen::Vector2d x = a + t * (b - a);
       const Eigen::Vector3d x_cam = cam_from_marker * Eigen::Vector3d(x.x(), x.y(), 0.0);
       if (!(x_cam.z() > 1e-9)) return;  // leave unbounded
@@ -420,8 +420,10 @@ RasterResult Rasterize(const Scene& scene, int channels) {
     sheet.constraints = SheetConstraints(marker, *scene.sheet_size_m);
     sheet.color = paper;
     const Eigen::Vector2d c = marker.InkBounds().center();
-    SetImageBounds({c - 0.5 * *scene.sheet_size_m, c + 0.5 * *scene.sheet_size_m}, camera,
-                   scene.cam_from_marker, &sheet);
+    SetImageBounds({c - 0.5 * *scene.sheet_size_m, c + 0.5 * *scene.sheet_size_m},
+                   camera,
+                   scene.cam_from_marker,
+                   &sheet);
     layers.push_back(sheet);
   } else {
     Layer plane;

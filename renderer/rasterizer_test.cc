@@ -10,9 +10,9 @@
 namespace markerbench {
 namespace {
 
-constexpr double kAreaRelTol = 1e-3;       // issue: ink area to 0.1 %
-constexpr double kCentroidTolPx = 0.01;    // issue: ink centroid to 0.01 px
-constexpr double kEdgeTolPx = 0.02;        // issue: square edges to 0.02 px
+constexpr double kAreaRelTol = 1e-3;        // issue: ink area to 0.1 %
+constexpr double kCentroidTolPx = 0.01;     // issue: ink centroid to 0.01 px
+constexpr double kEdgeTolPx = 0.02;         // issue: square edges to 0.02 px
 constexpr double kCoverageTol = 1.0 / 255;  // issue: per-pixel coverage error
 
 Scene MakeScene(const MarkerSpec& marker, const Rigid3& cam_from_marker) {
@@ -50,7 +50,8 @@ TEST(Rasterizer, ObliqueDiskInkMatchesProjectedEllipse) {
     H << pose.rotation.col(0), pose.rotation.col(1), pose.translation;
     H = scene.camera.K() * H;
     const Eigen::Matrix3d Hinv = H.inverse();
-    const Eigen::Matrix3d C = Hinv.transpose() * Eigen::Vector3d(1, 1, -0.05 * 0.05).asDiagonal() * Hinv;
+    const Eigen::Matrix3d C =
+        Hinv.transpose() * Eigen::Vector3d(1, 1, -0.05 * 0.05).asDiagonal() * Hinv;
     const Eigen::Matrix2d A = C.topLeftCorner<2, 2>();
     const Eigen::Vector2d b = C.topRightCorner<2, 1>();
     const Eigen::Vector2d center = -A.inverse() * b;
@@ -85,7 +86,8 @@ TEST(Rasterizer, SquareTagEdgesLieOnProjectedEdges) {
   const Eigen::Vector2d top = project(tag.keypoints[0]), bottom = project(tag.keypoints[3]);
   int checked = 0;
   for (int v = static_cast<int>(std::ceil(std::min(top.y(), bottom.y()))) + 3;
-       v < static_cast<int>(std::max(top.y(), bottom.y())) - 3; ++v) {
+       v < static_cast<int>(std::max(top.y(), bottom.y())) - 3;
+       ++v) {
     const double t = (v - top.y()) / (bottom.y() - top.y());
     const double expected = top.x() + t * (bottom.x() - top.x());
     const int a = static_cast<int>(std::floor(expected)) - 3;
@@ -172,8 +174,8 @@ TEST(Rasterizer, FiniteSheetShowsBackdropAroundIt) {
   scene.sheet_size_m = Eigen::Vector2d(0.2, 0.1);  // 240 x 120 px at 0.5 m
   scene.backdrop = Rgb::Constant(0.25);
   const ImageF image = Rasterize(scene, 1).image;
-  EXPECT_NEAR(image.at(319, 239 - 50), 1.0, 1e-6);   // on the sheet
-  EXPECT_NEAR(image.at(319, 239 - 70), 0.25, 1e-6);  // above it
+  EXPECT_NEAR(image.at(319, 239 - 50), 1.0, 1e-6);    // on the sheet
+  EXPECT_NEAR(image.at(319, 239 - 70), 0.25, 1e-6);   // above it
   EXPECT_NEAR(image.at(319 + 130, 239), 0.25, 1e-6);  // right of it
   // The sheet's top edge (y = 0.05 m) falls on the row boundary v = 179.5.
   EXPECT_NEAR(image.at(319, 179), 0.25, 1e-6);

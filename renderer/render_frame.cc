@@ -6,7 +6,9 @@
 namespace markerbench {
 namespace {
 
-Eigen::Vector2d Project(const Camera& camera, const Rigid3& cam_from_marker, const Eigen::Vector2d& x) {
+Eigen::Vector2d Project(const Camera& camera,
+                        const Rigid3& cam_from_marker,
+                        const Eigen::Vector2d& x) {
   return camera.ImgFromCam(cam_from_marker * Eigen::Vector3d(x.x(), x.y(), 0.0));
 }
 
@@ -64,13 +66,13 @@ RenderedFrame RenderFrame(const FrameRequest& request) {
   const Degradations& d = request.degradations;
   PixelRect changed = GaussianBlur(d.blur_sigma_px, raster.nonuniform, &raster.image);
   MotionBlur(d.motion_blur_px, d.motion_blur_angle_deg, changed, &raster.image);
-  ImageF image =
-      margin == 0 ? std::move(raster.image) : Crop(raster.image, margin, camera.width, camera.height);
+  ImageF image = margin == 0 ? std::move(raster.image)
+                             : Crop(raster.image, margin, camera.width, camera.height);
   ApplyLighting(d, &image);
 
   RenderedFrame frame;
-  frame.image = AddNoiseAndQuantize(image, d.noise_var, request.noise_seed,
-                                    request.keep_linear ? &frame.linear : nullptr);
+  frame.image = AddNoiseAndQuantize(
+      image, d.noise_var, request.noise_seed, request.keep_linear ? &frame.linear : nullptr);
   JpegRoundTrip(d.jpeg_quality, &frame.image);
   frame.truth = ComputeGroundTruth(*request.scene.marker, camera, request.scene.cam_from_marker);
   return frame;

@@ -3,9 +3,8 @@
 // rays that miss the plane (beyond the horizon) see the backdrop.
 #pragma once
 
-#include <optional>
-
 #include <Eigen/Core>
+#include <optional>
 
 #include "core/camera.h"
 #include "core/marker_spec.h"

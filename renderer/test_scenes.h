@@ -1,9 +1,8 @@
 // Small scenes shared by the renderer tests and benchmark.
 #pragma once
 
-#include <cmath>
-
 #include <Eigen/Geometry>
+#include <cmath>
 
 #include "core/marker_spec.h"
 #include "core/rigid3.h"
@@ -40,8 +39,7 @@ inline Rigid3 TiltedView(double distance_m, double tilt_deg, double roll_deg) {
   constexpr double kDeg = 3.14159265358979323846 / 180.0;
   // Fronto-parallel: marker x → camera x, marker y → camera -y, marker z → camera -z.
   const Eigen::Matrix3d frontal = Eigen::Vector3d(1.0, -1.0, -1.0).asDiagonal();
-  const Eigen::Matrix3d R = Eigen::AngleAxisd(roll_deg * kDeg, Eigen::Vector3d::UnitZ()) *
-                            frontal *
+  const Eigen::Matrix3d R = Eigen::AngleAxisd(roll_deg * kDeg, Eigen::Vector3d::UnitZ()) * frontal *
                             Eigen::AngleAxisd(tilt_deg * kDeg, Eigen::Vector3d::UnitX());
   return {R, Eigen::Vector3d(0.0, 0.0, distance_m)};
 }

@@ -1,0 +1,21 @@
+#!/usr/bin/env bash
+# The whole test suite from a clean clone: install dependencies, check formatting, build
+# with warnings as errors (Release), run every test with ctest, then run the unit and
+# synthetic tests again under AddressSanitizer + UndefinedBehaviorSanitizer.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+bash scripts/install-deps.sh
+
+echo "== formatting (clang-format)"
+find core renderer trackers bench \( -name '*.h' -o -name '*.cc' \) -print0 |
+  xargs -0 clang-format --dry-run --Werror
+
+echo "== build (Release, -Werror)"
+bash scripts/build.sh -DMARKERBENCH_WERROR=ON
+(cd build && ctest --output-on-failure --parallel "$(nproc)")
+
+echo "== sanitizers (ASan + UBSan): unit and synthetic tests"
+cmake -S . -B build-sanitize -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -DMARKERBENCH_WERROR=ON \
+  -DMARKERBENCH_ASAN=ON -DMARKERBENCH_UBSAN=ON -DMARKERBENCH_BENCHMARKS=OFF
+cmake --build build-sanitize --parallel "$(nproc)"
+(cd build-sanitize && ctest --output-on-failure --parallel "$(nproc)" -L 'unit|synthetic')
