@@ -12,15 +12,14 @@ uint64_t SplitMix64(uint64_t x) {
   return x ^ (x >> 31);
 }
 
-uint64_t RotateLeft(uint64_t x, int k) { return (x << k) | (x >> (64 - k)); }
-
-constexpr int kBlocks = 128;
-constexpr double kTailStart = 3.442619855899;       // r for 128 blocks (Doornik 2005)
-constexpr double kBlockArea = 9.91256303526217e-3;  // v, the area of each block
+constexpr int kBlocks = 256;
+constexpr double kTailStart = 3.6541528853610088;  // r for 256 blocks (Marsaglia, Tsang 2000)
+constexpr double kBlockArea = 4.92867323399e-3;    // v, the area of each block
 
 struct ZigguratTables {
   double x[kBlocks + 1];
   double ratio[kBlocks];
+  double density[kBlocks + 1];  // exp(-x²/2) at each block edge
 
   ZigguratTables() {
     double f = std::exp(-0.5 * kTailStart * kTailStart);
@@ -32,6 +31,7 @@ struct ZigguratTables {
       f = std::exp(-0.5 * x[i] * x[i]);
     }
     for (int i = 0; i < kBlocks; ++i) ratio[i] = x[i + 1] / x[i];
+    for (int i = 0; i <= kBlocks; ++i) density[i] = std::exp(-0.5 * x[i] * x[i]);
   }
 };
 
@@ -57,18 +57,6 @@ Rng::Rng(uint64_t seed) {
   }
 }
 
-uint64_t Rng::NextU64() {
-  const uint64_t result = RotateLeft(state_[1] * 5, 7) * 9;
-  const uint64_t t = state_[1] << 17;
-  state_[2] ^= state_[0];
-  state_[3] ^= state_[1];
-  state_[1] ^= state_[2];
-  state_[0] ^= state_[3];
-  state_[2] ^= t;
-  state_[3] = RotateLeft(state_[3], 45);
-  return result;
-}
-
 double Rng::Gaussian() {
   const ZigguratTables& z = Tables();
   for (;;) {
@@ -84,36 +72,46 @@ double Rng::Gaussian() {
 double Rng::GaussianSlowPath(int i, double u) {
   const ZigguratTables& z = Tables();
   if (i == 0) return GaussianTail(u < 0.0);
+  // Accept under the density within the wedge between the block edges.
   const double x = u * z.x[i];
-  const double f0 = std::exp(-0.5 * (z.x[i] * z.x[i] - x * x));
-  const double f1 = std::exp(-0.5 * (z.x[i + 1] * z.x[i + 1] - x * x));
-  if (f1 + Uniform() * (f0 - f1) < 1.0) return x;
+  const double y = z.density[i + 1] + Uniform() * (z.density[i] - z.density[i + 1]);
+  if (y < std::exp(-0.5 * x * x)) return x;
   return std::nan("");  // rejected: draw again
 }
 
 void Rng::FillGaussian(float scale, size_t n, float* out) {
-  const ZigguratTables& z = Tables();
-  float x_f[kBlocks], ratio_f[kBlocks];
-  for (int i = 0; i < kBlocks; ++i) {
-    x_f[i] = static_cast<float>(z.x[i]);
-    ratio_f[i] = static_cast<float>(z.ratio[i]);
-  }
+  struct FloatTables {
+    float x[kBlocks];
+    float ratio[kBlocks];
+  };
+  static const FloatTables f = [] {
+    FloatTables t;
+    for (int i = 0; i < kBlocks; ++i) {
+      t.x[i] = static_cast<float>(Tables().x[i]);
+      t.ratio[i] = static_cast<float>(Tables().ratio[i]);
+    }
+    return t;
+  }();
+  std::array<uint64_t, 4> state = state_;  // in registers; synced around the slow path
   size_t k = 0;
   while (k < n) {
-    const uint64_t bits = NextU64();
+    const uint64_t bits = Next(state);
     for (int half = 0; half < 2 && k < n; ++half) {
       const uint32_t h = static_cast<uint32_t>(bits >> (32 * half));
       const int i = static_cast<int>(h & (kBlocks - 1));
       // 24 bits → u in [-1, 1) on a grid of 2^-23.
       const float u = static_cast<float>(static_cast<int32_t>(h >> 8) - (1 << 23)) * 0x1.0p-23f;
-      if (std::abs(u) < ratio_f[i]) {
-        out[k++] = scale * u * x_f[i];
+      if (std::abs(u) < f.ratio[i]) {
+        out[k++] = scale * u * f.x[i];
         continue;
       }
+      state_ = state;
       const double x = GaussianSlowPath(i, u);
+      state = state_;
       if (!std::isnan(x)) out[k++] = scale * static_cast<float>(x);
     }
   }
+  state_ = state;
 }
 
 double Rng::GaussianTail(bool negative) {

@@ -155,29 +155,37 @@ void ApplyLighting(const Degradations& d, ImageF* image) {
   }
 }
 
-Image8 AddNoiseAndQuantize(const ImageF& image, double noise_var, uint64_t seed, ImageF* noisy) {
+Image8 AddNoiseAndQuantize(double noise_var, uint64_t seed, ImageF* image) {
   Image8 out;
-  out.width = image.width;
-  out.height = image.height;
-  out.channels = image.channels;
-  out.pixels.resize(image.plane_size() * image.channels);
-  if (noisy) *noisy = ImageF(image.width, image.height, image.channels);
+  out.width = image->width;
+  out.height = image->height;
+  out.channels = image->channels;
+  out.pixels.resize(image->plane_size() * image->channels);
   Rng rng(seed);
-  const size_t n = image.plane_size();
-  const int channels = image.channels;
-  std::vector<float> value(n);
+  const size_t n = image->plane_size();
+  const int channels = image->channels;
+  const float sigma = static_cast<float>(std::sqrt(noise_var));
+  constexpr size_t kChunk = 4096;  // noise in cache-sized chunks, no frame-sized scratch
+  float noise[kChunk];
   for (int c = 0; c < channels; ++c) {
-    const float* src = image.plane(c);
+    float* value = image->plane(c);
     if (noise_var > 0.0) {
-      rng.FillGaussian(static_cast<float>(std::sqrt(noise_var)), n, value.data());
-      for (size_t i = 0; i < n; ++i) value[i] = std::clamp(src[i] + value[i], 0.0f, 1.0f);
+      for (size_t start = 0; start < n; start += kChunk) {
+        const size_t count = std::min(kChunk, n - start);
+        rng.FillGaussian(sigma, count, noise);
+        float* v = value + start;
+        for (size_t i = 0; i < count; ++i) v[i] = std::clamp(v[i] + noise[i], 0.0f, 1.0f);
+      }
     } else {
-      for (size_t i = 0; i < n; ++i) value[i] = std::clamp(src[i], 0.0f, 1.0f);
+      for (size_t i = 0; i < n; ++i) value[i] = std::clamp(value[i], 0.0f, 1.0f);
     }
-    if (noisy) std::copy(value.begin(), value.end(), noisy->plane(c));
     uint8_t* dst = out.pixels.data() + c;
-    for (size_t i = 0; i < n; ++i) {
-      dst[i * channels] = static_cast<uint8_t>(value[i] * 255.0f + 0.5f);
+    if (channels == 1) {
+      for (size_t i = 0; i < n; ++i) dst[i] = static_cast<uint8_t>(value[i] * 255.0f + 0.5f);
+    } else {
+      for (size_t i = 0; i < n; ++i) {
+        dst[i * channels] = static_cast<uint8_t>(value[i] * 255.0f + 0.5f);
+      }
     }
   }
   return out;

@@ -40,9 +40,9 @@ struct Degradations {
 PixelRect GaussianBlur(double sigma_px, const PixelRect& roi, ImageF* image);
 PixelRect MotionBlur(double length_px, double angle_deg, const PixelRect& roi, ImageF* image);
 void ApplyLighting(const Degradations& degradations, ImageF* image);
-// Adds noise (seeded), clips to [0, 1], and quantises to 8 bits (interleaved channels).
-// When `noisy` is given it receives the clipped float image before quantisation.
-Image8 AddNoiseAndQuantize(const ImageF& image, double noise_var, uint64_t seed, ImageF* noisy);
+// Adds noise (seeded) to `image` in place, clips it to [0, 1], and returns it quantised to
+// 8 bits (interleaved channels). `image` keeps the clipped float values.
+Image8 AddNoiseAndQuantize(double noise_var, uint64_t seed, ImageF* image);
 // Encodes and decodes with OpenCV's JPEG codec at `quality`.
 void JpegRoundTrip(int quality, Image8* image);
 

@@ -106,6 +106,12 @@ struct Layer {
   double u_min = -1e300, u_max = 1e300, v_min = -1e300, v_max = 1e300;
 };
 
+// floor() as an int without a libm call (x86-64 baseline has no SSE4.1 roundsd).
+int FloorInt(double x) {
+  const int i = static_cast<int>(x);
+  return i - (x < i);
+}
+
 enum class SampleType { kUniform, kEdge, kComplex };
 
 // How a layer covers a cell: uniformly (colour or nullptr = transparent), split by one
@@ -180,8 +186,8 @@ Sample ClassifyGrid(const Layer& layer, const PlanePoint& p, double h) {
   constexpr double kFootprintSlack = 1.05;
   const double ex = kFootprintSlack * 0.5 * h * p.dX_dp.row(0).cwiseAbs().sum() / grid.cell_m;
   const double ey = kFootprintSlack * 0.5 * h * p.dX_dp.row(1).cwiseAbs().sum() / grid.cell_m;
-  const int c0 = static_cast<int>(std::floor(gx - ex)), c1 = static_cast<int>(std::floor(gx + ex));
-  const int r0 = static_cast<int>(std::floor(gy - ey)), r1 = static_cast<int>(std::floor(gy + ey));
+  const int c0 = FloorInt(gx - ex), c1 = FloorInt(gx + ex);
+  const int r0 = FloorInt(gy - ey), r1 = FloorInt(gy + ey);
   if ((c1 - c0 + 1) * (r1 - r0 + 1) > kMaxGridCellsPerFootprint) return Complex();
   // -1: outside the grid (transparent), 0: paper, 1: ink.
   auto value = [&](int r, int c) {
@@ -252,11 +258,46 @@ class CellShader {
       : mapper_(mapper), layers_(layers), backdrop_(backdrop), channels_(channels) {}
 
   // Area-average colour of the square cell of side h centred at (u, v).
+  // Fills the size x size pixel block at (x0, y0) (clipped to `image`): one colour when the
+  // whole block is provably uniform, else four sub-blocks, down to single pixels.
+  void FillBlock(int x0, int y0, int size, ImageF* image) const {
+    const int x1 = std::min(x0 + size, image->width), y1 = std::min(y0 + size, image->height);
+    if (x0 >= x1 || y0 >= y1) return;
+    if (size == 1) {
+      float acc[3] = {0.0f, 0.0f, 0.0f};
+      Shade(x0, y0, 1.0, 0, 1.0f, acc);
+      for (int k = 0; k < channels_; ++k) {
+        image->plane(k)[static_cast<size_t>(y0) * image->width + x0] = acc[k];
+      }
+      return;
+    }
+    Color c;
+    // A block is tested as a cell 25 % larger than itself: slack for the perspective change of
+    // the linearised distances across a block many pixels wide.
+    constexpr double kBlockSlack = 1.25;
+    const double center = 0.5 * (size - 1);
+    if (ShadeCell(x0 + center, y0 + center, kBlockSlack * size, /*allow_edge=*/false, &c)) {
+      for (int k = 0; k < channels_; ++k) {
+        for (int y = y0; y < y1; ++y) {
+          std::fill(image->plane(k) + static_cast<size_t>(y) * image->width + x0,
+                    image->plane(k) + static_cast<size_t>(y) * image->width + x1,
+                    c.v[k]);
+        }
+      }
+      return;
+    }
+    const int half = size / 2;
+    FillBlock(x0, y0, half, image);
+    FillBlock(x0 + half, y0, half, image);
+    FillBlock(x0, y0 + half, half, image);
+    FillBlock(x0 + half, y0 + half, half, image);
+  }
+
   void Shade(double u, double v, double h, int depth, float weight, float* acc) const {
     Color c;
     if (depth == kMaxDepth) {
-      ShadeCell(u, v, 0.0, &c);
-    } else if (!ShadeCell(u, v, h, &c)) {
+      ShadeCell(u, v, 0.0, /*allow_edge=*/true, &c);
+    } else if (!ShadeCell(u, v, h, /*allow_edge=*/true, &c)) {
       const double q = 0.25 * h;
       for (int i = 0; i < 4; ++i) {
         Shade(u + ((i & 1) ? q : -q),
@@ -274,7 +315,7 @@ class CellShader {
  private:
   // Colour of the cell when at most one straight boundary crosses it; false otherwise.
   // h = 0 samples the centre point.
-  bool ShadeCell(double u, double v, double h, Color* out) const {
+  bool ShadeCell(double u, double v, double h, bool allow_edge, Color* out) const {
     const PlanePoint p = mapper_.Map(u, v);
     const Color* stop = &backdrop_;
     bool have_edge = false;
@@ -296,7 +337,7 @@ class CellShader {
         stop = s.neg;
         break;
       }
-      if (have_edge) return false;
+      if (have_edge || !allow_edge) return false;
       have_edge = true;
       edge = s;
       if (s.neg && s.pos) break;  // both sides opaque: nothing below shows
@@ -480,13 +521,9 @@ RasterResult Rasterize(const Scene& scene, int channels) {
     std::fill_n(result.image.plane(k), result.image.plane_size(), base.v[k]);
   }
   const CellShader shader(mapper, layers, backdrop, channels);
-  for (int y = roi.y0; y < roi.y1; ++y) {
-    for (int x = roi.x0; x < roi.x1; ++x) {
-      float acc[3] = {0.0f, 0.0f, 0.0f};
-      shader.Shade(x, y, 1.0, 0, 1.0f, acc);
-      const size_t index = static_cast<size_t>(y) * camera.width + x;
-      for (int k = 0; k < channels; ++k) result.image.plane(k)[index] = acc[k];
-    }
+  constexpr int kBlock = 16;
+  for (int y = roi.y0; y < roi.y1; y += kBlock) {
+    for (int x = roi.x0; x < roi.x1; x += kBlock) shader.FillBlock(x, y, kBlock, &result.image);
   }
   return result;
 }

@@ -12,15 +12,20 @@ Eigen::Vector2d Project(const Camera& camera,
   return camera.ImgFromCam(cam_from_marker * Eigen::Vector3d(x.x(), x.y(), 0.0));
 }
 
-ImageF Crop(const ImageF& canvas, int margin, int width, int height) {
-  ImageF out(width, height, canvas.channels);
-  for (int c = 0; c < canvas.channels; ++c) {
+// Keeps the centre width x height of `canvas`, in place.
+void CropInPlace(int margin, int width, int height, ImageF* canvas) {
+  if (margin == 0) return;
+  float* dst = canvas->data.data();
+  for (int c = 0; c < canvas->channels; ++c) {
     for (int y = 0; y < height; ++y) {
-      const float* src = canvas.plane(c) + static_cast<size_t>(y + margin) * canvas.width + margin;
-      std::copy(src, src + width, out.plane(c) + static_cast<size_t>(y) * width);
+      const float* src =
+          canvas->plane(c) + static_cast<size_t>(y + margin) * canvas->width + margin;
+      dst = std::copy(src, src + width, dst);  // never overtakes src: dst <= src
     }
   }
-  return out;
+  canvas->width = width;
+  canvas->height = height;
+  canvas->data.resize(static_cast<size_t>(width) * height * canvas->channels);
 }
 
 }  // namespace
@@ -66,13 +71,13 @@ RenderedFrame RenderFrame(const FrameRequest& request) {
   const Degradations& d = request.degradations;
   PixelRect changed = GaussianBlur(d.blur_sigma_px, raster.nonuniform, &raster.image);
   MotionBlur(d.motion_blur_px, d.motion_blur_angle_deg, changed, &raster.image);
-  ImageF image = margin == 0 ? std::move(raster.image)
-                             : Crop(raster.image, margin, camera.width, camera.height);
+  ImageF& image = raster.image;
+  CropInPlace(margin, camera.width, camera.height, &image);
   ApplyLighting(d, &image);
 
   RenderedFrame frame;
-  frame.image = AddNoiseAndQuantize(
-      image, d.noise_var, request.noise_seed, request.keep_linear ? &frame.linear : nullptr);
+  frame.image = AddNoiseAndQuantize(d.noise_var, request.noise_seed, &image);
+  if (request.keep_linear) frame.linear = std::move(image);
   JpegRoundTrip(d.jpeg_quality, &frame.image);
   frame.truth = ComputeGroundTruth(*request.scene.marker, camera, request.scene.cam_from_marker);
   return frame;

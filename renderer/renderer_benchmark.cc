@@ -2,6 +2,7 @@
 // ≤ 3 ms; colour circles_a frame ≤ 5 ms; memory flat over many frames). Run from the
 // project root so the marker files are found. Figures go to results/speed.md.
 #include <benchmark/benchmark.h>
+#include <sys/resource.h>
 
 #include "core/marker_yaml.h"
 #include "core/random.h"
@@ -36,8 +37,57 @@ void BM_RenderTag36h11Grey(benchmark::State& state) {
 void BM_RenderCirclesAColour(benchmark::State& state) {
   RenderMarker(state, "scenarios/markers/circles_a.yaml", 3);
 }
+// Stages of the grey tag frame, to see where the time goes.
+void BM_StageRasterizeTag(benchmark::State& state) {
+  const MarkerSpec marker = LoadMarkerYaml("scenarios/markers/apriltag.yaml");
+  Scene scene;
+  scene.marker = &marker;
+  scene.cam_from_marker = TiltedView(0.6, 30.0, 20.0);
+  for (auto _ : state) benchmark::DoNotOptimize(Rasterize(scene, 1));
+}
+void BM_StageBlurSigma2(benchmark::State& state) {
+  ImageF image(640, 480, 1);
+  for (auto _ : state) {
+    benchmark::DoNotOptimize(GaussianBlur(2.0, PixelRect{250, 170, 390, 310}, &image));
+  }
+}
+void BM_StageNoiseAndQuantizeGrey(benchmark::State& state) {
+  ImageF image(640, 480, 1);
+  uint64_t seed = 0;
+  for (auto _ : state) benchmark::DoNotOptimize(AddNoiseAndQuantize(0.02, ++seed, &image));
+}
+BENCHMARK(BM_StageRasterizeTag)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_StageBlurSigma2)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_StageNoiseAndQuantizeGrey)->Unit(benchmark::kMillisecond);
+// Peak resident memory must not grow with the number of frames rendered.
+void BM_MemoryOver10000Frames(benchmark::State& state) {
+  const MarkerSpec marker = LoadMarkerYaml("scenarios/markers/apriltag.yaml");
+  FrameRequest request;
+  request.scene.marker = &marker;
+  request.degradations.blur_sigma_px = 2.0;
+  request.degradations.noise_var = 0.02;
+  auto peak_kb = [] {
+    rusage usage{};
+    getrusage(RUSAGE_SELF, &usage);
+    return static_cast<double>(usage.ru_maxrss);
+  };
+  for (auto _ : state) {
+    double after_warmup = 0.0;
+    for (int frame = 0; frame < 10000; ++frame) {
+      if (frame == 100) after_warmup = peak_kb();
+      Rng rng(SeedFor(2, 0, frame, SeedPurpose::kPose));
+      request.scene.cam_from_marker = TiltedView(0.6, rng.Uniform(0, 40), rng.Uniform(0, 360));
+      request.noise_seed = SeedFor(2, 0, frame, SeedPurpose::kNoise);
+      benchmark::DoNotOptimize(RenderFrame(request));
+    }
+    state.counters["peak_rss_growth_kb"] = peak_kb() - after_warmup;
+    state.counters["peak_rss_kb"] = peak_kb();
+  }
+}
+
 BENCHMARK(BM_RenderTag36h11Grey)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_RenderCirclesAColour)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_MemoryOver10000Frames)->Unit(benchmark::kMillisecond)->Iterations(1);
 
 }  // namespace
 }  // namespace markerbench
