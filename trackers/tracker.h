@@ -1,0 +1,48 @@
+// The tracker interface (architecture.md): an Observation in, a TrackResult out. Trackers
+// never see ground truth and never link the renderer; a failure on a frame is data (a
+// TrackStatus), not an exception. Adapters hide third-party types behind this header.
+#pragma once
+
+#include <Eigen/Core>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "core/camera.h"
+#include "core/image.h"
+#include "core/marker_spec.h"
+#include "core/rigid3.h"
+
+namespace markerbench {
+
+// Written as ok, not_detected, wrong_id, pose_failed, error in every CSV file.
+enum class TrackStatus { kOk, kNotDetected, kWrongId, kPoseFailed, kError };
+
+const char* ToString(TrackStatus status);
+std::optional<TrackStatus> TrackStatusFromString(const std::string& text);
+
+struct Observation {
+  const Image8* image = nullptr;
+  const Camera* camera = nullptr;
+  const MarkerSpec* marker = nullptr;
+};
+
+struct TrackResult {
+  TrackStatus status = TrackStatus::kNotDetected;
+  // cam_from_marker hypotheses in our marker frame, best first (planar ambiguity: often 2).
+  std::vector<Rigid3> hypotheses;
+  // Detected MarkerSpec::keypoints in pixels, same order; empty when not measured.
+  std::vector<Eigen::Vector2d> keypoints_px;
+  std::string message;  // why it failed, for error rows
+};
+
+class Tracker {
+ public:
+  virtual ~Tracker() = default;
+  // One frame. Must not throw for bad images: report a status instead.
+  virtual TrackResult Track(const Observation& observation) = 0;
+  // Forgets any state carried between frames (tracking mode).
+  virtual void Reset() {}
+};
+
+}  // namespace markerbench
