@@ -44,6 +44,9 @@ int main(int argc, char** argv) {
   render->add_option("--noise-var", explicit_options.noise_var, "imnoise variance on [0, 1]");
   render->add_option("--blur-sigma", explicit_options.blur_sigma_px, "Gaussian blur sigma (px)");
   render->add_option("--seed", explicit_options.seed, "Noise seed");
+  render->add_flag("--float",
+                   explicit_options.write_float,
+                   "Also write frame_NNNNNN.exr (linear float, after noise and clipping)");
 
   CLI::App* markers = app.add_subcommand("markers", "Print-ready 300 dpi sheets of markers");
   std::string markers_out;
@@ -71,7 +74,7 @@ int main(int argc, char** argv) {
         }
         RenderPoses(explicit_options);
       } else {
-        RenderScenario(scenario, explicit_options.out_dir, limit);
+        RenderScenario(scenario, explicit_options.out_dir, limit, explicit_options.write_float);
       }
     } else if (markers->parsed()) {
       if (marker_files.empty()) marker_files = YamlFilesIn(markers_dir);

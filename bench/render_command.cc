@@ -75,10 +75,19 @@ class GroundTruthCsv {
   std::ofstream out_;
 };
 
-std::string FrameName(int index) {
+std::string FrameName(int index, const char* extension) {
   char name[32];
-  std::snprintf(name, sizeof(name), "frame_%06d.png", index);
+  std::snprintf(name, sizeof(name), "frame_%06d.%s", index, extension);
   return name;
+}
+
+// Writes the PNG (and the EXR when asked); returns the PNG's name.
+std::string WriteFrame(const std::string& dir, int index, const RenderedFrame& frame) {
+  const std::string png = FrameName(index, "png");
+  WriteImage(dir + "/" + png, frame.image);
+  if (!frame.linear.data.empty())
+    WriteImageFloat(dir + "/" + FrameName(index, "exr"), frame.linear);
+  return png;
 }
 
 void MakeDir(const std::string& dir) {
@@ -89,7 +98,10 @@ void MakeDir(const std::string& dir) {
 
 }  // namespace
 
-void RenderScenario(const std::string& scenario_path, const std::string& out_dir, int limit) {
+void RenderScenario(const std::string& scenario_path,
+                    const std::string& out_dir,
+                    int limit,
+                    bool write_float) {
   const Scenario scenario = LoadScenario(scenario_path);
   std::vector<PlannedFrame> frames;
   try {
@@ -109,9 +121,9 @@ void RenderScenario(const std::string& scenario_path, const std::string& out_dir
     request.degradations = f.degradations;
     request.channels = f.channels;
     request.noise_seed = f.noise_seed;
+    request.keep_linear = write_float;
     const RenderedFrame frame = RenderFrame(request);
-    const std::string image = FrameName(f.index);
-    WriteImage(out_dir + "/" + image, frame.image);
+    const std::string image = WriteFrame(out_dir, f.index, frame);
     csv.Write(f.index,
               image,
               request.scene.marker->name,
@@ -185,14 +197,14 @@ void RenderPoses(const ExplicitRenderOptions& o) {
   std::string error;
   if (!request.degradations.IsValid(&error)) throw ConfigError("option: " + error);
   request.channels = ChannelsFor(Channels::kAuto, marker);
+  request.keep_linear = o.write_float;
   MakeDir(o.out_dir);
   GroundTruthCsv csv(o.out_dir);
   for (size_t i = 0; i < poses.size(); ++i) {
     request.scene.cam_from_marker = poses[i];
     request.noise_seed = SeedFor(o.seed, 0, i, SeedPurpose::kNoise);
     const RenderedFrame frame = RenderFrame(request);
-    const std::string image = FrameName(static_cast<int>(i));
-    WriteImage(o.out_dir + "/" + image, frame.image);
+    const std::string image = WriteFrame(o.out_dir, static_cast<int>(i), frame);
     csv.Write(
         static_cast<int>(i), image, marker.name, "", "", "", o.seed, camera, request, frame.truth);
   }

@@ -11,7 +11,11 @@
 namespace markerbench {
 
 // Renders the scenario's frames in (cell, trial, marker) order, at most `limit` (0: all).
-void RenderScenario(const std::string& scenario_path, const std::string& out_dir, int limit);
+// With write_float, also frame_NNNNNN.exr: the linear float image after noise and clipping.
+void RenderScenario(const std::string& scenario_path,
+                    const std::string& out_dir,
+                    int limit,
+                    bool write_float);
 
 struct ExplicitRenderOptions {
   std::string marker_path;
@@ -21,6 +25,7 @@ struct ExplicitRenderOptions {
   double noise_var = 0.0;
   double blur_sigma_px = 0.0;
   uint64_t seed = 0;
+  bool write_float = false;  // also frame_NNNNNN.exr (linear, after noise and clipping)
 };
 
 void RenderPoses(const ExplicitRenderOptions& options);
