@@ -53,23 +53,14 @@ bool MarkerFitsInImage(const MarkerSpec& marker,
                        const Camera& camera,
                        const Rigid3& cam_from_marker,
                        double border_px) {
-  const Eigen::AlignedBox2d ink = marker.InkBounds();
   constexpr int kStepsPerSide = 8;  // distortion bends the sides
-  for (int side = 0; side < 4; ++side) {
-    for (int i = 0; i < kStepsPerSide; ++i) {
-      const double t = static_cast<double>(i) / kStepsPerSide;
-      const Eigen::Vector2d corners[4] = {ink.corner(Eigen::AlignedBox2d::BottomLeft),
-                                          ink.corner(Eigen::AlignedBox2d::BottomRight),
-                                          ink.corner(Eigen::AlignedBox2d::TopRight),
-                                          ink.corner(Eigen::AlignedBox2d::TopLeft)};
-      const Eigen::Vector2d p = corners[side] + t * (corners[(side + 1) % 4] - corners[side]);
-      const Eigen::Vector3d x_cam = cam_from_marker * Eigen::Vector3d(p.x(), p.y(), 0.0);
-      if (!(x_cam.z() > 0.0)) return false;
-      const Eigen::Vector2d px = camera.ImgFromCam(x_cam);
-      if (!(px.x() >= border_px && px.y() >= border_px && px.x() <= camera.width - 1 - border_px &&
-            px.y() <= camera.height - 1 - border_px)) {
-        return false;
-      }
+  for (const Eigen::Vector2d& p : BoxOutline(marker.InkBounds(), kStepsPerSide)) {
+    const Eigen::Vector3d x_cam = cam_from_marker * Eigen::Vector3d(p.x(), p.y(), 0.0);
+    if (!(x_cam.z() > 0.0)) return false;
+    const Eigen::Vector2d px = camera.ImgFromCam(x_cam);
+    if (!(px.x() >= border_px && px.y() >= border_px && px.x() <= camera.width - 1 - border_px &&
+          px.y() <= camera.height - 1 - border_px)) {
+      return false;
     }
   }
   return true;

@@ -48,6 +48,23 @@ Eigen::AlignedBox2d ShapeBounds(const Shape& shape) {
   return std::visit(Visitor{}, shape);
 }
 
+std::vector<Eigen::Vector2d> BoxOutline(const Eigen::AlignedBox2d& box, int steps_per_side) {
+  const Eigen::Vector2d corners[4] = {box.corner(Eigen::AlignedBox2d::BottomLeft),
+                                      box.corner(Eigen::AlignedBox2d::BottomRight),
+                                      box.corner(Eigen::AlignedBox2d::TopRight),
+                                      box.corner(Eigen::AlignedBox2d::TopLeft)};
+  std::vector<Eigen::Vector2d> points;
+  points.reserve(static_cast<size_t>(4 * steps_per_side));
+  for (int side = 0; side < 4; ++side) {
+    const Eigen::Vector2d& a = corners[side];
+    const Eigen::Vector2d& b = corners[(side + 1) % 4];
+    for (int i = 0; i < steps_per_side; ++i) {
+      points.push_back(a + (static_cast<double>(i) / steps_per_side) * (b - a));
+    }
+  }
+  return points;
+}
+
 CrescentShape CrescentFromTips(const Eigen::Vector2d& tip0,
                                const Eigen::Vector2d& tip1,
                                double outer_sagitta_m,

@@ -57,6 +57,10 @@ struct PaintedShape {
 // Axis-aligned bounds of a shape in the marker plane.
 Eigen::AlignedBox2d ShapeBounds(const Shape& shape);
 
+// Points along the outline of `box`, counter-clockwise from its bottom-left corner,
+// steps_per_side per side (each corner once). steps_per_side = 1 gives the four corners.
+std::vector<Eigen::Vector2d> BoxOutline(const Eigen::AlignedBox2d& box, int steps_per_side);
+
 // The crescent whose two arcs pass through tip0 and tip1 and bulge to the left of
 // tip0 → tip1 by the given sagittas (outer > inner > 0).
 CrescentShape CrescentFromTips(const Eigen::Vector2d& tip0,

@@ -390,18 +390,10 @@ void SetImageBounds(const Eigen::AlignedBox2d& box,
   constexpr int kStepsPerSide = 16;  // distortion bends the box's sides
   constexpr double kMarginPx = 2.0;
   Eigen::AlignedBox2d image_box;
-  for (int side = 0; side < 4; ++side) {
-    for (int i = 0; i < kStepsPerSide; ++i) {
-      const double t = static_cast<double>(i) / kStepsPerSide;
-      const Eigen::Vector2d a = box.corner(
-          static_cast<Eigen::AlignedBox2d::CornerType>(std::array<int, 4>{0, 1, 3, 2}[side]));
-      const Eigen::Vector2d b = box.corner(
-          static_cast<Eigen::AlignedBox2d::CornerType>(std::array<int, 4>{1, 3, 2, 0}[side]));
-      const Eigen::Vector2d x = a + t * (b - a);
-      const Eigen::Vector3d x_cam = cam_from_marker * Eigen::Vector3d(x.x(), x.y(), 0.0);
-      if (!(x_cam.z() > 1e-9)) return;  // leave unbounded
-      image_box.extend(camera.ImgFromCam(x_cam));
-    }
+  for (const Eigen::Vector2d& x : BoxOutline(box, kStepsPerSide)) {
+    const Eigen::Vector3d x_cam = cam_from_marker * Eigen::Vector3d(x.x(), x.y(), 0.0);
+    if (!(x_cam.z() > 1e-9)) return;  // leave unbounded
+    image_box.extend(camera.ImgFromCam(x_cam));
   }
   layer->u_min = image_box.min().x() - kMarginPx;
   layer->v_min = image_box.min().y() - kMarginPx;

@@ -38,15 +38,13 @@ GroundTruth ComputeGroundTruth(const MarkerSpec& marker,
   for (const Eigen::Vector2d& k : marker.keypoints) {
     truth.keypoints_px.push_back(Project(camera, cam_from_marker, k));
   }
-  const Eigen::AlignedBox2d ink = marker.InkBounds();
-  const Eigen::Vector2d q[4] = {
-      Project(camera, cam_from_marker, ink.corner(Eigen::AlignedBox2d::BottomLeft)),
-      Project(camera, cam_from_marker, ink.corner(Eigen::AlignedBox2d::BottomRight)),
-      Project(camera, cam_from_marker, ink.corner(Eigen::AlignedBox2d::TopRight)),
-      Project(camera, cam_from_marker, ink.corner(Eigen::AlignedBox2d::TopLeft))};
+  std::vector<Eigen::Vector2d> q = BoxOutline(marker.InkBounds(), 1);
+  for (Eigen::Vector2d& corner : q) corner = Project(camera, cam_from_marker, corner);
   double twice_area = 0.0;  // shoelace
-  for (int i = 0; i < 4; ++i) {
-    twice_area += q[i].x() * q[(i + 1) % 4].y() - q[(i + 1) % 4].x() * q[i].y();
+  for (size_t i = 0; i < q.size(); ++i) {
+    const Eigen::Vector2d& a = q[i];
+    const Eigen::Vector2d& b = q[(i + 1) % q.size()];
+    twice_area += a.x() * b.y() - b.x() * a.y();
   }
   truth.apparent_size_px = std::sqrt(0.5 * std::abs(twice_area));
   return truth;
