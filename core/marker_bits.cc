@@ -83,25 +83,30 @@ std::vector<std::string> AprilTagFamilies() {
   return names;
 }
 
-GridShape AprilTagGrid(const std::string& family, int id, double size_m) {
+AprilTagFamilyPtr CreateAprilTagFamily(const std::string& family) {
   for (const auto& entry : kAprilTagFamilies) {
     if (family != entry.name) continue;
-    const std::unique_ptr<apriltag_family_t, void (*)(apriltag_family_t*)> fam(entry.create(),
-                                                                               entry.destroy);
-    if (id < 0 || static_cast<uint32_t>(id) >= fam->ncodes) {
-      throw std::invalid_argument("an id in [0, " + std::to_string(fam->ncodes - 1) + "] for " +
-                                  family);
-    }
-    const std::unique_ptr<image_u8_t, void (*)(image_u8_t*)> image(apriltag_to_image(fam.get(), id),
-                                                                   image_u8_destroy);
-    const int n = fam->total_width;
-    return GridFromBitmap(n, size_m / fam->width_at_border, [&](int r, int c) {
-      return image->buf[r * image->stride + c] == 0;
-    });
+    auto destroy = entry.destroy;
+    return AprilTagFamilyPtr(entry.create(),
+                             [destroy](void* p) { destroy(static_cast<apriltag_family_t*>(p)); });
   }
   std::string names;
   for (const auto& f : kAprilTagFamilies) names += std::string(names.empty() ? "" : ", ") + f.name;
   throw std::invalid_argument("one of the libapriltag families: " + names);
+}
+
+GridShape AprilTagGrid(const std::string& family, int id, double size_m) {
+  const AprilTagFamilyPtr handle = CreateAprilTagFamily(family);
+  auto* fam = static_cast<apriltag_family_t*>(handle.get());
+  if (id < 0 || static_cast<uint32_t>(id) >= fam->ncodes) {
+    throw std::invalid_argument("an id in [0, " + std::to_string(fam->ncodes - 1) + "] for " +
+                                family);
+  }
+  const std::unique_ptr<image_u8_t, void (*)(image_u8_t*)> image(apriltag_to_image(fam, id),
+                                                                 image_u8_destroy);
+  return GridFromBitmap(fam->total_width, size_m / fam->width_at_border, [&](int r, int c) {
+    return image->buf[r * image->stride + c] == 0;
+  });
 }
 
 std::vector<std::string> ArucoDictionaries() {
@@ -110,23 +115,27 @@ std::vector<std::string> ArucoDictionaries() {
   return names;
 }
 
-GridShape ArucoGrid(const std::string& dictionary, int id, double size_m) {
+int ArucoDictionaryId(const std::string& dictionary) {
   for (const auto& [name, value] : kArucoDictionaries) {
-    if (dictionary != name) continue;
-    const cv::Ptr<cv::aruco::Dictionary> dict = cv::aruco::getPredefinedDictionary(value);
-    if (id < 0 || id >= dict->bytesList.rows) {
-      throw std::invalid_argument("an id in [0, " + std::to_string(dict->bytesList.rows - 1) +
-                                  "] for " + dictionary);
-    }
-    const int n = dict->markerSize + 2;
-    cv::Mat bitmap;
-    cv::aruco::drawMarker(dict, id, n, bitmap, 1);
-    return GridFromBitmap(
-        n, size_m / n, [&](int r, int c) { return bitmap.at<uint8_t>(r, c) < 128; });
+    if (dictionary == name) return value;
   }
   std::string names;
   for (const auto& [n, v] : kArucoDictionaries) names += std::string(names.empty() ? "" : ", ") + n;
   throw std::invalid_argument("one of the OpenCV 4.6 aruco dictionaries: " + names);
+}
+
+GridShape ArucoGrid(const std::string& dictionary, int id, double size_m) {
+  const cv::Ptr<cv::aruco::Dictionary> dict = cv::aruco::getPredefinedDictionary(
+      static_cast<cv::aruco::PREDEFINED_DICTIONARY_NAME>(ArucoDictionaryId(dictionary)));
+  if (id < 0 || id >= dict->bytesList.rows) {
+    throw std::invalid_argument("an id in [0, " + std::to_string(dict->bytesList.rows - 1) +
+                                "] for " + dictionary);
+  }
+  const int n = dict->markerSize + 2;
+  cv::Mat bitmap;
+  cv::aruco::drawMarker(dict, id, n, bitmap, 1);
+  return GridFromBitmap(
+      n, size_m / n, [&](int r, int c) { return bitmap.at<uint8_t>(r, c) < 128; });
 }
 
 }  // namespace markerbench

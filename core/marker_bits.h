@@ -2,6 +2,8 @@
 // Third-party headers stay in the .cc (style.md rule 5).
 #pragma once
 
+#include <functional>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -15,8 +17,16 @@ namespace markerbench {
 GridShape AprilTagGrid(const std::string& family, int id, double size_m);
 std::vector<std::string> AprilTagFamilies();
 
+// An opaque libapriltag family (apriltag_family_t*) that destroys itself with its family's
+// destroy function. Throws std::invalid_argument naming the valid families.
+using AprilTagFamilyPtr = std::unique_ptr<void, std::function<void(void*)>>;
+AprilTagFamilyPtr CreateAprilTagFamily(const std::string& family);
+
 // OpenCV 4.6 cv::aruco::drawMarker with a 1-cell border: (bits + 2)² cells spanning size_m.
 GridShape ArucoGrid(const std::string& dictionary, int id, double size_m);
 std::vector<std::string> ArucoDictionaries();
+// The cv::aruco::PREDEFINED_DICTIONARY_NAME value of a dictionary name, as an int. Throws
+// std::invalid_argument naming the valid dictionaries.
+int ArucoDictionaryId(const std::string& dictionary);
 
 }  // namespace markerbench

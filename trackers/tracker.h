@@ -6,6 +6,7 @@
 #include <Eigen/Core>
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "core/camera.h"
@@ -43,6 +44,8 @@ class Tracker {
   virtual TrackResult Track(const Observation& observation) = 0;
   // Forgets any state carried between frames (tracking mode).
   virtual void Reset() {}
+  // Every parameter in effect, as (name, value) text, for the run manifest.
+  virtual std::vector<std::pair<std::string, std::string>> Parameters() const = 0;
 };
 
 }  // namespace markerbench

@@ -1,0 +1,30 @@
+// Frames for tracker benchmarks: 640x480, the marker at 0.6 m (tilt 0-40°, any roll),
+// imnoise σ² = 0.02, rendered once before timing (issue 4's protocol).
+#pragma once
+
+#include <vector>
+
+#include "core/random.h"
+#include "renderer/render_frame.h"
+#include "renderer/test_scenes.h"
+
+namespace markerbench {
+
+inline std::vector<Image8> BenchmarkFrames(const MarkerSpec& marker, int count) {
+  std::vector<Image8> frames;
+  const Eigen::Vector2d c = marker.InkBounds().center();
+  for (int i = 0; i < count; ++i) {
+    Rng rng(SeedFor(11, 0, static_cast<uint64_t>(i), SeedPurpose::kPose));
+    FrameRequest request;
+    request.scene.marker = &marker;
+    request.scene.cam_from_marker = TiltedView(0.6, rng.Uniform(0, 40), rng.Uniform(0, 360));
+    request.scene.cam_from_marker.translation -=
+        request.scene.cam_from_marker.rotation * Eigen::Vector3d(c.x(), c.y(), 0.0);
+    request.degradations.noise_var = 0.02;
+    request.noise_seed = SeedFor(11, 0, static_cast<uint64_t>(i), SeedPurpose::kNoise);
+    frames.push_back(RenderFrame(request).image);
+  }
+  return frames;
+}
+
+}  // namespace markerbench

@@ -1,0 +1,81 @@
+// Test helpers for square-marker trackers: render a marker at a known pose, run a tracker,
+// and measure corner and pose errors against the ground truth.
+#pragma once
+
+#include <cmath>
+#include <string>
+
+#include "core/marker_yaml.h"
+#include "core/random.h"
+#include "core/test_files.h"
+#include "renderer/render_frame.h"
+#include "renderer/test_scenes.h"
+#include "trackers/tracker.h"
+
+namespace markerbench {
+
+struct TrackedFrame {
+  RenderedFrame frame;
+  TrackResult result;
+};
+
+inline TrackedFrame RenderAndTrack(Tracker* tracker,
+                                   const MarkerSpec& rendered,
+                                   const MarkerSpec& expected,
+                                   const Rigid3& cam_from_marker,
+                                   double noise_var,
+                                   uint64_t seed) {
+  FrameRequest request;
+  request.scene.marker = &rendered;
+  request.scene.cam_from_marker = cam_from_marker;
+  request.degradations.noise_var = noise_var;
+  request.noise_seed = SeedFor(seed, 0, 0, SeedPurpose::kNoise);
+  TrackedFrame out;
+  out.frame = RenderFrame(request);
+  const Camera camera = request.scene.camera;
+  out.result = tracker->Track({&out.frame.image, &camera, &expected});
+  return out;
+}
+
+inline double PositionError(const Rigid3& estimate, const Rigid3& truth) {
+  return (CameraCenterInMarker(estimate) - CameraCenterInMarker(truth)).norm();
+}
+
+inline double RotationErrorDeg(const Rigid3& estimate, const Rigid3& truth) {
+  return RotationAngleBetween(estimate.rotation, truth.rotation) * 180.0 / M_PI;
+}
+
+// Pose looking at the tag centre from distance_m, tilted and rolled (degrees).
+inline Rigid3 ViewOfTag(double distance_m, double tilt_deg, double roll_deg) {
+  return TiltedView(distance_m, tilt_deg, roll_deg);
+}
+
+// Mean of (detected - true) corner offsets and mean inward offset (towards the centre).
+struct CornerBias {
+  Eigen::Vector2d mean = Eigen::Vector2d::Zero();
+  double inward = 0.0;
+  int count = 0;
+
+  void Add(const std::vector<Eigen::Vector2d>& detected,
+           const std::vector<Eigen::Vector2d>& truth) {
+    Eigen::Vector2d center = Eigen::Vector2d::Zero();
+    for (const auto& t : truth) center += t / truth.size();
+    for (size_t i = 0; i < truth.size(); ++i) {
+      const Eigen::Vector2d d = detected[i] - truth[i];
+      mean += d;
+      inward += -d.dot((truth[i] - center).normalized());
+      ++count;
+    }
+  }
+  Eigen::Vector2d Mean() const { return mean / count; }
+  double Inward() const { return inward / count; }
+};
+
+// A tag36h11 marker file with another id.
+inline std::string WriteTestTag(int id) {
+  return WriteTestFile(
+      "tag_" + std::to_string(id) + ".yaml",
+      "kind: apriltag\nfamily: tag36h11\nid: " + std::to_string(id) + "\nsize_m: 0.1\n");
+}
+
+}  // namespace markerbench

@@ -1,0 +1,33 @@
+#include "trackers/tracker_factory.h"
+
+#include "core/yaml_reader.h"
+#include "trackers/apriltag/apriltag_tracker.h"
+#include "trackers/aruco/aruco_tracker.h"
+
+namespace markerbench {
+namespace {
+
+template <typename Options>
+Options ReadOptions(const YamlMap* map) {
+  Options options = map ? Options::FromYaml(*map) : Options{};
+  std::string error;
+  if (!options.IsValid(&error)) throw ConfigError("tracker options: " + error);
+  return options;
+}
+
+}  // namespace
+
+std::vector<std::string> TrackerNames() { return {"apriltag", "apriltag-ippe", "aruco"}; }
+
+std::unique_ptr<Tracker> MakeTracker(const std::string& name, const YamlMap* options) {
+  if (name == "apriltag" || name == "apriltag-ippe") {
+    return MakeAprilTagTracker(ReadOptions<AprilTagOptions>(options),
+                               name == "apriltag" ? AprilTagPose::kNative : AprilTagPose::kIppe);
+  }
+  if (name == "aruco") return MakeArucoTracker(ReadOptions<ArucoOptions>(options));
+  std::string names;
+  for (const std::string& n : TrackerNames()) names += (names.empty() ? "" : ", ") + n;
+  throw ConfigError("unknown tracker '" + name + "'; available: " + names);
+}
+
+}  // namespace markerbench
