@@ -56,3 +56,18 @@ run(0 markers --out ${WORK_DIR}/sheets --marker scenarios/markers/apriltag.yaml)
 if(NOT EXISTS ${WORK_DIR}/sheets/apriltag.png)
   message(FATAL_ERROR "marker sheet missing")
 endif()
+
+# track: the smoke scenario's frame 1 is the apriltag at a paired pose.
+execute_process(COMMAND ${MARKERBENCH} track --tracker apriltag --marker scenarios/markers/apriltag.yaml
+                --camera scenarios/cameras/default.yaml ${WORK_DIR}/smoke/frame_000001.png
+                ${WORK_DIR}/smoke/frame_000000.png
+                WORKING_DIRECTORY ${SOURCE_DIR} RESULT_VARIABLE status OUTPUT_VARIABLE out ERROR_VARIABLE err)
+if(NOT status EQUAL 0 OR NOT out MATCHES "frame_000001.png,apriltag,ok," OR
+   NOT out MATCHES "frame_000000.png,apriltag,not_detected,,,")
+  message(FATAL_ERROR "track output unexpected (${status}):\n${out}\n${err}")
+endif()
+run(2 track --tracker nosuch --marker scenarios/markers/apriltag.yaml
+    --camera scenarios/cameras/default.yaml ${WORK_DIR}/smoke/frame_000001.png)
+if(NOT last_error MATCHES "unknown tracker 'nosuch'")
+  message(FATAL_ERROR "unexpected message: ${last_error}")
+endif()

@@ -7,6 +7,7 @@
 
 #include "bench/marker_sheets.h"
 #include "bench/render_command.h"
+#include "bench/track_command.h"
 #include "core/yaml_reader.h"
 
 namespace {
@@ -56,6 +57,15 @@ int main(int argc, char** argv) {
   markers->add_option("--markers-dir", markers_dir, "Folder of marker YAML files");
   markers->add_option("--marker", marker_files, "Marker YAML files (instead of the folder)");
 
+  CLI::App* track = app.add_subcommand("track", "Run a tracker on images or video files");
+  TrackCommandOptions track_options;
+  track->add_option("--tracker", track_options.tracker, "apriltag, apriltag-ippe or aruco")
+      ->required();
+  track->add_option("--marker", track_options.marker_path, "Marker YAML")->required();
+  track->add_option("--camera", track_options.camera_path, "Camera YAML")->required();
+  track->add_option("--out", track_options.out_csv, "Output CSV (default: standard output)");
+  track->add_option("inputs", track_options.inputs, "Images or videos")->required();
+
   CLI11_PARSE(app, argc, argv);
   try {
     if (render->parsed()) {
@@ -76,6 +86,8 @@ int main(int argc, char** argv) {
       } else {
         RenderScenario(scenario, explicit_options.out_dir, limit, explicit_options.write_float);
       }
+    } else if (track->parsed()) {
+      RunTrackCommand(track_options);
     } else if (markers->parsed()) {
       if (marker_files.empty()) marker_files = YamlFilesIn(markers_dir);
       for (const std::string& path : WriteMarkerSheets(marker_files, markers_out)) {

@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # The whole test suite from a clean clone: install dependencies, check formatting, build
 # with warnings as errors (Release), run every test with ctest, then run the unit and
-# synthetic tests again under AddressSanitizer + UndefinedBehaviorSanitizer.
+# synthetic and tracker tests again under AddressSanitizer (with LeakSanitizer) + UBSan.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 bash scripts/install-deps.sh
@@ -14,8 +14,8 @@ echo "== build (Release, -Werror)"
 bash scripts/build.sh -DMARKERBENCH_WERROR=ON
 (cd build && ctest --output-on-failure --parallel "$(nproc)")
 
-echo "== sanitizers (ASan + UBSan): unit and synthetic tests"
+echo "== sanitizers (ASan + LSan + UBSan): unit, synthetic and tracker tests"
 cmake -S . -B build-sanitize -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -DMARKERBENCH_WERROR=ON \
   -DMARKERBENCH_ASAN=ON -DMARKERBENCH_UBSAN=ON -DMARKERBENCH_BENCHMARKS=OFF
 cmake --build build-sanitize --parallel "$(nproc)"
-(cd build-sanitize && ctest --output-on-failure --parallel "$(nproc)" -L 'unit|synthetic')
+(cd build-sanitize && ctest --output-on-failure --parallel "$(nproc)" -L 'unit|synthetic|tracker')
