@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # The whole test suite from a clean clone: install dependencies, check formatting, build
-# with warnings as errors (Release), run every test with ctest, then run the unit and
+# with warnings as errors (Release), run every test with ctest, then run the unit,
 # synthetic and tracker tests again under AddressSanitizer (with LeakSanitizer) + UBSan.
 set -euo pipefail
 cd "$(dirname "$0")/.."
