@@ -9,6 +9,7 @@
 #include "bench/frame_plan.h"
 #include "core/camera_yaml.h"
 #include "core/marker_yaml.h"
+#include "core/number_text.h"
 #include "core/random.h"
 #include "core/yaml_reader.h"
 #include "renderer/image_io.h"
@@ -20,12 +21,6 @@ namespace {
 constexpr const char* kPoseColumns[12] = {
     "r11", "r12", "r13", "r21", "r22", "r23", "r31", "r32", "r33", "tx", "ty", "tz"};
 constexpr double kRotationTol = 1e-6;  // orthonormality of rotations read from text
-
-std::string Number(double v) {
-  char buffer[32];
-  std::snprintf(buffer, sizeof(buffer), "%.17g", v);
-  return buffer;
-}
 
 // One groundtruth.csv row per rendered frame.
 class GroundTruthCsv {
@@ -49,22 +44,22 @@ class GroundTruthCsv {
              const FrameRequest& request,
              const GroundTruth& truth) {
     out_ << frame << ',' << image << ',' << marker << ',' << sweep_parameter << ',' << sweep_value
-         << ',' << trial << ',' << seed << ',' << Number(camera.fx) << ',' << Number(camera.fy)
-         << ',' << Number(camera.cx) << ',' << Number(camera.cy) << ',' << camera.width << ','
-         << camera.height;
+         << ',' << trial << ',' << seed << ',' << NumberText(camera.fx) << ','
+         << NumberText(camera.fy) << ',' << NumberText(camera.cx) << ',' << NumberText(camera.cy)
+         << ',' << camera.width << ',' << camera.height;
     const Rigid3& pose = truth.cam_from_marker;
     for (int r = 0; r < 3; ++r) {
-      for (int c = 0; c < 3; ++c) out_ << ',' << Number(pose.rotation(r, c));
+      for (int c = 0; c < 3; ++c) out_ << ',' << NumberText(pose.rotation(r, c));
     }
-    for (int i = 0; i < 3; ++i) out_ << ',' << Number(pose.translation[i]);
+    for (int i = 0; i < 3; ++i) out_ << ',' << NumberText(pose.translation[i]);
     const Degradations& d = request.degradations;
-    out_ << ',' << Number(d.noise_var) << ',' << Number(d.blur_sigma_px) << ','
-         << Number(d.motion_blur_px) << ',' << Number(d.motion_blur_angle_deg) << ','
-         << Number(d.gain) << ',' << Number(d.offset) << ',' << d.jpeg_quality << ','
-         << request.channels << ',' << Number(truth.apparent_size_px) << ',';
+    out_ << ',' << NumberText(d.noise_var) << ',' << NumberText(d.blur_sigma_px) << ','
+         << NumberText(d.motion_blur_px) << ',' << NumberText(d.motion_blur_angle_deg) << ','
+         << NumberText(d.gain) << ',' << NumberText(d.offset) << ',' << d.jpeg_quality << ','
+         << request.channels << ',' << NumberText(truth.apparent_size_px) << ',';
     for (size_t k = 0; k < truth.keypoints_px.size(); ++k) {
-      out_ << (k ? ";" : "") << Number(truth.keypoints_px[k].x()) << ' '
-           << Number(truth.keypoints_px[k].y());
+      out_ << (k ? ";" : "") << NumberText(truth.keypoints_px[k].x()) << ' '
+           << NumberText(truth.keypoints_px[k].y());
     }
     out_ << '\n';
     out_.flush();
@@ -128,7 +123,7 @@ void RenderScenario(const std::string& scenario_path,
               image,
               request.scene.marker->name,
               scenario.sweep_parameter,
-              Number(f.sweep_value),
+              NumberText(f.sweep_value),
               std::to_string(f.trial),
               scenario.seed,
               scenario.camera,

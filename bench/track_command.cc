@@ -11,6 +11,7 @@
 
 #include "core/camera_yaml.h"
 #include "core/marker_yaml.h"
+#include "core/number_text.h"
 #include "core/yaml_reader.h"
 #include "renderer/image_io.h"
 #include "trackers/tracker_factory.h"
@@ -25,12 +26,6 @@ bool IsImageFile(const std::string& path) {
     if (ext == e) return true;
   }
   return false;
-}
-
-std::string Number(double v) {
-  char buffer[32];
-  std::snprintf(buffer, sizeof(buffer), "%.17g", v);
-  return buffer;
 }
 
 class TrackCsv {
@@ -48,15 +43,15 @@ class TrackCsv {
     if (result.status == TrackStatus::kOk && !result.hypotheses.empty()) {
       const Rigid3& pose = result.hypotheses.front();
       for (int r = 0; r < 3; ++r) {
-        for (int c = 0; c < 3; ++c) out_ << ',' << Number(pose.rotation(r, c));
+        for (int c = 0; c < 3; ++c) out_ << ',' << NumberText(pose.rotation(r, c));
       }
-      for (int i = 0; i < 3; ++i) out_ << ',' << Number(pose.translation[i]);
+      for (int i = 0; i < 3; ++i) out_ << ',' << NumberText(pose.translation[i]);
       const Eigen::Vector3d center = CameraCenterInMarker(pose);
-      for (int i = 0; i < 3; ++i) out_ << ',' << Number(center[i]);
+      for (int i = 0; i < 3; ++i) out_ << ',' << NumberText(center[i]);
     } else {
       out_ << std::string(15, ',');
     }
-    out_ << ',' << Number(time_ms) << '\n';
+    out_ << ',' << NumberText(time_ms) << '\n';
     out_.flush();
   }
 

@@ -7,12 +7,10 @@
 namespace markerbench {
 namespace {
 
+// FromYaml validates; the defaults are valid.
 template <typename Options>
 Options ReadOptions(const YamlMap* map) {
-  Options options = map ? Options::FromYaml(*map) : Options{};
-  std::string error;
-  if (!options.IsValid(&error)) throw ConfigError("tracker options: " + error);
-  return options;
+  return map ? Options::FromYaml(*map) : Options{};
 }
 
 }  // namespace

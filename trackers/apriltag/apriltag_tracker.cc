@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "core/marker_bits.h"
+#include "core/number_text.h"
 #include "core/yaml_reader.h"
 #include "trackers/grey_image.h"
 #include "trackers/square_pose.h"
@@ -91,20 +92,15 @@ class AprilTagTracker final : public Tracker {
   }
 
   std::vector<std::pair<std::string, std::string>> Parameters() const override {
-    auto text = [](double v) {
-      std::ostringstream s;
-      s << v;
-      return s.str();
-    };
     return {{"family", options_.family},
-            {"quad_decimate", text(options_.quad_decimate)},
-            {"quad_sigma", text(options_.quad_sigma)},
+            {"quad_decimate", NumberText(options_.quad_decimate)},
+            {"quad_sigma", NumberText(options_.quad_sigma)},
             {"refine_edges", options_.refine_edges ? "true" : "false"},
-            {"decode_sharpening", text(options_.decode_sharpening)},
-            {"nthreads", text(options_.nthreads)},
-            {"max_hamming", text(options_.max_hamming)},
+            {"decode_sharpening", NumberText(options_.decode_sharpening)},
+            {"nthreads", NumberText(options_.nthreads)},
+            {"max_hamming", NumberText(options_.max_hamming)},
             {"pose", pose_ == AprilTagPose::kNative ? "estimate_tag_pose" : "ippe_square"},
-            {"pixel_offset_corrected", text(kAprilTagPixelOffset)}};
+            {"pixel_offset_corrected", NumberText(kAprilTagPixelOffset)}};
   }
 
  private:

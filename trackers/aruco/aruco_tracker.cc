@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "core/marker_bits.h"
+#include "core/number_text.h"
 #include "core/yaml_reader.h"
 #include "trackers/grey_image.h"
 #include "trackers/square_pose.h"
@@ -87,25 +88,20 @@ class ArucoTracker final : public Tracker {
   }
 
   std::vector<std::pair<std::string, std::string>> Parameters() const override {
-    auto text = [](double v) {
-      std::ostringstream s;
-      s << v;
-      return s.str();
-    };
     const ArucoOptions& o = options_;
     return {{"dictionary", o.dictionary},
             {"corner_refinement", o.corner_refinement},
-            {"adaptive_thresh_win_size_min", text(o.adaptive_thresh_win_size_min)},
-            {"adaptive_thresh_win_size_max", text(o.adaptive_thresh_win_size_max)},
-            {"adaptive_thresh_win_size_step", text(o.adaptive_thresh_win_size_step)},
-            {"adaptive_thresh_constant", text(o.adaptive_thresh_constant)},
-            {"min_marker_perimeter_rate", text(o.min_marker_perimeter_rate)},
-            {"max_marker_perimeter_rate", text(o.max_marker_perimeter_rate)},
-            {"polygonal_approx_accuracy_rate", text(o.polygonal_approx_accuracy_rate)},
-            {"corner_refinement_win_size", text(o.corner_refinement_win_size)},
-            {"corner_refinement_max_iterations", text(o.corner_refinement_max_iterations)},
-            {"corner_refinement_min_accuracy", text(o.corner_refinement_min_accuracy)},
-            {"error_correction_rate", text(o.error_correction_rate)},
+            {"adaptive_thresh_win_size_min", NumberText(o.adaptive_thresh_win_size_min)},
+            {"adaptive_thresh_win_size_max", NumberText(o.adaptive_thresh_win_size_max)},
+            {"adaptive_thresh_win_size_step", NumberText(o.adaptive_thresh_win_size_step)},
+            {"adaptive_thresh_constant", NumberText(o.adaptive_thresh_constant)},
+            {"min_marker_perimeter_rate", NumberText(o.min_marker_perimeter_rate)},
+            {"max_marker_perimeter_rate", NumberText(o.max_marker_perimeter_rate)},
+            {"polygonal_approx_accuracy_rate", NumberText(o.polygonal_approx_accuracy_rate)},
+            {"corner_refinement_win_size", NumberText(o.corner_refinement_win_size)},
+            {"corner_refinement_max_iterations", NumberText(o.corner_refinement_max_iterations)},
+            {"corner_refinement_min_accuracy", NumberText(o.corner_refinement_min_accuracy)},
+            {"error_correction_rate", NumberText(o.error_correction_rate)},
             {"pose", "ippe_square"}};
   }
 
