@@ -45,11 +45,6 @@ inline double RotationErrorDeg(const Rigid3& estimate, const Rigid3& truth) {
   return RotationAngleBetween(estimate.rotation, truth.rotation) * 180.0 / M_PI;
 }
 
-// Pose looking at the tag centre from distance_m, tilted and rolled (degrees).
-inline Rigid3 ViewOfTag(double distance_m, double tilt_deg, double roll_deg) {
-  return TiltedView(distance_m, tilt_deg, roll_deg);
-}
-
 // Mean of (detected - true) corner offsets and mean inward offset (towards the centre).
 struct CornerBias {
   Eigen::Vector2d mean = Eigen::Vector2d::Zero();

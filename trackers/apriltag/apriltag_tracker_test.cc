@@ -29,7 +29,7 @@ TEST_F(AprilTagTrackerTest, CornerBiasIsBelowATenthOfAPixel) {
   for (double tilt : {0.0, 20.0, 40.0}) {
     for (double roll : {5.0, 50.0, 130.0}) {
       const TrackedFrame t =
-          RenderAndTrack(tracker.get(), tag_, tag_, ViewOfTag(0.5, tilt, roll), kLowNoiseVar, 1);
+          RenderAndTrack(tracker.get(), tag_, tag_, TiltedView(0.5, tilt, roll), kLowNoiseVar, 1);
       ASSERT_EQ(t.result.status, TrackStatus::kOk) << tilt << " " << roll;
       bias.Add(t.result.keypoints_px, t.frame.truth.keypoints_px);
     }
@@ -49,7 +49,7 @@ TEST_F(AprilTagTrackerTest, PoseErrorsWithinTolerancesOverDistanceAndTilt) {
         if (distance == 2.0 && tilt == 60.0) options.quad_decimate = 1.0;
         auto tracker = MakeAprilTagTracker(
             options, std::string(name) == "apriltag" ? AprilTagPose::kNative : AprilTagPose::kIppe);
-        const Rigid3 truth = ViewOfTag(distance, tilt, 17.0);
+        const Rigid3 truth = TiltedView(distance, tilt, 17.0);
         const TrackedFrame t = RenderAndTrack(tracker.get(), tag_, tag_, truth, kLowNoiseVar, 2);
         ASSERT_EQ(t.result.status, TrackStatus::kOk);
         const Rigid3& best = t.result.hypotheses.front();
@@ -62,7 +62,7 @@ TEST_F(AprilTagTrackerTest, PoseErrorsWithinTolerancesOverDistanceAndTilt) {
 
 TEST_F(AprilTagTrackerTest, DefaultDecimationLosesTheSmallestObliqueTag) {
   auto tracker = MakeTracker("apriltag", nullptr);
-  EXPECT_EQ(RenderAndTrack(tracker.get(), tag_, tag_, ViewOfTag(2.0, 60.0, 17.0), kLowNoiseVar, 2)
+  EXPECT_EQ(RenderAndTrack(tracker.get(), tag_, tag_, TiltedView(2.0, 60.0, 17.0), kLowNoiseVar, 2)
                 .result.status,
             TrackStatus::kNotDetected);
 }
@@ -70,7 +70,7 @@ TEST_F(AprilTagTrackerTest, DefaultDecimationLosesTheSmallestObliqueTag) {
 TEST_F(AprilTagTrackerTest, FrameAgreesUnderQuarterTurns) {
   auto tracker = MakeTracker("apriltag", nullptr);
   for (double roll : {0.0, 90.0, 180.0, 270.0}) {
-    const Rigid3 truth = ViewOfTag(0.6, 25.0, roll);
+    const Rigid3 truth = TiltedView(0.6, 25.0, roll);
     const TrackedFrame t = RenderAndTrack(tracker.get(), tag_, tag_, truth, kLowNoiseVar, 3);
     ASSERT_EQ(t.result.status, TrackStatus::kOk) << roll;
     const Rigid3& est = t.result.hypotheses.front();
@@ -83,7 +83,7 @@ TEST_F(AprilTagTrackerTest, FrameAgreesUnderQuarterTurns) {
 
 TEST_F(AprilTagTrackerTest, IppeReturnsBothHypothesesForASmallFrontalTag) {
   auto tracker = MakeTracker("apriltag-ippe", nullptr);
-  const Rigid3 truth = ViewOfTag(2.0, 3.0, 40.0);
+  const Rigid3 truth = TiltedView(2.0, 3.0, 40.0);
   const TrackedFrame t = RenderAndTrack(tracker.get(), tag_, tag_, truth, 0.01, 4);
   ASSERT_EQ(t.result.status, TrackStatus::kOk);
   ASSERT_EQ(t.result.hypotheses.size(), 2u);
@@ -97,17 +97,18 @@ TEST_F(AprilTagTrackerTest, EmptyImageAndWrongId) {
   MarkerSpec blank = tag_;
   blank.layers.clear();
   EXPECT_EQ(
-      RenderAndTrack(tracker.get(), blank, tag_, ViewOfTag(0.5, 10, 0), 0.02, 5).result.status,
+      RenderAndTrack(tracker.get(), blank, tag_, TiltedView(0.5, 10, 0), 0.02, 5).result.status,
       TrackStatus::kNotDetected);
   const MarkerSpec other = LoadMarkerYaml(WriteTestTag(1));
-  EXPECT_EQ(RenderAndTrack(tracker.get(), other, tag_, ViewOfTag(0.5, 10, 0), 0.0, 5).result.status,
-            TrackStatus::kWrongId);
+  EXPECT_EQ(
+      RenderAndTrack(tracker.get(), other, tag_, TiltedView(0.5, 10, 0), 0.0, 5).result.status,
+      TrackStatus::kWrongId);
 }
 
 TEST_F(AprilTagTrackerTest, CornersEqualADirectLibraryCallMinusHalfAPixel) {
   auto tracker = MakeTracker("apriltag", nullptr);
   const TrackedFrame t =
-      RenderAndTrack(tracker.get(), tag_, tag_, ViewOfTag(0.7, 35.0, 60.0), 0.01, 6);
+      RenderAndTrack(tracker.get(), tag_, tag_, TiltedView(0.7, 35.0, 60.0), 0.01, 6);
   ASSERT_EQ(t.result.status, TrackStatus::kOk);
   apriltag_family_t* family = tag36h11_create();
   apriltag_detector_t* detector = apriltag_detector_create();

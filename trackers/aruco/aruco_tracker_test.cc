@@ -30,7 +30,7 @@ TEST_F(ArucoTrackerTest, SubpixCornerBiasIsBelowATenthOfAPixel) {
   for (double tilt : {0.0, 20.0, 40.0}) {
     for (double roll : {5.0, 50.0, 130.0}) {
       const TrackedFrame t = RenderAndTrack(
-          tracker.get(), marker_, marker_, ViewOfTag(0.5, tilt, roll), kLowNoiseVar, 1);
+          tracker.get(), marker_, marker_, TiltedView(0.5, tilt, roll), kLowNoiseVar, 1);
       ASSERT_EQ(t.result.status, TrackStatus::kOk) << tilt << " " << roll;
       bias.Add(t.result.keypoints_px, t.frame.truth.keypoints_px);
     }
@@ -44,7 +44,7 @@ TEST_F(ArucoTrackerTest, PoseErrorsWithinTolerancesOverDistanceAndTilt) {
   for (double distance : {0.3, 0.8, 1.4, 2.0}) {
     for (double tilt : {0.0, 30.0, 60.0}) {
       SCOPED_TRACE("d=" + std::to_string(distance) + " tilt=" + std::to_string(tilt));
-      const Rigid3 truth = ViewOfTag(distance, tilt, 17.0);
+      const Rigid3 truth = TiltedView(distance, tilt, 17.0);
       const TrackedFrame t =
           RenderAndTrack(tracker.get(), marker_, marker_, truth, kLowNoiseVar, 2);
       ASSERT_EQ(t.result.status, TrackStatus::kOk);
@@ -64,7 +64,7 @@ TEST_F(ArucoTrackerTest, PoseErrorsWithinTolerancesOverDistanceAndTilt) {
 TEST_F(ArucoTrackerTest, FrameAgreesUnderQuarterTurns) {
   auto tracker = MakeTracker("aruco", nullptr);
   for (double roll : {0.0, 90.0, 180.0, 270.0}) {
-    const Rigid3 truth = ViewOfTag(0.6, 25.0, roll);
+    const Rigid3 truth = TiltedView(0.6, 25.0, roll);
     const TrackedFrame t = RenderAndTrack(tracker.get(), marker_, marker_, truth, kLowNoiseVar, 3);
     ASSERT_EQ(t.result.status, TrackStatus::kOk) << roll;
     const Rigid3& est = t.result.hypotheses.front();
@@ -79,19 +79,19 @@ TEST_F(ArucoTrackerTest, EmptyImageAndWrongId) {
   MarkerSpec blank = marker_;
   blank.layers.clear();
   EXPECT_EQ(
-      RenderAndTrack(tracker.get(), blank, marker_, ViewOfTag(0.5, 10, 0), 0.02, 5).result.status,
+      RenderAndTrack(tracker.get(), blank, marker_, TiltedView(0.5, 10, 0), 0.02, 5).result.status,
       TrackStatus::kNotDetected);
   const MarkerSpec other = LoadMarkerYaml(
       WriteTestFile("aruco_7.yaml", "kind: aruco\ndictionary: DICT_6X6_250\nid: 7\nsize_m: 0.1\n"));
   EXPECT_EQ(
-      RenderAndTrack(tracker.get(), other, marker_, ViewOfTag(0.5, 10, 0), 0.0, 5).result.status,
+      RenderAndTrack(tracker.get(), other, marker_, TiltedView(0.5, 10, 0), 0.0, 5).result.status,
       TrackStatus::kWrongId);
 }
 
 TEST_F(ArucoTrackerTest, CornersEqualADirectLibraryCall) {
   auto tracker = MakeTracker("aruco", nullptr);
   const TrackedFrame t =
-      RenderAndTrack(tracker.get(), marker_, marker_, ViewOfTag(0.7, 35.0, 60.0), 0.01, 6);
+      RenderAndTrack(tracker.get(), marker_, marker_, TiltedView(0.7, 35.0, 60.0), 0.01, 6);
   ASSERT_EQ(t.result.status, TrackStatus::kOk);
   Image8 image = t.frame.image;
   const cv::Mat view(image.height, image.width, CV_8UC1, image.pixels.data());
