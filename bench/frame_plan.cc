@@ -67,4 +67,17 @@ std::vector<PlannedFrame> PlanFrames(const Scenario& s, int limit) {
   return frames;
 }
 
+FrameRequest RequestFor(const Scenario& s, const PlannedFrame& f) {
+  FrameRequest request;
+  request.scene.marker = &s.markers[static_cast<size_t>(f.marker_index)];
+  request.scene.camera = s.camera;
+  request.scene.cam_from_marker = f.cam_from_marker;
+  request.scene.sheet_size_m = s.render.sheet_size_m;
+  request.scene.backdrop = s.render.backdrop;
+  request.degradations = f.degradations;
+  request.channels = f.channels;
+  request.noise_seed = f.noise_seed;
+  return request;
+}
+
 }  // namespace markerbench

@@ -6,6 +6,7 @@
 
 #include "bench/scenario.h"
 #include "core/rigid3.h"
+#include "renderer/render_frame.h"
 
 namespace markerbench {
 
@@ -29,5 +30,8 @@ void ApplySweepValue(const std::string& parameter,
 
 // Frames in (cell, trial, marker) order; at most `limit` (0: all).
 std::vector<PlannedFrame> PlanFrames(const Scenario& scenario, int limit = 0);
+
+// What to render for `frame`; refers to the scenario's marker and camera.
+FrameRequest RequestFor(const Scenario& scenario, const PlannedFrame& frame);
 
 }  // namespace markerbench

@@ -7,6 +7,8 @@
 
 #include "bench/marker_sheets.h"
 #include "bench/render_command.h"
+#include "bench/report.h"
+#include "bench/sweep_runner.h"
 #include "bench/track_command.h"
 #include "core/yaml_reader.h"
 
@@ -66,6 +68,30 @@ int main(int argc, char** argv) {
   track->add_option("--out", track_options.out_csv, "Output CSV (default: standard output)");
   track->add_option("inputs", track_options.inputs, "Images or videos")->required();
 
+  CLI::App* sweep = app.add_subcommand(
+      "sweep", "Run scenarios' sweeps into DIR/<scenario name>/ (frames.csv, timing.csv)");
+  std::vector<std::string> sweep_scenarios;
+  SweepOptions sweep_options;
+  sweep->add_option("scenarios", sweep_scenarios, "Scenario YAML files")->required();
+  sweep->add_option("--out", sweep_options.out_dir, "Output folder")->required();
+  sweep->add_option("--threads", sweep_options.threads, "Worker threads (default: all cores)")
+      ->check(CLI::PositiveNumber);
+  sweep->add_flag("--resume", sweep_options.resume, "Continue a killed run of the same scenarios");
+  sweep->add_flag("--overwrite", sweep_options.overwrite, "Start again over an earlier run");
+  sweep->get_option("--resume")->excludes("--overwrite");
+
+  CLI::App* report =
+      app.add_subcommand("report", "summary.csv, report.md and plots from a sweep's DIR");
+  std::string report_dir;
+  ReportOptions report_options;
+  report->add_option("dir", report_dir, "The sweep's output folder")->required();
+  report
+      ->add_option("--success-fraction",
+                   report_options.summary.success_fraction,
+                   "Success: position error <= this fraction of the true distance")
+      ->check(CLI::Range(0.0, 10.0));
+  report->add_flag("!--no-plots", report_options.plots, "Skip scripts/plot_sweep.py");
+
   CLI11_PARSE(app, argc, argv);
   try {
     if (render->parsed()) {
@@ -88,6 +114,10 @@ int main(int argc, char** argv) {
       }
     } else if (track->parsed()) {
       RunTrackCommand(track_options);
+    } else if (sweep->parsed()) {
+      RunSweeps(sweep_scenarios, sweep_options);
+    } else if (report->parsed()) {
+      WriteReport(report_dir, report_options);
     } else if (markers->parsed()) {
       if (marker_files.empty()) marker_files = YamlFilesIn(markers_dir);
       for (const std::string& path : WriteMarkerSheets(marker_files, markers_out)) {

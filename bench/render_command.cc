@@ -7,6 +7,7 @@
 #include <sstream>
 
 #include "bench/frame_plan.h"
+#include "bench/pose_columns.h"
 #include "core/camera_yaml.h"
 #include "core/marker_yaml.h"
 #include "core/number_text.h"
@@ -18,8 +19,6 @@
 namespace markerbench {
 namespace {
 
-constexpr const char* kPoseColumns[12] = {
-    "r11", "r12", "r13", "r21", "r22", "r23", "r31", "r32", "r33", "tx", "ty", "tz"};
 constexpr double kRotationTol = 1e-6;  // orthonormality of rotations read from text
 
 // One groundtruth.csv row per rendered frame.
@@ -47,11 +46,7 @@ class GroundTruthCsv {
          << ',' << trial << ',' << seed << ',' << NumberText(camera.fx) << ','
          << NumberText(camera.fy) << ',' << NumberText(camera.cx) << ',' << NumberText(camera.cy)
          << ',' << camera.width << ',' << camera.height;
-    const Rigid3& pose = truth.cam_from_marker;
-    for (int r = 0; r < 3; ++r) {
-      for (int c = 0; c < 3; ++c) out_ << ',' << NumberText(pose.rotation(r, c));
-    }
-    for (int i = 0; i < 3; ++i) out_ << ',' << NumberText(pose.translation[i]);
+    out_ << PoseFields(truth.cam_from_marker);
     const Degradations& d = request.degradations;
     out_ << ',' << NumberText(d.noise_var) << ',' << NumberText(d.blur_sigma_px) << ','
          << NumberText(d.motion_blur_px) << ',' << NumberText(d.motion_blur_angle_deg) << ','
@@ -98,24 +93,11 @@ void RenderScenario(const std::string& scenario_path,
                     int limit,
                     bool write_float) {
   const Scenario scenario = LoadScenario(scenario_path);
-  std::vector<PlannedFrame> frames;
-  try {
-    frames = PlanFrames(scenario, limit);
-  } catch (const std::runtime_error& e) {
-    throw ConfigError(scenario_path + ": key 'poses': " + e.what());
-  }
+  const std::vector<PlannedFrame> frames = PlanFrames(scenario, limit);
   MakeDir(out_dir);
   GroundTruthCsv csv(out_dir);
   for (const PlannedFrame& f : frames) {
-    FrameRequest request;
-    request.scene.marker = &scenario.markers[static_cast<size_t>(f.marker_index)];
-    request.scene.camera = scenario.camera;
-    request.scene.cam_from_marker = f.cam_from_marker;
-    request.scene.sheet_size_m = scenario.render.sheet_size_m;
-    request.scene.backdrop = scenario.render.backdrop;
-    request.degradations = f.degradations;
-    request.channels = f.channels;
-    request.noise_seed = f.noise_seed;
+    FrameRequest request = RequestFor(scenario, f);
     request.keep_linear = write_float;
     const RenderedFrame frame = RenderFrame(request);
     const std::string image = WriteFrame(out_dir, f.index, frame);

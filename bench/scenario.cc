@@ -1,12 +1,15 @@
 #include "bench/scenario.h"
 
 #include <algorithm>
+#include <cctype>
 #include <filesystem>
 
 #include "bench/frame_plan.h"
 #include "core/camera_yaml.h"
+#include "core/marker_scaling.h"
 #include "core/marker_yaml.h"
 #include "core/yaml_reader.h"
+#include "trackers/tracker_factory.h"
 
 namespace markerbench {
 namespace {
@@ -97,29 +100,61 @@ int ChannelsFor(Channels channels, const MarkerSpec& marker) {
   }
 }
 
+std::unique_ptr<Tracker> MakeScenarioTracker(const Scenario& scenario, const TrackerEntry& entry) {
+  if (!entry.options.IsDefined()) return MakeTracker(entry.name, nullptr);
+  const YamlMap options(entry.options, scenario.path, entry.options_key);
+  return MakeTracker(entry.name, &options);
+}
+
 Scenario LoadScenario(const std::string& path) {
   const YamlMap root = YamlMap::LoadFile(path);
   Scenario s;
   s.path = path;
+  s.input_files.push_back(path);
   s.name = root.GetOr<std::string>("name", std::filesystem::path(path).stem().string());
-  s.camera = LoadCameraYaml(ResolveRelativeTo(path, root.Get<std::string>("camera")));
+  const bool safe_name = !s.name.empty() && std::all_of(s.name.begin(), s.name.end(), [](char c) {
+    return std::isalnum(static_cast<unsigned char>(c)) || c == '_' || c == '-' || c == '.';
+  });
+  if (!safe_name) root.Fail("name", "letters, digits, '_', '-' or '.' (it names a folder)");
+  s.input_files.push_back(ResolveRelativeTo(path, root.Get<std::string>("camera")));
+  s.camera = LoadCameraYaml(s.input_files.back());
   const std::vector<std::string> markers = root.Get<std::vector<std::string>>("markers");
   if (markers.empty()) root.Fail("markers", "a list of at least one marker file");
-  for (const std::string& m : markers)
-    s.markers.push_back(LoadMarkerYaml(ResolveRelativeTo(path, m)));
+  for (const std::string& m : markers) {
+    s.input_files.push_back(ResolveRelativeTo(path, m));
+    s.markers.push_back(LoadMarkerYaml(s.input_files.back()));
+  }
+  if (root.Has("equal_ink_area_m2")) {
+    s.equal_ink_area_m2 = root.GetDouble("equal_ink_area_m2", 1e-6, 100.0);
+    for (MarkerSpec& m : s.markers) m = ScaledMarker(m, EqualAreaFactor(m, *s.equal_ink_area_m2));
+  }
   if (root.Has("trackers")) {
     for (const YamlMap& t : root.GetMapList("trackers")) {
       TrackerEntry entry;
       entry.name = t.Get<std::string>("name");
+      entry.options_key = t.key_path() + ".options";
       if (t.Has("options")) {
         entry.options = t.GetNode("options");
         if (!entry.options.IsMap()) t.Fail("options", "a mapping of tracker options");
       }
       t.RejectUnknownKeys();
+      const std::vector<std::string> names = TrackerNames();
+      if (std::find(names.begin(), names.end(), entry.name) == names.end()) {
+        std::string list;
+        for (const std::string& n : names) list += (list.empty() ? "" : ", ") + n;
+        t.Fail("name", "one of the available trackers: " + list);
+      }
+      const std::unique_ptr<Tracker> tracker = MakeScenarioTracker(s, entry);
+      const bool tracks_one =
+          std::any_of(s.markers.begin(), s.markers.end(), [&](const MarkerSpec& m) {
+            return tracker->CanTrack(m);
+          });
+      if (!tracks_one) t.Fail("name", "a tracker for one of the scenario's markers");
       s.trackers.push_back(entry);
     }
   }
-  s.poses = ReadPoses(root.GetMap("poses"));
+  const YamlMap poses = root.GetMap("poses");
+  s.poses = ReadPoses(poses);
   s.render = root.Has("render") ? ReadRender(root.GetMap("render")) : RenderDefaults{};
   const YamlMap sweep = root.GetMap("sweep");
   s.sweep_parameter = sweep.Get<std::string>("parameter");
@@ -131,6 +166,11 @@ Scenario LoadScenario(const std::string& path) {
   }
   s.sweep_values = sweep.Get<std::vector<double>>("values");
   if (s.sweep_values.empty()) sweep.Fail("values", "a non-empty list of numbers");
+  s.example_value = sweep.GetOr<double>("example_value", s.sweep_values.back());
+  if (std::find(s.sweep_values.begin(), s.sweep_values.end(), s.example_value) ==
+      s.sweep_values.end()) {
+    sweep.Fail("example_value", "one of the sweep values");
+  }
   for (double value : s.sweep_values) {
     PoseSamplerOptions poses = s.poses;
     Degradations degradations = s.render.degradations;
@@ -145,6 +185,13 @@ Scenario LoadScenario(const std::string& path) {
   s.trials = root.GetInt("trials", 1, 1000000);
   s.seed = static_cast<uint64_t>(root.GetInt("seed", 0, 2147483647));
   root.RejectUnknownKeys();
+  try {
+    PlanFrames(s);
+  } catch (const std::runtime_error& e) {
+    const bool swept = s.sweep_parameter == "distance_m" || s.sweep_parameter == "tilt_deg";
+    (swept ? sweep : poses)
+        .Fail(swept ? "values" : "distance_m", std::string("markers in view: ") + e.what());
+  }
   return s;
 }
 

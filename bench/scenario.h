@@ -5,6 +5,7 @@
 #include <yaml-cpp/yaml.h>
 
 #include <cstdint>
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
@@ -12,6 +13,7 @@
 #include "core/camera.h"
 #include "core/marker_spec.h"
 #include "renderer/degradations.h"
+#include "trackers/tracker.h"
 
 namespace markerbench {
 
@@ -42,7 +44,8 @@ struct RenderDefaults {
 
 struct TrackerEntry {
   std::string name;
-  YAML::Node options;  // checked by the tracker factory
+  YAML::Node options;       // validated by the tracker factory when the scenario loads
+  std::string options_key;  // "trackers[i].options", for errors
 };
 
 // The sweep parameters a scenario may vary.
@@ -50,20 +53,29 @@ const std::vector<std::string>& SweepParameters();
 
 struct Scenario {
   std::string path;
+  // The scenario, camera and marker files: what a run's fingerprint hashes.
+  std::vector<std::string> input_files;
   std::string name;
   Camera camera;
-  std::vector<MarkerSpec> markers;
+  std::vector<MarkerSpec> markers;  // after equal-area scaling, when asked for
+  std::optional<double> equal_ink_area_m2;
   std::vector<TrackerEntry> trackers;
   PoseSamplerOptions poses;
   RenderDefaults render;
   std::string sweep_parameter;
   std::vector<double> sweep_values;
+  double example_value = 0.0;  // the sweep value whose example images the report shows
   int trials = 1;
   uint64_t seed = 0;
 };
 
-// Throws ConfigError naming the file, line and key.
+// Throws ConfigError naming the file, line and key. Also checks what can only be checked by
+// trying: every tracker's options, that each tracker can track one of the markers, and that
+// the pose sampler can put every marker in view at every sweep value.
 Scenario LoadScenario(const std::string& path);
+
+// A fresh tracker for `entry` (options checked again; they were valid at load).
+std::unique_ptr<Tracker> MakeScenarioTracker(const Scenario& scenario, const TrackerEntry& entry);
 
 // The channel count for `marker` under `channels`.
 int ChannelsFor(Channels channels, const MarkerSpec& marker);

@@ -15,7 +15,8 @@ const std::string kRoot = std::filesystem::current_path().string();
 
 std::string GoodScenario() {
   return "name: t\ncamera: " + kRoot + "/scenarios/cameras/default.yaml\nmarkers:\n  - " + kRoot +
-         "/scenarios/markers/circles_a.yaml\ntrackers:\n  - {name: circle, options: {huber: 1.0}}\n"
+         "/scenarios/markers/apriltag.yaml\ntrackers:\n  - {name: apriltag, options: "
+         "{quad_decimate: 1.0}}\n"
          "poses:\n  sampler: look_at\n  distance_m: 0.6\n  tilt_deg: [0, 40]\n"
          "render:\n  noise_var: 0.02\n  channels: auto\n"
          "sweep:\n  parameter: blur_sigma_px\n  values: [0, 1, 2]\ntrials: 3\nseed: 5\n";
@@ -43,18 +44,78 @@ TEST(Scenario, LoadsEveryField) {
   EXPECT_EQ(s.name, "t");
   EXPECT_EQ(s.camera.width, 640);
   ASSERT_EQ(s.markers.size(), 1u);
-  EXPECT_EQ(s.trackers.at(0).name, "circle");
-  EXPECT_EQ(s.trackers.at(0).options["huber"].as<double>(), 1.0);
+  EXPECT_EQ(s.trackers.at(0).name, "apriltag");
+  EXPECT_EQ(s.trackers.at(0).options["quad_decimate"].as<double>(), 1.0);
   EXPECT_EQ(s.poses.tilt_max_deg, 40.0);
   EXPECT_EQ(s.render.degradations.noise_var, 0.02);
   EXPECT_EQ(s.sweep_parameter, "blur_sigma_px");
   EXPECT_EQ(s.sweep_values.size(), 3u);
   EXPECT_EQ(s.trials, 3);
   EXPECT_EQ(s.seed, 5u);
+  EXPECT_EQ(s.example_value, 2.0);  // default: the last value
+  EXPECT_FALSE(s.equal_ink_area_m2.has_value());
+  EXPECT_EQ(s.input_files.size(), 3u);
+}
+
+TEST(Scenario, EqualAreaScalesEveryMarker) {
+  const Scenario s = LoadScenario(
+      WriteTestFile("scenario.yaml",
+                    Replace(GoodScenario(), "trials: 3", "equal_ink_area_m2: 0.0225\ntrials: 3")));
+  EXPECT_NEAR(s.markers[0].InkBounds().volume(), 0.0225, 1e-12);
+  EXPECT_NEAR(s.markers[0].size_m, 0.15, 1e-12);  // the tag's ink is its black square
+}
+
+TEST(Scenario, ExampleValueMustBeASweepValue) {
+  EXPECT_EQ(LoadScenario(WriteTestFile("scenario.yaml",
+                                       Replace(GoodScenario(),
+                                               "values: [0, 1, 2]",
+                                               "values: [0, 1, 2]\n  example_value: 1")))
+                .example_value,
+            1.0);
+  EXPECT_THAT(ErrorOf(Replace(
+                  GoodScenario(), "values: [0, 1, 2]", "values: [0, 1, 2]\n  example_value: 7")),
+              HasSubstr("key 'sweep.example_value': expected one of the sweep values"));
+}
+
+TEST(Scenario, UnknownTrackerListsTheAvailableOnes) {
+  EXPECT_THAT(ErrorOf(Replace(GoodScenario(), "name: apriltag,", "name: nosuch,")),
+              HasSubstr("key 'trackers[0].name': expected one of the available trackers: "
+                        "apriltag, apriltag-ippe, aruco"));
+}
+
+TEST(Scenario, TrackerOptionsAreCheckedWithTheirKey) {
+  EXPECT_THAT(ErrorOf(Replace(GoodScenario(), "quad_decimate: 1.0", "quad_decimat: 1.0")),
+              HasSubstr("key 'trackers[0].options.quad_decimat': unknown key"));
+}
+
+TEST(Scenario, TrackerMustTrackOneOfTheMarkers) {
+  EXPECT_THAT(
+      ErrorOf(Replace(
+          GoodScenario(), "{name: apriltag, options: {quad_decimate: 1.0}}", "{name: aruco}")),
+      HasSubstr("key 'trackers[0].name': expected a tracker for one of the scenario's "
+                "markers"));
+}
+
+TEST(Scenario, MarkerThatCanNeverBeInView) {
+  EXPECT_THAT(ErrorOf(Replace(GoodScenario(), "distance_m: 0.6", "distance_m: 0.05")),
+              HasSubstr("key 'poses.distance_m': expected markers in view"));
+  EXPECT_THAT(
+      ErrorOf(Replace(Replace(GoodScenario(), "parameter: blur_sigma_px", "parameter: distance_m"),
+                      "values: [0, 1, 2]",
+                      "values: [0.6, 0.05]")),
+      HasSubstr("key 'sweep.values': expected markers in view"));
+}
+
+TEST(Scenario, NameMustBeAFolderName) {
+  EXPECT_THAT(ErrorOf(Replace(GoodScenario(), "name: t", "name: a/b")),
+              HasSubstr("key 'name': expected letters, digits"));
 }
 
 TEST(Scenario, ShippedScenariosLoad) {
   for (const char* path : {"scenarios/smoke.yaml",
+                           "scenarios/paper/fig6_noise.yaml",
+                           "scenarios/paper/fig7_blur.yaml",
+                           "scenarios/paper/fig8_distance.yaml",
                            "scenarios/examples/all_markers.yaml",
                            "scenarios/examples/circle_e.yaml"}) {
     EXPECT_NO_THROW(LoadScenario(path)) << path;
@@ -82,6 +143,8 @@ TEST(Scenario, OutOfRange) {
               HasSubstr("key 'render.noise_var': expected a number in [0, 10]"));
   EXPECT_THAT(ErrorOf(Replace(GoodScenario(), "values: [0, 1, 2]", "values: [0, -1]")),
               HasSubstr("key 'sweep.values'"));
+  EXPECT_THAT(ErrorOf(Replace(GoodScenario(), "values: [0, 1, 2]", "values: []")),
+              HasSubstr("key 'sweep.values': expected a non-empty list"));
   EXPECT_THAT(ErrorOf(Replace(GoodScenario(), "tilt_deg: [0, 40]", "tilt_deg: [0, 95]")),
               HasSubstr("key 'poses.tilt_deg'"));
 }
@@ -94,9 +157,9 @@ TEST(Scenario, UnknownSweepParameter) {
 TEST(Scenario, BadReferencedFileNamesThatFile) {
   const std::string marker = WriteTestFile("bad_marker.yaml", "kind: circles_a\n");
   try {
-    LoadScenario(WriteTestFile(
-        "scenario.yaml",
-        Replace(GoodScenario(), kRoot + "/scenarios/markers/circles_a.yaml", marker)));
+    LoadScenario(
+        WriteTestFile("scenario.yaml",
+                      Replace(GoodScenario(), kRoot + "/scenarios/markers/apriltag.yaml", marker)));
     FAIL();
   } catch (const ConfigError& e) {
     EXPECT_THAT(e.what(), HasSubstr(marker));

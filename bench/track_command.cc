@@ -9,6 +9,7 @@
 #include <opencv2/imgproc.hpp>
 #include <opencv2/videoio.hpp>
 
+#include "bench/pose_columns.h"
 #include "core/camera_yaml.h"
 #include "core/marker_yaml.h"
 #include "core/number_text.h"
@@ -31,8 +32,9 @@ bool IsImageFile(const std::string& path) {
 class TrackCsv {
  public:
   explicit TrackCsv(std::ostream* out) : out_(*out) {
-    out_ << "image,tracker,status,r11,r12,r13,r21,r22,r23,r31,r32,r33,tx,ty,tz,cam_x,cam_y,cam_z,"
-            "time_ms\n";
+    out_ << "image,tracker,status";
+    for (const char* c : kPoseColumns) out_ << ',' << c;
+    out_ << ",cam_x,cam_y,cam_z,time_ms\n";
   }
 
   void Write(const std::string& image,
@@ -42,10 +44,7 @@ class TrackCsv {
     out_ << image << ',' << tracker << ',' << ToString(result.status);
     if (result.status == TrackStatus::kOk && !result.hypotheses.empty()) {
       const Rigid3& pose = result.hypotheses.front();
-      for (int r = 0; r < 3; ++r) {
-        for (int c = 0; c < 3; ++c) out_ << ',' << NumberText(pose.rotation(r, c));
-      }
-      for (int i = 0; i < 3; ++i) out_ << ',' << NumberText(pose.translation[i]);
+      out_ << PoseFields(pose);
       const Eigen::Vector3d center = CameraCenterInMarker(pose);
       for (int i = 0; i < 3; ++i) out_ << ',' << NumberText(center[i]);
     } else {

@@ -6,6 +6,7 @@
 #include <string>
 
 #include "core/marker_yaml.h"
+#include "core/pose_error.h"
 #include "core/random.h"
 #include "core/test_files.h"
 #include "renderer/render_frame.h"
@@ -35,14 +36,6 @@ inline TrackedFrame RenderAndTrack(Tracker* tracker,
   const Camera camera = request.scene.camera;
   out.result = tracker->Track({&out.frame.image, &camera, &expected});
   return out;
-}
-
-inline double PositionError(const Rigid3& estimate, const Rigid3& truth) {
-  return (CameraCenterInMarker(estimate) - CameraCenterInMarker(truth)).norm();
-}
-
-inline double RotationErrorDeg(const Rigid3& estimate, const Rigid3& truth) {
-  return RotationAngleBetween(estimate.rotation, truth.rotation) * 180.0 / M_PI;
 }
 
 // Mean of (detected - true) corner offsets and mean inward offset (towards the centre).

@@ -42,6 +42,9 @@ class Tracker {
   virtual ~Tracker() = default;
   // One frame. Must not throw for bad images: report a status instead.
   virtual TrackResult Track(const Observation& observation) = 0;
+  // Whether this tracker (with its options) can track `marker`; Track returns kError for
+  // markers it cannot, and the harness pairs trackers only with the markers they can.
+  virtual bool CanTrack(const MarkerSpec& marker) const = 0;
   // Forgets any state carried between frames (tracking mode).
   virtual void Reset() {}
   // Every parameter in effect, as (name, value) text, for the run manifest.

@@ -45,10 +45,14 @@ class AprilTagTracker final : public Tracker {
     detector_->nthreads = options.nthreads;
   }
 
+  bool CanTrack(const MarkerSpec& marker) const override {
+    return marker.kind == MarkerKind::kAprilTag && marker.family == options_.family;
+  }
+
   TrackResult Track(const Observation& obs) override {
     TrackResult result;
     const MarkerSpec& marker = *obs.marker;
-    if (marker.kind != MarkerKind::kAprilTag || marker.family != options_.family) {
+    if (!CanTrack(marker)) {
       result.status = TrackStatus::kError;
       result.message = "the apriltag tracker (family " + options_.family +
                        ") cannot track marker '" + marker.name + "'";

@@ -54,10 +54,14 @@ class ArucoTracker final : public Tracker {
     parameters_->errorCorrectionRate = o.error_correction_rate;
   }
 
+  bool CanTrack(const MarkerSpec& marker) const override {
+    return marker.kind == MarkerKind::kAruco && marker.family == options_.dictionary;
+  }
+
   TrackResult Track(const Observation& obs) override {
     TrackResult result;
     const MarkerSpec& marker = *obs.marker;
-    if (marker.kind != MarkerKind::kAruco || marker.family != options_.dictionary) {
+    if (!CanTrack(marker)) {
       result.status = TrackStatus::kError;
       result.message = "the aruco tracker (" + options_.dictionary + ") cannot track marker '" +
                        marker.name + "'";

@@ -1,0 +1,177 @@
+#include "bench/frames_csv.h"
+
+#include <cmath>
+#include <fstream>
+#include <stdexcept>
+
+#include "bench/pose_columns.h"
+#include "core/number_text.h"
+#include "core/yaml_reader.h"
+
+namespace markerbench {
+namespace {
+
+const std::vector<std::string>& Columns() {
+  static const std::vector<std::string> kColumns = [] {
+    std::vector<std::string> c = {"scenario",
+                                  "sweep_parameter",
+                                  "sweep_value",
+                                  "trial",
+                                  "frame",
+                                  "marker",
+                                  "tracker",
+                                  "seed",
+                                  "apparent_size_px",
+                                  "distance_m",
+                                  "status",
+                                  "hypotheses",
+                                  "position_error_m",
+                                  "rotation_error_deg",
+                                  "best_position_error_m",
+                                  "best_rotation_error_deg",
+                                  "flip"};
+    for (const char* p : kPoseColumns) c.push_back(std::string("gt_") + p);
+    for (const char* p : kPoseColumns) c.push_back(p);
+    c.push_back("message");
+    return c;
+  }();
+  return kColumns;
+}
+
+// Empty for NaN (no pose), else the exact number.
+std::string Optional(double value) { return std::isnan(value) ? "" : NumberText(value); }
+
+// Quoted when it holds a comma or a quote; line breaks become spaces (one row per line).
+std::string CsvField(std::string text) {
+  for (char& ch : text) {
+    if (ch == '\n' || ch == '\r') ch = ' ';
+  }
+  if (text.find_first_of(",\"") == std::string::npos) return text;
+  std::string quoted = "\"";
+  for (char ch : text) quoted += ch == '"' ? std::string("\"\"") : std::string(1, ch);
+  return quoted + '"';
+}
+
+double ParseNumber(const std::vector<std::string>& f, size_t i, bool optional) {
+  if (optional && f[i].empty()) return NAN;
+  char* end = nullptr;
+  const double v = std::strtod(f[i].c_str(), &end);
+  if (f[i].empty() || *end != '\0') {
+    throw std::runtime_error("column '" + Columns()[i] + "': expected a number, got '" + f[i] +
+                             "'");
+  }
+  return v;
+}
+
+Rigid3 ParsePose(const std::vector<std::string>& f, size_t first) {
+  Rigid3 pose;
+  for (int k = 0; k < 9; ++k) pose.rotation(k / 3, k % 3) = ParseNumber(f, first + k, false);
+  for (int k = 0; k < 3; ++k) pose.translation[k] = ParseNumber(f, first + 9 + k, false);
+  return pose;
+}
+
+}  // namespace
+
+std::vector<std::string> SplitCsvLine(const std::string& line) {
+  std::vector<std::string> fields(1);
+  bool quoted = false;
+  for (size_t i = 0; i < line.size(); ++i) {
+    const char ch = line[i];
+    if (quoted) {
+      if (ch == '"' && i + 1 < line.size() && line[i + 1] == '"') {
+        fields.back() += '"';
+        ++i;
+      } else if (ch == '"') {
+        quoted = false;
+      } else {
+        fields.back() += ch;
+      }
+    } else if (ch == '"') {
+      quoted = true;
+    } else if (ch == ',') {
+      fields.emplace_back();
+    } else {
+      fields.back() += ch;
+    }
+  }
+  return fields;
+}
+
+std::string FramesCsvHeader() {
+  std::string header;
+  for (const std::string& c : Columns()) header += (header.empty() ? "" : ",") + c;
+  return header + '\n';
+}
+
+std::string FormatFrameRow(const FrameRow& r) {
+  std::string out =
+      CsvField(r.scenario) + ',' + r.sweep_parameter + ',' + NumberText(r.sweep_value) + ',' +
+      std::to_string(r.trial) + ',' + std::to_string(r.frame) + ',' + CsvField(r.marker) + ',' +
+      CsvField(r.tracker) + ',' + std::to_string(r.seed) + ',' + NumberText(r.apparent_size_px) +
+      ',' + NumberText(r.distance_m) + ',' + ToString(r.status) + ',' +
+      std::to_string(r.hypotheses) + ',' + Optional(r.errors.position_error_m) + ',' +
+      Optional(r.errors.rotation_error_deg) + ',' + Optional(r.errors.best_position_error_m) + ',' +
+      Optional(r.errors.best_rotation_error_deg) + ',' + (r.errors.flip ? "1" : "0");
+  out += PoseFields(r.truth) + (r.estimate ? PoseFields(*r.estimate) : std::string(12, ','));
+  return out + ',' + CsvField(r.message) + '\n';
+}
+
+FrameRow ParseFrameRow(const std::string& line) {
+  const std::vector<std::string> f = SplitCsvLine(line);
+  if (f.size() != Columns().size()) {
+    throw std::runtime_error("expected " + std::to_string(Columns().size()) + " columns, got " +
+                             std::to_string(f.size()));
+  }
+  FrameRow r;
+  r.scenario = f[0];
+  r.sweep_parameter = f[1];
+  r.sweep_value = ParseNumber(f, 2, false);
+  r.trial = static_cast<int>(ParseNumber(f, 3, false));
+  r.frame = static_cast<int>(ParseNumber(f, 4, false));
+  r.marker = f[5];
+  r.tracker = f[6];
+  r.seed = static_cast<uint64_t>(std::stoull(f[7]));
+  r.apparent_size_px = ParseNumber(f, 8, false);
+  r.distance_m = ParseNumber(f, 9, false);
+  const std::optional<TrackStatus> status = TrackStatusFromString(f[10]);
+  if (!status) throw std::runtime_error("column 'status': unknown status '" + f[10] + "'");
+  r.status = *status;
+  r.hypotheses = static_cast<int>(ParseNumber(f, 11, false));
+  r.errors.position_error_m = ParseNumber(f, 12, true);
+  r.errors.rotation_error_deg = ParseNumber(f, 13, true);
+  r.errors.best_position_error_m = ParseNumber(f, 14, true);
+  r.errors.best_rotation_error_deg = ParseNumber(f, 15, true);
+  r.errors.flip = f[16] == "1";
+  r.truth = ParsePose(f, 17);
+  if (!f[29].empty()) r.estimate = ParsePose(f, 29);
+  r.message = f[41];
+  return r;
+}
+
+std::vector<FrameRow> ReadFramesCsv(const std::string& path) {
+  std::ifstream in(path);
+  if (!in) throw ConfigError(path + ": cannot read");
+  std::string line;
+  if (!std::getline(in, line) || line + '\n' != FramesCsvHeader()) {
+    throw ConfigError(path + ":1: expected the frames.csv header");
+  }
+  std::vector<FrameRow> rows;
+  for (int number = 2; std::getline(in, line); ++number) {
+    try {
+      rows.push_back(ParseFrameRow(line));
+    } catch (const std::exception& e) {
+      throw ConfigError(path + ":" + std::to_string(number) + ": " + e.what());
+    }
+  }
+  return rows;
+}
+
+std::string TimingCsvHeader() { return "frame,tracker,time_ms\n"; }
+
+std::string FormatTimingRow(int frame, const std::string& tracker, double time_ms) {
+  char ms[32];
+  std::snprintf(ms, sizeof(ms), "%.4f", time_ms);
+  return std::to_string(frame) + ',' + CsvField(tracker) + ',' + ms + '\n';
+}
+
+}  // namespace markerbench

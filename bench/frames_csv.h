@@ -1,0 +1,53 @@
+// frames.csv (architecture.md, "Per-frame results"): one tidy row per frame × tracker. Every
+// column is a function of the scenario and seed, so the file is byte-identical across runs
+// and thread counts; the measured call times go to timing.csv (frame, tracker, time_ms).
+#pragma once
+
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "bench/metrics.h"
+#include "core/rigid3.h"
+#include "trackers/tracker.h"
+
+namespace markerbench {
+
+struct FrameRow {
+  std::string scenario;
+  std::string sweep_parameter;
+  double sweep_value = 0.0;
+  int trial = 0;
+  int frame = 0;  // index in the scenario's frame plan
+  std::string marker;
+  std::string tracker;
+  uint64_t seed = 0;  // the scenario seed
+  double apparent_size_px = 0.0;
+  double distance_m = 0.0;  // true distance from the camera centre to the marker centre
+  TrackStatus status = TrackStatus::kNotDetected;
+  int hypotheses = 0;
+  PoseErrors errors{};
+  Rigid3 truth;
+  std::optional<Rigid3> estimate;  // the first hypothesis, when the status is ok
+  std::string message;
+};
+
+// The header line and one row, each ending in '\n'.
+std::string FramesCsvHeader();
+std::string FormatFrameRow(const FrameRow& row);
+
+// Parses one data line (without its '\n'); throws std::runtime_error naming the column.
+FrameRow ParseFrameRow(const std::string& line);
+
+// Reads a whole frames.csv; throws ConfigError naming the file and line.
+std::vector<FrameRow> ReadFramesCsv(const std::string& path);
+
+// timing.csv: one row per frames.csv row, in the same order.
+std::string TimingCsvHeader();
+std::string FormatTimingRow(int frame, const std::string& tracker, double time_ms);
+
+// Fields of one CSV line, with RFC 4180 quotes.
+std::vector<std::string> SplitCsvLine(const std::string& line);
+
+}  // namespace markerbench

@@ -1,0 +1,26 @@
+// manifest.json beside the results (architecture.md, "Manifest"): git commit, compiler,
+// build type, library versions, CPU model, threads, and one entry per scenario with its file
+// hashes, every tracker parameter and the measured wall time.
+#pragma once
+
+#include <nlohmann/json.hpp>
+#include <string>
+
+namespace markerbench {
+
+// What built and ran this program.
+nlohmann::json EnvironmentManifest(int threads);
+
+// Reads `path` (if any), sets "environment", puts `entry` at scenarios[scenario_name] and
+// writes it back atomically (temporary file, then rename).
+void UpdateManifest(const std::string& path,
+                    const std::string& scenario_name,
+                    const nlohmann::json& environment,
+                    const nlohmann::json& entry);
+
+// Reads a manifest; an empty object when the file does not exist.
+nlohmann::json ReadManifest(const std::string& path);
+// Writes `manifest` atomically.
+void WriteManifest(const std::string& path, const nlohmann::json& manifest);
+
+}  // namespace markerbench

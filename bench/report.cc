@@ -1,0 +1,207 @@
+#include "bench/report.h"
+
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <map>
+
+#include "bench/manifest.h"
+#include "bench/progress.h"
+#include "bench/reproduction_table.h"
+#include "core/yaml_reader.h"
+
+namespace fs = std::filesystem;
+
+namespace markerbench {
+namespace {
+
+struct ScenarioResults {
+  std::string name;
+  std::vector<FrameRow> rows;
+  std::vector<double> time_ms;  // per row; NaN when timing.csv is missing or short
+};
+
+// timing.csv rows follow frames.csv rows one for one.
+std::vector<double> ReadTimes(const std::string& path, const std::vector<FrameRow>& rows) {
+  std::vector<double> times(rows.size(), NAN);
+  std::ifstream in(path);
+  if (!in) return times;
+  std::string line;
+  std::getline(in, line);
+  for (size_t i = 0; i < rows.size() && std::getline(in, line); ++i) {
+    const std::vector<std::string> f = SplitCsvLine(line);
+    if (f.size() != 3 || f[0] != std::to_string(rows[i].frame) || f[1] != rows[i].tracker) {
+      throw ConfigError(path + ":" + std::to_string(i + 2) +
+                        ": expected the timing of frames.csv's row " + std::to_string(i + 2));
+    }
+    times[i] = std::strtod(f[2].c_str(), nullptr);
+  }
+  return times;
+}
+
+std::vector<ScenarioResults> ReadResults(const std::string& dir) {
+  std::vector<std::string> folders;
+  for (const auto& entry : fs::directory_iterator(dir)) {
+    if (entry.is_directory() && fs::exists(entry.path() / "frames.csv")) {
+      folders.push_back(entry.path().string());
+    }
+  }
+  std::sort(folders.begin(), folders.end());
+  if (folders.empty()) throw ConfigError(dir + ": no <scenario>/frames.csv to report on");
+  std::vector<ScenarioResults> results;
+  for (const std::string& folder : folders) {
+    ScenarioResults r;
+    r.name = fs::path(folder).filename().string();
+    r.rows = ReadFramesCsv(folder + "/frames.csv");
+    r.time_ms = ReadTimes(folder + "/timing.csv", r.rows);
+    results.push_back(std::move(r));
+  }
+  return results;
+}
+
+std::string Fixed(double value, const char* format) {
+  if (std::isnan(value)) return "-";
+  char text[32];
+  std::snprintf(text, sizeof(text), format, value);
+  return text;
+}
+
+std::string Percent(double rate) { return Fixed(100.0 * rate, "%.0f%%"); }
+
+// (tracker, marker) pairs of one scenario, in order of appearance.
+std::vector<std::pair<std::string, std::string>> SeriesNames(const std::vector<SummaryRow>& rows,
+                                                             const std::string& scenario) {
+  std::vector<std::pair<std::string, std::string>> names;
+  for (const SummaryRow& r : rows) {
+    const std::pair<std::string, std::string> name{r.tracker, r.marker};
+    if (r.scenario == scenario && std::find(names.begin(), names.end(), name) == names.end()) {
+      names.push_back(name);
+    }
+  }
+  return names;
+}
+
+std::string ScenarioSection(const std::string& scenario,
+                            const std::vector<SummaryRow>& summary,
+                            const nlohmann::json& entry,
+                            const SummaryOptions& options,
+                            const std::string& dir) {
+  std::string parameter;
+  for (const SummaryRow& r : summary) {
+    if (r.scenario == scenario) parameter = r.sweep_parameter;
+  }
+  std::string md = "## " + scenario + " (sweep of `" + parameter + "`)\n\n";
+  if (entry.contains("file")) {
+    md += "Scenario `" + entry["file"].get<std::string>() + "`, " +
+          std::to_string(entry.value("trials", 0)) + " trials per value, seed " +
+          std::to_string(entry.value("seed", 0)) + ".";
+    if (entry.contains("wall_s")) {
+      md += " Ran " + std::to_string(entry.value("frames", 0)) + " frames in " +
+            DurationText(entry["wall_s"].get<double>()) + " (" +
+            Fixed(entry["frames_per_s"].get<double>(), "%.1f") + " frames/s, " +
+            std::to_string(entry.value("threads", 0)) + " threads).";
+    }
+    md += "\n\n";
+  }
+  if (fs::exists(dir + "/" + scenario + ".png")) {
+    md += "![" + scenario + ": error and success rate](" + scenario + ".png)\n\n";
+  }
+  if (fs::exists(dir + "/" + scenario + "_examples.png")) {
+    md += "![" + scenario + ": example images](" + scenario + "_examples.png)\n\n";
+  }
+  md += "Breakdown (first value with success rate below " + Percent(options.breakdown_rate) +
+        "):\n\n| tracker | marker | breakdown " + parameter + " |\n|---|---|---|\n";
+  for (const auto& [tracker, marker] : SeriesNames(summary, scenario)) {
+    const std::optional<double> b =
+        BreakdownValue(SeriesOf(summary, scenario, tracker, marker), options);
+    md += "| " + tracker + " | " + marker + " | " + (b ? Fixed(*b, "%g") : "none") + " |\n";
+  }
+  md += "\n| " + parameter +
+        " | tracker | n | detected | success | median pos. err (mm) | mean (mm) | p90 (mm) | "
+        "median rot. err (°) | oracle median (mm) | flips | median ms |\n"
+        "|---|---|---|---|---|---|---|---|---|---|---|---|\n";
+  for (const SummaryRow& r : summary) {
+    if (r.scenario != scenario) continue;
+    md += "| " + Fixed(r.sweep_value, "%g") + " | " + r.tracker + " | " + std::to_string(r.n) +
+          " | " + Percent(r.detection_rate) + " | " + Percent(r.success_rate) + " | " +
+          Fixed(1e3 * r.position_error_median_m, "%.2f") + " | " +
+          Fixed(1e3 * r.position_error_mean_m, "%.2f") + " | " +
+          Fixed(1e3 * r.position_error_p90_m, "%.2f") + " | " +
+          Fixed(r.rotation_error_median_deg, "%.2f") + " | " +
+          Fixed(1e3 * r.best_position_error_median_m, "%.2f") + " | " + Percent(r.flip_rate) +
+          " | " + Fixed(r.time_median_ms, "%.2f") + " |\n";
+  }
+  return md + "\n";
+}
+
+std::string EnvironmentSection(const nlohmann::json& manifest) {
+  if (!manifest.contains("environment")) return "";
+  const nlohmann::json& env = manifest["environment"];
+  std::string md =
+      "Built from commit `" + env.value("git_commit", std::string("?")) + "`" +
+      (env.value("git_dirty", false) ? " (with local changes)" : "") + ", " +
+      env.value("compiler", std::string("?")) + ", " + env.value("build_type", std::string("?")) +
+      "; run on " + env.value("cpu_model", std::string("?")) + " with " +
+      std::to_string(env.value("threads", 0)) + " threads. Details: `manifest.json`.\n\n";
+  return md;
+}
+
+void RunPlots(const std::string& dir) {
+  const std::string script = std::string(MARKERBENCH_SOURCE_DIR) + "/scripts/plot_sweep.py";
+  // Debian's interpreter has python3-matplotlib; another python3 on PATH may not.
+  const std::string python = fs::exists("/usr/bin/python3") ? "/usr/bin/python3" : "python3";
+  const std::string command = python + " '" + script + "' '" + dir + "'";
+  if (std::system(command.c_str()) != 0) {
+    throw std::runtime_error("plotting failed: " + command);
+  }
+}
+
+}  // namespace
+
+void WriteReport(const std::string& dir, const ReportOptions& options) {
+  if (!fs::is_directory(dir)) throw ConfigError(dir + ": no such results folder");
+  const std::vector<ScenarioResults> results = ReadResults(dir);
+  std::vector<FrameRow> rows;
+  std::vector<double> times;
+  for (const ScenarioResults& r : results) {
+    rows.insert(rows.end(), r.rows.begin(), r.rows.end());
+    times.insert(times.end(), r.time_ms.begin(), r.time_ms.end());
+  }
+  const std::vector<SummaryRow> summary = Summarize(rows, times, options.summary);
+  {
+    std::ofstream out(dir + "/summary.csv");
+    out << SummaryCsv(summary);
+    if (!out) throw std::runtime_error(dir + "/summary.csv: cannot write");
+  }
+  nlohmann::json manifest = ReadManifest(dir + "/manifest.json");
+  manifest["report"] = {{"success_position_fraction_of_distance", options.summary.success_fraction},
+                        {"breakdown_success_rate", options.summary.breakdown_rate}};
+  WriteManifest(dir + "/manifest.json", manifest);
+  if (options.plots) RunPlots(dir);
+
+  std::string md = "# markerbench report\n\n";
+  md += EnvironmentSection(manifest);
+  md += "Success: a pose whose camera-centre error is at most " +
+        Percent(options.summary.success_fraction) +
+        " of the true distance. Breakdown: the first sweep value whose success rate is below " +
+        Percent(options.summary.breakdown_rate) +
+        ". Errors are over the frames with a pose; `oracle` takes the hypothesis nearest the "
+        "truth; `flips` counts first hypotheses more than 30° off while another is within "
+        "5°.\n\n";
+  md += "## The paper's claims beside ours\n\n";
+  md += ReproductionTableMarkdown(ReproduceClaims(summary, options.summary)) + "\n";
+  for (const ScenarioResults& r : results) {
+    const nlohmann::json entry =
+        manifest.contains("scenarios") && manifest["scenarios"].contains(r.name)
+            ? manifest["scenarios"][r.name]
+            : nlohmann::json::object();
+    md += ScenarioSection(r.name, summary, entry, options.summary, dir);
+  }
+  std::ofstream out(dir + "/report.md");
+  out << md;
+  if (!out) throw std::runtime_error(dir + "/report.md: cannot write");
+}
+
+}  // namespace markerbench

@@ -1,0 +1,122 @@
+#include "bench/summary.h"
+
+#include <cmath>
+#include <map>
+#include <tuple>
+
+#include "core/number_text.h"
+
+namespace markerbench {
+namespace {
+
+using GroupKey = std::tuple<std::string, std::string, std::string, double>;
+
+std::string Optional(double value) { return std::isnan(value) ? "" : NumberText(value); }
+
+}  // namespace
+
+std::vector<SummaryRow> Summarize(const std::vector<FrameRow>& rows,
+                                  const std::vector<double>& time_ms,
+                                  const SummaryOptions& options) {
+  std::vector<GroupKey> order;
+  std::map<GroupKey, std::vector<size_t>> members;
+  for (size_t i = 0; i < rows.size(); ++i) {
+    const FrameRow& r = rows[i];
+    const GroupKey key{r.scenario, r.tracker, r.marker, r.sweep_value};
+    auto [it, inserted] = members.try_emplace(key);
+    if (inserted) order.push_back(key);
+    it->second.push_back(i);
+  }
+  // Series (scenario, tracker, marker) in order of appearance, values in order within each.
+  std::vector<GroupKey> sorted;
+  std::vector<bool> taken(order.size(), false);
+  for (size_t a = 0; a < order.size(); ++a) {
+    if (taken[a]) continue;
+    for (size_t b = a; b < order.size(); ++b) {
+      if (!taken[b] && std::get<0>(order[b]) == std::get<0>(order[a]) &&
+          std::get<1>(order[b]) == std::get<1>(order[a]) &&
+          std::get<2>(order[b]) == std::get<2>(order[a])) {
+        taken[b] = true;
+        sorted.push_back(order[b]);
+      }
+    }
+  }
+
+  std::vector<SummaryRow> summary;
+  for (const GroupKey& key : sorted) {
+    const std::vector<size_t>& group = members[key];
+    const FrameRow& first = rows[group.front()];
+    SummaryRow s;
+    s.scenario = first.scenario;
+    s.sweep_parameter = first.sweep_parameter;
+    s.sweep_value = first.sweep_value;
+    s.tracker = first.tracker;
+    s.marker = first.marker;
+    s.n = static_cast<int>(group.size());
+    int detected = 0, successes = 0, posed = 0, flips = 0;
+    std::vector<double> position, rotation, best_position, times;
+    for (const size_t i : group) {
+      const FrameRow& r = rows[i];
+      const bool has_pose = r.estimate.has_value();
+      detected += r.status == TrackStatus::kOk || r.status == TrackStatus::kPoseFailed;
+      successes +=
+          IsSuccess(has_pose, r.errors.position_error_m, r.distance_m, options.success_fraction);
+      times.push_back(i < time_ms.size() ? time_ms[i] : NAN);
+      if (!has_pose) continue;
+      ++posed;
+      flips += r.errors.flip;
+      position.push_back(r.errors.position_error_m);
+      rotation.push_back(r.errors.rotation_error_deg);
+      best_position.push_back(r.errors.best_position_error_m);
+    }
+    s.detection_rate = static_cast<double>(detected) / s.n;
+    s.success_rate = static_cast<double>(successes) / s.n;
+    s.position_error_median_m = Median(position);
+    s.position_error_mean_m = Mean(position);
+    s.position_error_p90_m = Percentile(position, 90.0);
+    s.rotation_error_median_deg = Median(rotation);
+    s.best_position_error_median_m = Median(best_position);
+    s.flip_rate = posed ? static_cast<double>(flips) / posed : NAN;
+    s.time_median_ms = Median(times);
+    summary.push_back(s);
+  }
+  return summary;
+}
+
+std::optional<double> BreakdownValue(const std::vector<SummaryRow>& rows,
+                                     const SummaryOptions& options) {
+  for (const SummaryRow& r : rows) {
+    if (r.success_rate < options.breakdown_rate) return r.sweep_value;
+  }
+  return std::nullopt;
+}
+
+std::vector<SummaryRow> SeriesOf(const std::vector<SummaryRow>& summary,
+                                 const std::string& scenario,
+                                 const std::string& tracker,
+                                 const std::string& marker) {
+  std::vector<SummaryRow> series;
+  for (const SummaryRow& r : summary) {
+    if (r.scenario == scenario && r.tracker == tracker && r.marker == marker) series.push_back(r);
+  }
+  return series;
+}
+
+std::string SummaryCsv(const std::vector<SummaryRow>& rows) {
+  std::string csv =
+      "scenario,sweep_parameter,sweep_value,tracker,marker,n,detection_rate,success_rate,"
+      "position_error_median_m,position_error_mean_m,position_error_p90_m,"
+      "rotation_error_median_deg,best_position_error_median_m,flip_rate,time_median_ms\n";
+  for (const SummaryRow& r : rows) {
+    csv += r.scenario + ',' + r.sweep_parameter + ',' + NumberText(r.sweep_value) + ',' +
+           r.tracker + ',' + r.marker + ',' + std::to_string(r.n) + ',' +
+           NumberText(r.detection_rate) + ',' + NumberText(r.success_rate) + ',' +
+           Optional(r.position_error_median_m) + ',' + Optional(r.position_error_mean_m) + ',' +
+           Optional(r.position_error_p90_m) + ',' + Optional(r.rotation_error_median_deg) + ',' +
+           Optional(r.best_position_error_median_m) + ',' + Optional(r.flip_rate) + ',' +
+           Optional(r.time_median_ms) + '\n';
+  }
+  return csv;
+}
+
+}  // namespace markerbench

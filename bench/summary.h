@@ -1,0 +1,58 @@
+// summary.csv (architecture.md, "Summary"): one row per scenario × tracker × marker × sweep
+// value, and the breakdown value of each tracker.
+#pragma once
+
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "bench/frames_csv.h"
+
+namespace markerbench {
+
+struct SummaryOptions {
+  // Success: a pose with position error <= success_fraction × the true distance.
+  double success_fraction = 0.1;
+  // Breakdown: the first sweep value whose success rate is below this.
+  double breakdown_rate = 0.5;
+};
+
+struct SummaryRow {
+  std::string scenario;
+  std::string sweep_parameter;
+  double sweep_value = 0.0;
+  std::string tracker;
+  std::string marker;
+  int n = 0;
+  double detection_rate = 0.0;  // the marker was found: status ok or pose_failed
+  double success_rate = 0.0;
+  // Over the frames with a pose (status ok); NaN when there are none.
+  double position_error_median_m = 0.0;
+  double position_error_mean_m = 0.0;
+  double position_error_p90_m = 0.0;
+  double rotation_error_median_deg = 0.0;
+  double best_position_error_median_m = 0.0;  // the oracle hypothesis
+  double flip_rate = 0.0;
+  double time_median_ms = 0.0;  // NaN when timing.csv is missing
+};
+
+// `time_ms[i]` belongs to rows[i] (NaN when unknown). Groups keep the order in which they
+// first appear: scenario, then tracker and marker, then sweep value.
+std::vector<SummaryRow> Summarize(const std::vector<FrameRow>& rows,
+                                  const std::vector<double>& time_ms,
+                                  const SummaryOptions& options);
+
+// The first sweep value of `rows` (one scenario, tracker and marker, in sweep order) whose
+// success rate is below the breakdown rate; nullopt when there is none.
+std::optional<double> BreakdownValue(const std::vector<SummaryRow>& rows,
+                                     const SummaryOptions& options);
+
+// Rows of `summary` for one scenario, tracker and marker, in sweep order.
+std::vector<SummaryRow> SeriesOf(const std::vector<SummaryRow>& summary,
+                                 const std::string& scenario,
+                                 const std::string& tracker,
+                                 const std::string& marker);
+
+std::string SummaryCsv(const std::vector<SummaryRow>& rows);
+
+}  // namespace markerbench

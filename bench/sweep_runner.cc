@@ -1,0 +1,407 @@
+#include "bench/sweep_runner.h"
+
+#include <fcntl.h>
+#include <unistd.h>
+
+#include <atomic>
+#include <cerrno>
+#include <chrono>
+#include <cstring>
+#include <exception>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <mutex>
+#include <sstream>
+#include <system_error>
+#include <thread>
+
+#include "bench/frame_plan.h"
+#include "bench/frames_csv.h"
+#include "bench/manifest.h"
+#include "bench/progress.h"
+#include "bench/scenario.h"
+#include "core/sha256.h"
+#include "core/yaml_reader.h"
+#include "renderer/image_io.h"
+
+namespace fs = std::filesystem;
+
+namespace markerbench {
+namespace {
+
+// A planned frame and the scenario trackers that can track its marker.
+struct Job {
+  PlannedFrame frame;
+  std::vector<size_t> trackers;
+};
+
+struct PreparedSweep {
+  Scenario scenario;
+  std::string dir;
+  std::string fingerprint;
+  std::vector<Job> jobs;
+  std::vector<std::vector<size_t>> trackers_of_marker;
+  std::vector<std::string> idle_markers;  // markers no tracker can track: they only constrain poses
+  size_t done = 0;  // jobs already complete in frames.csv and timing.csv (resume)
+  uintmax_t frames_bytes = 0;
+  uintmax_t timing_bytes = 0;
+};
+
+// Hash of the scenario, camera and marker files' bytes: a resumed run must match it.
+std::string Fingerprint(const Scenario& s) {
+  Sha256 sha;
+  for (const std::string& file : s.input_files) sha.Update(Sha256OfFile(file));
+  return sha.HexDigest();
+}
+
+std::string ReadWholeFile(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::ostringstream bytes;
+  bytes << in.rdbuf();
+  return bytes.str();
+}
+
+// How many whole jobs the file holds, and the byte size of its header plus those jobs' rows.
+// `column_of_frame` and `column_of_tracker` locate the ids each row must match.
+std::pair<size_t, uintmax_t> CompleteJobs(const std::string& path,
+                                          const std::string& header,
+                                          const std::vector<Job>& jobs,
+                                          const std::vector<std::string>& tracker_names,
+                                          size_t column_of_frame,
+                                          size_t column_of_tracker) {
+  const std::string text = ReadWholeFile(path);
+  if (text.rfind(header, 0) != 0) {
+    throw ConfigError(path + ":1: expected the header '" + header.substr(0, header.size() - 1) +
+                      "'; this folder was not written by markerbench sweep");
+  }
+  size_t pos = header.size();
+  size_t line_number = 1;
+  size_t complete = 0;
+  uintmax_t bytes = pos;
+  for (const Job& job : jobs) {
+    for (const size_t t : job.trackers) {
+      const size_t end = text.find('\n', pos);
+      if (end == std::string::npos) return {complete, bytes};
+      ++line_number;
+      const std::vector<std::string> f = SplitCsvLine(text.substr(pos, end - pos));
+      if (f.size() <= std::max(column_of_frame, column_of_tracker) ||
+          f[column_of_frame] != std::to_string(job.frame.index) ||
+          f[column_of_tracker] != tracker_names[t]) {
+        throw ConfigError(path + ":" + std::to_string(line_number) +
+                          ": expected the row of frame " + std::to_string(job.frame.index) +
+                          " and tracker " + tracker_names[t] +
+                          "; the file does not follow this scenario's plan");
+      }
+      pos = end + 1;
+    }
+    ++complete;
+    bytes = pos;
+  }
+  return {complete, bytes};
+}
+
+// Everything checked before anything is written.
+PreparedSweep Prepare(const std::string& path, const SweepOptions& options) {
+  PreparedSweep p;
+  p.scenario = LoadScenario(path);
+  const Scenario& s = p.scenario;
+  if (s.trackers.empty()) {
+    throw ConfigError(path + ": key 'trackers': missing; expected at least one tracker to sweep");
+  }
+  p.dir = (fs::path(options.out_dir) / s.name).string();
+  p.fingerprint = Fingerprint(s);
+
+  p.trackers_of_marker.resize(s.markers.size());
+  for (size_t t = 0; t < s.trackers.size(); ++t) {
+    const std::unique_ptr<Tracker> tracker = MakeScenarioTracker(s, s.trackers[t]);
+    for (size_t m = 0; m < s.markers.size(); ++m) {
+      if (tracker->CanTrack(s.markers[m])) p.trackers_of_marker[m].push_back(t);
+    }
+  }
+  for (size_t m = 0; m < s.markers.size(); ++m) {
+    if (p.trackers_of_marker[m].empty()) p.idle_markers.push_back(s.markers[m].name);
+  }
+  for (const PlannedFrame& f : PlanFrames(s)) {
+    const auto& trackers = p.trackers_of_marker[static_cast<size_t>(f.marker_index)];
+    // Markers without a tracker are still rendered for the example-image figure.
+    const bool example = f.trial == 0 && f.sweep_value == s.example_value;
+    if (!trackers.empty() || example) p.jobs.push_back({f, trackers});
+  }
+
+  const std::string frames = p.dir + "/frames.csv";
+  if (!fs::exists(frames)) return p;
+  if (!options.resume && !options.overwrite) {
+    throw ConfigError(frames +
+                      ": exists; pass --resume to continue that run or --overwrite to "
+                      "start again");
+  }
+  if (options.overwrite) return p;
+  const std::string run_json = p.dir + "/run.json";
+  const nlohmann::json run = ReadManifest(run_json);
+  if (run.value("fingerprint", "") != p.fingerprint) {
+    throw ConfigError(p.dir + ": was written by a different scenario (run.json fingerprint " +
+                      run.value("fingerprint", std::string("missing")) + ", " + path + " has " +
+                      p.fingerprint + "); refusing to --resume into it");
+  }
+  std::vector<std::string> names;
+  for (const TrackerEntry& t : s.trackers) names.push_back(t.name);
+  const auto [frames_done, frames_bytes] =
+      CompleteJobs(frames, FramesCsvHeader(), p.jobs, names, 4, 6);
+  const std::string timing = p.dir + "/timing.csv";
+  const auto [timing_done, timing_bytes] =
+      fs::exists(timing) ? CompleteJobs(timing, TimingCsvHeader(), p.jobs, names, 0, 1)
+                         : std::pair<size_t, uintmax_t>{0, 0};
+  p.done = std::min(frames_done, timing_done);
+  // Byte sizes at `done` jobs: re-scan the shorter prefix when the two files disagree.
+  p.frames_bytes = frames_bytes;
+  p.timing_bytes = timing_bytes;
+  if (frames_done != timing_done) {
+    const std::vector<Job> prefix(p.jobs.begin(), p.jobs.begin() + p.done);
+    p.frames_bytes = CompleteJobs(frames, FramesCsvHeader(), prefix, names, 4, 6).second;
+    p.timing_bytes =
+        p.done ? CompleteJobs(timing, TimingCsvHeader(), prefix, names, 0, 1).second : 0;
+  }
+  return p;
+}
+
+void WriteAll(int fd, const std::string& text, const std::string& path) {
+  size_t written = 0;
+  while (written < text.size()) {
+    const ssize_t n = ::write(fd, text.data() + written, text.size() - written);
+    if (n < 0 && errno == EINTR) continue;
+    if (n < 0) throw std::system_error(errno, std::generic_category(), path + ": write failed");
+    written += static_cast<size_t>(n);
+  }
+}
+
+// An append-only file, written with one write() per frame. A killed run leaves at most a
+// torn last frame, which --resume cuts off.
+class AppendFile {
+ public:
+  AppendFile(const std::string& path, uintmax_t keep_bytes, const std::string& header)
+      : path_(path) {
+    fd_ = ::open(path.c_str(), O_WRONLY | O_CREAT | O_APPEND | O_CLOEXEC, 0644);
+    if (fd_ < 0) throw std::system_error(errno, std::generic_category(), path + ": cannot open");
+    if (::ftruncate(fd_, static_cast<off_t>(keep_bytes)) != 0) {
+      throw std::system_error(errno, std::generic_category(), path + ": cannot truncate");
+    }
+    if (keep_bytes == 0) Append(header);
+  }
+  ~AppendFile() { ::close(fd_); }
+  AppendFile(const AppendFile&) = delete;
+  AppendFile& operator=(const AppendFile&) = delete;
+
+  void Append(const std::string& text) { WriteAll(fd_, text, path_); }
+
+ private:
+  std::string path_;
+  int fd_ = -1;
+};
+
+// Puts the rows of finished jobs into the files in plan order.
+class OrderedWriter {
+ public:
+  OrderedWriter(AppendFile* frames, AppendFile* timing, size_t next, Progress* progress)
+      : frames_(frames), timing_(timing), next_(next), progress_(progress) {}
+
+  void Submit(size_t job, std::string frame_rows, std::string timing_rows) {
+    std::lock_guard<std::mutex> lock(mutex_);
+    pending_.emplace(job, std::make_pair(std::move(frame_rows), std::move(timing_rows)));
+    for (auto it = pending_.begin(); it != pending_.end() && it->first == next_;
+         it = pending_.erase(it), ++next_) {
+      frames_->Append(it->second.first);
+      timing_->Append(it->second.second);
+      progress_->Advance();
+    }
+  }
+
+ private:
+  std::mutex mutex_;
+  std::map<size_t, std::pair<std::string, std::string>> pending_;
+  AppendFile* frames_;
+  AppendFile* timing_;
+  size_t next_;
+  Progress* progress_;
+};
+
+// Replaces `path` atomically, so a killed run never leaves half an image.
+void WriteImageAtomically(const std::string& path, const Image8& image) {
+  const std::string temporary = path + ".tmp.png";
+  WriteImage(temporary, image);
+  fs::rename(temporary, path);
+}
+
+TrackResult TrackSafely(Tracker* tracker, const Observation& observation) {
+  try {
+    return tracker->Track(observation);
+  } catch (const std::exception& e) {
+    TrackResult r;
+    r.status = TrackStatus::kError;
+    r.message = std::string("exception: ") + e.what();
+    return r;
+  } catch (...) {
+    TrackResult r;
+    r.status = TrackStatus::kError;
+    r.message = "exception of unknown type";
+    return r;
+  }
+}
+
+// Renders one job and runs its trackers; returns the frames.csv and timing.csv rows.
+std::pair<std::string, std::string> RunJob(const PreparedSweep& p,
+                                           const Job& job,
+                                           std::vector<std::unique_ptr<Tracker>>* trackers) {
+  const Scenario& s = p.scenario;
+  const PlannedFrame& f = job.frame;
+  const MarkerSpec& marker = s.markers[static_cast<size_t>(f.marker_index)];
+  const RenderedFrame frame = RenderFrame(RequestFor(s, f));
+  if (f.trial == 0 && f.sweep_value == s.example_value) {
+    WriteImageAtomically(p.dir + "/examples/" + marker.name + ".png", frame.image);
+  }
+  const Eigen::Vector2d center = marker.InkBounds().center();
+  FrameRow row;
+  row.scenario = s.name;
+  row.sweep_parameter = s.sweep_parameter;
+  row.sweep_value = f.sweep_value;
+  row.trial = f.trial;
+  row.frame = f.index;
+  row.marker = marker.name;
+  row.seed = s.seed;
+  row.apparent_size_px = frame.truth.apparent_size_px;
+  row.distance_m = (f.cam_from_marker * Eigen::Vector3d(center.x(), center.y(), 0.0)).norm();
+  row.truth = f.cam_from_marker;
+  std::string frame_rows, timing_rows;
+  for (const size_t t : job.trackers) {
+    Tracker* tracker = (*trackers)[t].get();
+    tracker->Reset();  // frames are independent: no state may leak between them
+    const auto start = std::chrono::steady_clock::now();
+    const TrackResult result = TrackSafely(tracker, {&frame.image, &s.camera, &marker});
+    const double time_ms =
+        std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+    const bool has_pose = result.status == TrackStatus::kOk && !result.hypotheses.empty();
+    row.tracker = s.trackers[t].name;
+    row.status = result.status;
+    row.hypotheses = static_cast<int>(result.hypotheses.size());
+    row.errors =
+        ComputePoseErrors(has_pose ? result.hypotheses : std::vector<Rigid3>{}, f.cam_from_marker);
+    row.estimate = has_pose ? std::optional<Rigid3>(result.hypotheses.front()) : std::nullopt;
+    row.message = result.message;
+    frame_rows += FormatFrameRow(row);
+    timing_rows += FormatTimingRow(f.index, row.tracker, time_ms);
+  }
+  return {frame_rows, timing_rows};
+}
+
+nlohmann::json ScenarioManifest(const PreparedSweep& p, int threads) {
+  const Scenario& s = p.scenario;
+  nlohmann::json entry;
+  entry["file"] = s.path;
+  entry["fingerprint"] = p.fingerprint;
+  for (const std::string& file : s.input_files) {
+    entry["input_files"].push_back({{"path", file}, {"sha256", Sha256OfFile(file)}});
+  }
+  entry["seed"] = s.seed;
+  entry["trials"] = s.trials;
+  entry["sweep"] = {{"parameter", s.sweep_parameter},
+                    {"values", s.sweep_values},
+                    {"example_value", s.example_value}};
+  entry["equal_ink_area_m2"] =
+      s.equal_ink_area_m2 ? nlohmann::json(*s.equal_ink_area_m2) : nlohmann::json();
+  for (const MarkerSpec& m : s.markers) entry["markers"].push_back(m.name);
+  entry["markers_without_tracker"] = p.idle_markers;
+  for (size_t t = 0; t < s.trackers.size(); ++t) {
+    nlohmann::json tracker;
+    tracker["name"] = s.trackers[t].name;
+    for (size_t m = 0; m < s.markers.size(); ++m) {
+      const auto& of = p.trackers_of_marker[m];
+      if (std::find(of.begin(), of.end(), t) != of.end()) {
+        tracker["markers"].push_back(s.markers[m].name);
+      }
+    }
+    for (const auto& [key, value] : MakeScenarioTracker(s, s.trackers[t])->Parameters()) {
+      tracker["parameters"][key] = value;
+    }
+    entry["trackers"].push_back(tracker);
+  }
+  entry["frames"] = p.jobs.size();
+  entry["resumed_at_frame"] = p.done;
+  entry["threads"] = threads;
+  return entry;
+}
+
+void Run(PreparedSweep& p, int threads, const std::string& manifest_path) {
+  fs::create_directories(p.dir + "/examples");
+  {
+    nlohmann::json run;
+    run["scenario"] = p.scenario.path;
+    run["fingerprint"] = p.fingerprint;
+    WriteManifest(p.dir + "/run.json", run);
+  }
+  AppendFile frames(p.dir + "/frames.csv", p.frames_bytes, FramesCsvHeader());
+  AppendFile timing(p.dir + "/timing.csv", p.timing_bytes, TimingCsvHeader());
+  for (const std::string& m : p.idle_markers) {
+    std::fprintf(stderr,
+                 "%s: no tracker for marker %s; it only constrains the poses and the examples\n",
+                 p.scenario.name.c_str(),
+                 m.c_str());
+  }
+  Progress progress(p.scenario.name, p.jobs.size(), p.done);
+  OrderedWriter writer(&frames, &timing, p.done, &progress);
+  std::atomic<size_t> next{p.done};
+  std::atomic<bool> failed{false};
+  std::exception_ptr failure;
+  std::mutex failure_mutex;
+  const auto start = std::chrono::steady_clock::now();
+  std::vector<std::thread> pool;
+  for (int i = 0; i < threads; ++i) {
+    pool.emplace_back([&] {
+      try {
+        std::vector<std::unique_ptr<Tracker>> trackers;
+        for (const TrackerEntry& t : p.scenario.trackers) {
+          trackers.push_back(MakeScenarioTracker(p.scenario, t));
+        }
+        for (size_t j = next++; j < p.jobs.size() && !failed; j = next++) {
+          auto [frame_rows, timing_rows] = RunJob(p, p.jobs[j], &trackers);
+          writer.Submit(j, std::move(frame_rows), std::move(timing_rows));
+        }
+      } catch (...) {
+        std::lock_guard<std::mutex> lock(failure_mutex);
+        if (!failure) failure = std::current_exception();
+        failed = true;
+      }
+    });
+  }
+  for (std::thread& t : pool) t.join();
+  if (failure) std::rethrow_exception(failure);
+  progress.Finish();
+  const double wall_s =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  nlohmann::json entry = ScenarioManifest(p, threads);
+  entry["wall_s"] = wall_s;
+  entry["frames_per_s"] = wall_s > 0.0 ? static_cast<double>(p.jobs.size() - p.done) / wall_s : 0.0;
+  UpdateManifest(manifest_path, p.scenario.name, EnvironmentManifest(threads), entry);
+}
+
+}  // namespace
+
+void RunSweeps(const std::vector<std::string>& scenario_paths, const SweepOptions& options) {
+  if (scenario_paths.empty()) throw ConfigError("sweep: expected at least one scenario file");
+  std::vector<PreparedSweep> sweeps;
+  for (const std::string& path : scenario_paths) {
+    sweeps.push_back(Prepare(path, options));
+    for (size_t i = 0; i + 1 < sweeps.size(); ++i) {
+      if (sweeps[i].scenario.name == sweeps.back().scenario.name) {
+        throw ConfigError(path + ": key 'name': '" + sweeps.back().scenario.name +
+                          "' is also the name of " + sweeps[i].scenario.path +
+                          "; each scenario writes to DIR/<name>");
+      }
+    }
+  }
+  const int threads = options.threads > 0
+                          ? options.threads
+                          : std::max(1, static_cast<int>(std::thread::hardware_concurrency()));
+  for (PreparedSweep& p : sweeps) Run(p, threads, options.out_dir + "/manifest.json");
+}
+
+}  // namespace markerbench

@@ -1,0 +1,26 @@
+// markerbench sweep: runs scenarios into DIR/<scenario name>/ (architecture.md, "Data flow").
+// Each planned frame is rendered once and shared by every tracker that can track its marker;
+// a thread pool does the work with one tracker instance per thread. Rows are appended to
+// frames.csv in plan order as frames finish, one write() per frame, so a killed run keeps
+// every finished frame and --resume continues to the same bytes as an uninterrupted run.
+#pragma once
+
+#include <string>
+#include <vector>
+
+namespace markerbench {
+
+struct SweepOptions {
+  std::string out_dir;
+  int threads = 0;         // 0: every hardware thread
+  bool resume = false;     // continue a killed run of the same scenario
+  bool overwrite = false;  // start again over an earlier run
+};
+
+// Loads and checks every scenario and output folder before writing anything (bad input:
+// ConfigError), then runs them one after another. Writes, per scenario, frames.csv,
+// timing.csv, run.json and examples/<marker>.png (trial 0 at the example value), and
+// updates DIR/manifest.json.
+void RunSweeps(const std::vector<std::string>& scenario_paths, const SweepOptions& options);
+
+}  // namespace markerbench

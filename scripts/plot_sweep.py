@@ -1,0 +1,128 @@
+#!/usr/bin/python3
+"""Plots of a markerbench sweep folder, like the paper's Fig. 6-8.
+
+Usage: plot_sweep.py DIR
+
+Reads DIR/summary.csv (written by `markerbench report DIR`) and DIR/manifest.json, and
+writes, for every scenario:
+  DIR/<scenario>.png           median position error (log axis, p90 dashed) and, in its own
+                               panel, the success rate versus the sweep value; one line per
+                               tracker;
+  DIR/<scenario>_examples.png  trial 0 of every marker at the scenario's example value
+                               (DIR/<scenario>/examples/<marker>.png), like panels (a)-(d).
+Needs Debian's python3-matplotlib (run with /usr/bin/python3).
+"""
+import csv
+import json
+import os
+import string
+import sys
+
+import matplotlib
+
+matplotlib.use("Agg")
+import matplotlib.image as mpimg  # noqa: E402
+import matplotlib.pyplot as plt  # noqa: E402
+
+LABELS = {
+    "noise_var": "Gaussian noise variance σ²",
+    "blur_sigma_px": "Gaussian blur σ (px)",
+    "motion_blur_px": "motion blur length (px)",
+    "distance_m": "distance (m)",
+    "tilt_deg": "tilt (°)",
+    "gain": "gain",
+    "jpeg_quality": "JPEG quality",
+}
+
+
+def number(text):
+    return float(text) if text != "" else float("nan")
+
+
+def read_summary(path):
+    scenarios = {}
+    with open(path, newline="") as f:
+        for row in csv.DictReader(f):
+            series = scenarios.setdefault(row["scenario"], {})
+            key = (row["tracker"], row["marker"])
+            series.setdefault(key, []).append(row)
+    return scenarios
+
+
+def plot_errors(directory, scenario, series):
+    parameter = next(iter(series.values()))[0]["sweep_parameter"]
+    trackers_with_many_markers = {
+        t for t, _ in series if sum(1 for u, _ in series if u == t) > 1
+    }
+    fig, (err_ax, ok_ax) = plt.subplots(
+        2, 1, sharex=True, figsize=(7, 6), gridspec_kw={"height_ratios": [3, 2]}
+    )
+    for (tracker, marker), rows in series.items():
+        x = [number(r["sweep_value"]) for r in rows]
+        label = f"{tracker} ({marker})" if tracker in trackers_with_many_markers else tracker
+        median = [1e3 * number(r["position_error_median_m"]) for r in rows]
+        p90 = [1e3 * number(r["position_error_p90_m"]) for r in rows]
+        success = [100 * number(r["success_rate"]) for r in rows]
+        (line,) = err_ax.plot(x, median, "o-", label=label, markersize=4)
+        err_ax.plot(x, p90, "--", color=line.get_color(), linewidth=0.8)
+        ok_ax.plot(x, success, "o-", color=line.get_color(), label=label, markersize=4)
+    err_ax.set_yscale("log")
+    err_ax.set_ylabel("camera-centre error (mm)\nmedian, p90 dashed")
+    err_ax.grid(True, which="both", alpha=0.3)
+    err_ax.legend(fontsize=8)
+    err_ax.set_title(f"{scenario}: localization error versus {LABELS.get(parameter, parameter)}")
+    ok_ax.axhline(50, color="grey", linewidth=0.8, linestyle=":")
+    ok_ax.set_ylim(-5, 105)
+    ok_ax.set_ylabel("success rate (%)")
+    ok_ax.set_xlabel(LABELS.get(parameter, parameter))
+    ok_ax.grid(True, alpha=0.3)
+    fig.tight_layout()
+    fig.savefig(os.path.join(directory, f"{scenario}.png"), dpi=110)
+    plt.close(fig)
+
+
+def plot_examples(directory, scenario, entry):
+    folder = os.path.join(directory, scenario, "examples")
+    markers = entry.get("markers") or sorted(
+        os.path.splitext(name)[0] for name in os.listdir(folder) if name.endswith(".png")
+    )
+    images = [(m, os.path.join(folder, m + ".png")) for m in markers]
+    images = [(m, path) for m, path in images if os.path.exists(path)]
+    if not images:
+        return
+    columns = min(len(images), 3)
+    rows = (len(images) + columns - 1) // columns
+    fig, axes = plt.subplots(rows, columns, figsize=(4 * columns, 3.3 * rows), squeeze=False)
+    for ax in axes.flat:
+        ax.axis("off")
+    for ax, letter, (marker, path) in zip(axes.flat, string.ascii_lowercase, images):
+        image = mpimg.imread(path)
+        ax.imshow(image, cmap="gray" if image.ndim == 2 else None, vmin=0, vmax=1)
+        ax.set_title(f"({letter}) {marker}", fontsize=10)
+    sweep = entry.get("sweep", {})
+    parameter = sweep.get("parameter", "")
+    fig.suptitle(
+        f"{scenario}: trial 0 at {LABELS.get(parameter, parameter)} = {sweep.get('example_value', '?')}"
+    )
+    fig.tight_layout()
+    fig.savefig(os.path.join(directory, f"{scenario}_examples.png"), dpi=90)
+    plt.close(fig)
+
+
+def main():
+    if len(sys.argv) != 2:
+        sys.exit(__doc__)
+    directory = sys.argv[1]
+    manifest_path = os.path.join(directory, "manifest.json")
+    manifest = {}
+    if os.path.exists(manifest_path):
+        with open(manifest_path) as f:
+            manifest = json.load(f)
+    for scenario, series in read_summary(os.path.join(directory, "summary.csv")).items():
+        plot_errors(directory, scenario, series)
+        if os.path.isdir(os.path.join(directory, scenario, "examples")):
+            plot_examples(directory, scenario, manifest.get("scenarios", {}).get(scenario, {}))
+
+
+if __name__ == "__main__":
+    main()
