@@ -1,0 +1,164 @@
+#include "bench/report.h"
+
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+#include "bench/frames_csv.h"
+#include "bench/reproduction_table.h"
+#include "core/yaml_reader.h"
+
+namespace markerbench {
+namespace {
+
+using ::testing::HasSubstr;
+namespace fs = std::filesystem;
+
+// A frame of tracker `tracker` whose first hypothesis is `error_m` from the truth along x
+// (NaN: not detected), at 1 m.
+FrameRow Row(const std::string& scenario,
+             const std::string& tracker,
+             double value,
+             int trial,
+             double error_m) {
+  FrameRow r;
+  r.scenario = scenario;
+  r.sweep_parameter = "noise_var";
+  r.sweep_value = value;
+  r.trial = trial;
+  r.frame = trial;
+  r.marker = "tag";
+  r.tracker = tracker;
+  r.seed = 1;
+  r.apparent_size_px = 60.0;
+  r.distance_m = 1.0;
+  r.truth.translation = Eigen::Vector3d(0.0, 0.0, 1.0);
+  if (std::isnan(error_m)) {
+    r.status = TrackStatus::kNotDetected;
+    r.errors = {NAN, NAN, NAN, NAN, false};
+    r.message = "no \"tag\", sorry";  // quotes and a comma survive the round trip
+  } else {
+    r.status = TrackStatus::kOk;
+    r.hypotheses = 1;
+    Rigid3 estimate = r.truth;
+    estimate.translation.x() -= error_m;  // camera centre moves by +error_m along x
+    r.estimate = estimate;
+    r.errors = {error_m, 0.0, error_m, 0.0, false};
+  }
+  return r;
+}
+
+std::string ReadText(const std::string& path) {
+  std::ifstream in(path);
+  std::stringstream text;
+  text << in.rdbuf();
+  return text.str();
+}
+
+TEST(FramesCsv, RowsRoundTrip) {
+  for (const FrameRow& row : {Row("s", "apriltag", 0.1, 3, 0.02), Row("s", "x", 0.2, 1, NAN)}) {
+    std::string line = FormatFrameRow(row);
+    ASSERT_EQ(line.back(), '\n');
+    line.pop_back();
+    const FrameRow back = ParseFrameRow(line);
+    EXPECT_EQ(FormatFrameRow(back), FormatFrameRow(row));
+    EXPECT_EQ(back.message, row.message);
+    EXPECT_EQ(back.estimate.has_value(), row.estimate.has_value());
+  }
+  EXPECT_THROW(ParseFrameRow("a,b,c"), std::runtime_error);
+}
+
+class ReportTest : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    dir_ =
+        (fs::temp_directory_path() / ("markerbench_report_" + std::to_string(::getpid()))).string();
+    fs::remove_all(dir_);
+    fs::create_directories(dir_ + "/fig6_noise");
+    // apriltag: 5 trials at σ² = 0.1, 0.18, 0.2 with 5, 3 and 2 successes (error ≤ 0.1 m).
+    const std::vector<std::pair<double, std::vector<double>>> cells = {
+        {0.1, {0.01, 0.02, 0.03, 0.04, 0.05}},
+        {0.18, {0.01, 0.05, 0.09, 0.2, NAN}},
+        {0.2, {0.02, 0.08, 0.5, NAN, NAN}},
+    };
+    std::string frames = FramesCsvHeader(), timing = TimingCsvHeader();
+    for (const auto& [value, errors] : cells) {
+      for (size_t trial = 0; trial < errors.size(); ++trial) {
+        const FrameRow row = Row("fig6_noise", "apriltag", value, trial, errors[trial]);
+        frames += FormatFrameRow(row);
+        timing += FormatTimingRow(row.frame, row.tracker, 1.0 + trial);
+      }
+    }
+    std::ofstream(dir_ + "/fig6_noise/frames.csv") << frames;
+    std::ofstream(dir_ + "/fig6_noise/timing.csv") << timing;
+  }
+  void TearDown() override { fs::remove_all(dir_); }
+
+  std::string dir_;
+};
+
+TEST_F(ReportTest, SummaryOfASyntheticSweep) {
+  ReportOptions options;
+  options.plots = false;
+  WriteReport(dir_, options);
+  std::istringstream summary(ReadText(dir_ + "/summary.csv"));
+  std::string line;
+  std::getline(summary, line);  // header
+  // scenario .. marker, then n, detection, success, median / mean / p90 error, median
+  // rotation, oracle median, flip rate, median time (of every call: 1..5 ms).
+  const std::vector<std::vector<double>> expected = {
+      {5, 1.0, 1.0, 0.03, 0.03, 0.046, 0, 0.03, 0, 3},
+      // Posed errors 0.01, 0.05, 0.09, 0.2: median 0.07, mean 0.0875, p90 0.167.
+      {5, 0.8, 0.6, 0.07, 0.0875, 0.167, 0, 0.07, 0, 3},
+      // Posed errors 0.02, 0.08, 0.5: median 0.08, mean 0.2, p90 0.416.
+      {5, 0.6, 0.4, 0.08, 0.2, 0.416, 0, 0.08, 0, 3}};
+  for (const std::vector<double>& want : expected) {
+    ASSERT_TRUE(std::getline(summary, line));
+    const std::vector<std::string> fields = SplitCsvLine(line);
+    ASSERT_EQ(fields.size(), 15u) << line;
+    EXPECT_EQ(fields[0] + fields[3] + fields[4], "fig6_noiseapriltagtag");
+    for (size_t i = 0; i < want.size(); ++i) {
+      EXPECT_NEAR(std::stod(fields[5 + i]), want[i], 1e-12) << line << " column " << 5 + i;
+    }
+  }
+  EXPECT_FALSE(std::getline(summary, line));
+
+  const std::string report = ReadText(dir_ + "/report.md");
+  // Breakdown: the first value under 50% success is 0.2, the paper says "fails above 0.18".
+  EXPECT_THAT(report, HasSubstr("| apriltag | tag | 0.2 |"));
+  EXPECT_THAT(report,
+              HasSubstr("| AprilTag noise breakdown | σ² > 0.18 | breaks down at noise_var = 0.2 "
+                        "| agrees |"));
+  EXPECT_THAT(report, HasSubstr("not run: no `artkplus` rows in `fig6_noise`"));
+  EXPECT_THAT(report, HasSubstr("| 0.18 | apriltag | 5 | 80% | 60% | 70.00 |"));
+  EXPECT_THAT(ReadText(dir_ + "/manifest.json"),
+              HasSubstr("\"success_position_fraction_of_distance\": 0.1"));
+}
+
+TEST_F(ReportTest, StricterSuccessMovesTheBreakdown) {
+  ReportOptions options;
+  options.plots = false;
+  options.summary.success_fraction = 0.045;  // 0.1: 4 of 5 succeed; 0.18: 1 of 5
+  WriteReport(dir_, options);
+  EXPECT_THAT(ReadText(dir_ + "/report.md"), HasSubstr("| apriltag | tag | 0.18 |"));
+}
+
+TEST_F(ReportTest, MisalignedTimingIsAnError) {
+  std::ofstream(dir_ + "/fig6_noise/timing.csv") << TimingCsvHeader() << "7,apriltag,1.0\n";
+  ReportOptions options;
+  options.plots = false;
+  EXPECT_THROW(WriteReport(dir_, options), ConfigError);
+}
+
+TEST(Report, EmptyFolderIsAnError) {
+  ReportOptions options;
+  options.plots = false;
+  EXPECT_THROW(WriteReport(fs::temp_directory_path().string() + "/no_such_results", options),
+               ConfigError);
+}
+
+}  // namespace
+}  // namespace markerbench

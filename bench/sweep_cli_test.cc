@@ -1,0 +1,225 @@
+// markerbench sweep as users run it, as a subprocess: determinism across thread counts and
+// runs, kill -9 and --resume, and exit status 2 with a located message for bad input.
+#include <fcntl.h>
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+#include <signal.h>
+#include <spawn.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <chrono>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <thread>
+
+#include "core/test_files.h"
+
+extern char** environ;
+
+namespace markerbench {
+namespace {
+
+using ::testing::HasSubstr;
+namespace fs = std::filesystem;
+
+const std::string kRoot = fs::current_path().string();
+
+struct Finished {
+  int status = -1;
+  std::string error;  // standard error
+};
+
+class SweepCliTest : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    work_ = fs::temp_directory_path() / ("markerbench_sweep_cli_" + std::to_string(::getpid()));
+    fs::remove_all(work_);
+    fs::create_directories(work_);
+  }
+  void TearDown() override { fs::remove_all(work_); }
+
+  // Starts markerbench with `args`; standard error goes to work_/stderr.txt.
+  pid_t Start(const std::vector<std::string>& args) {
+    std::vector<std::string> argv_text = {MARKERBENCH_BINARY};
+    argv_text.insert(argv_text.end(), args.begin(), args.end());
+    std::vector<char*> argv;
+    for (std::string& a : argv_text) argv.push_back(a.data());
+    argv.push_back(nullptr);
+    posix_spawn_file_actions_t actions;
+    posix_spawn_file_actions_init(&actions);
+    posix_spawn_file_actions_addopen(&actions,
+                                     STDOUT_FILENO,
+                                     (work_ / "stdout.txt").c_str(),
+                                     O_WRONLY | O_CREAT | O_TRUNC,
+                                     0644);
+    posix_spawn_file_actions_addopen(&actions,
+                                     STDERR_FILENO,
+                                     (work_ / "stderr.txt").c_str(),
+                                     O_WRONLY | O_CREAT | O_TRUNC,
+                                     0644);
+    pid_t pid = -1;
+    EXPECT_EQ(posix_spawn(&pid, argv[0], &actions, nullptr, argv.data(), environ), 0);
+    posix_spawn_file_actions_destroy(&actions);
+    return pid;
+  }
+
+  Finished Wait(pid_t pid) {
+    int status = 0;
+    EXPECT_EQ(::waitpid(pid, &status, 0), pid);
+    Finished f;
+    f.status = WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
+    f.error = Read(work_ / "stderr.txt");
+    return f;
+  }
+
+  Finished Run(const std::vector<std::string>& args) { return Wait(Start(args)); }
+
+  static std::string Read(const fs::path& path) {
+    std::ifstream in(path, std::ios::binary);
+    std::stringstream text;
+    text << in.rdbuf();
+    return text.str();
+  }
+
+  static size_t Lines(const fs::path& path) {
+    const std::string text = Read(path);
+    return static_cast<size_t>(std::count(text.begin(), text.end(), '\n'));
+  }
+
+  // Two tag markers and their trackers under a three-value noise sweep.
+  std::string Scenario(const std::string& name, int trials) {
+    return WriteTestFile(name + ".yaml",
+                         "name: " + name + "\ncamera: " + kRoot +
+                             "/scenarios/cameras/default.yaml\nmarkers:\n  - " + kRoot +
+                             "/scenarios/markers/apriltag.yaml\n  - " + kRoot +
+                             "/scenarios/markers/aruco.yaml\nequal_ink_area_m2: 0.01\ntrackers:\n"
+                             "  - {name: apriltag}\n  - {name: apriltag-ippe}\n  - {name: aruco}\n"
+                             "poses: {sampler: look_at, distance_m: 0.8, tilt_deg: [0, 40]}\n"
+                             "render: {blur_sigma_px: 1.0}\n"
+                             "sweep: {parameter: noise_var, values: [0.0, 0.05, 0.15]}\ntrials: " +
+                             std::to_string(trials) + "\nseed: 9\n");
+  }
+
+  fs::path work_;
+};
+
+TEST_F(SweepCliTest, FramesCsvIsByteIdenticalAcrossThreadCountsAndRuns) {
+  const std::string scenario = Scenario("det", 4);
+  const std::string one = (work_ / "one").string(), two = (work_ / "two").string(),
+                    again = (work_ / "again").string();
+  ASSERT_EQ(Run({"sweep", scenario, "--out", one, "--threads", "1"}).status, 0);
+  ASSERT_EQ(Run({"sweep", scenario, "--out", two, "--threads", "2"}).status, 0);
+  ASSERT_EQ(Run({"sweep", scenario, "--out", again, "--threads", "2"}).status, 0);
+  const std::string frames = Read(one + "/det/frames.csv");
+  // Header, then 3 values x 4 trials x (apriltag: 2 trackers, aruco: 1).
+  EXPECT_EQ(Lines(one + "/det/frames.csv"), 1u + 3 * 4 * 3);
+  EXPECT_EQ(Lines(one + "/det/timing.csv"), 1u + 3 * 4 * 3);
+  EXPECT_EQ(Read(two + "/det/frames.csv"), frames);
+  EXPECT_EQ(Read(again + "/det/frames.csv"), frames);
+  EXPECT_EQ(Read(two + "/det/examples/aruco.png"), Read(one + "/det/examples/aruco.png"));
+}
+
+TEST_F(SweepCliTest, KilledRunResumesToTheSameFile) {
+  const std::string scenario = Scenario("resume", 30);
+  const std::string reference = (work_ / "reference").string(),
+                    killed = (work_ / "killed").string();
+  ASSERT_EQ(Run({"sweep", scenario, "--out", reference, "--threads", "2"}).status, 0);
+  const size_t total = Lines(reference + "/resume/frames.csv");
+
+  const pid_t pid = Start({"sweep", scenario, "--out", killed, "--threads", "2"});
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(60);
+  while (Lines(killed + "/resume/frames.csv") < total / 4 &&
+         std::chrono::steady_clock::now() < deadline) {
+    std::this_thread::sleep_for(std::chrono::milliseconds(5));
+  }
+  ASSERT_EQ(::kill(pid, SIGKILL), 0);
+  ASSERT_EQ(Wait(pid).status, 128 + SIGKILL);
+  const size_t kept = Lines(killed + "/resume/frames.csv");
+  ASSERT_GE(kept, total / 4);
+  ASSERT_LT(kept, total) << "the run finished before it was killed";
+  // What the killed run kept is a prefix of the uninterrupted file.
+  const std::string prefix = Read(killed + "/resume/frames.csv");
+  EXPECT_EQ(Read(reference + "/resume/frames.csv").compare(0, prefix.size(), prefix), 0);
+
+  // Without --resume the folder is refused; with it the run completes to the same bytes.
+  const Finished refused = Run({"sweep", scenario, "--out", killed});
+  EXPECT_EQ(refused.status, 2);
+  EXPECT_THAT(refused.error, HasSubstr("pass --resume"));
+  EXPECT_EQ(Lines(killed + "/resume/frames.csv"), kept);
+  ASSERT_EQ(Run({"sweep", scenario, "--out", killed, "--threads", "2", "--resume"}).status, 0);
+  EXPECT_EQ(Read(killed + "/resume/frames.csv"), Read(reference + "/resume/frames.csv"));
+  EXPECT_EQ(Lines(killed + "/resume/timing.csv"), total);
+}
+
+TEST_F(SweepCliTest, TornTailIsCutOnResume) {
+  const std::string scenario = Scenario("torn", 2);
+  const std::string out = (work_ / "out").string();
+  ASSERT_EQ(Run({"sweep", scenario, "--out", out}).status, 0);
+  const std::string full = Read(out + "/torn/frames.csv");
+  // Keep the header, three rows and half of the fourth, as a crash might.
+  size_t cut = 0;
+  for (int line = 0; line < 4; ++line) cut = full.find('\n', cut) + 1;
+  cut += 20;
+  fs::resize_file(out + "/torn/frames.csv", cut);
+  ASSERT_EQ(Run({"sweep", scenario, "--out", out, "--resume"}).status, 0);
+  EXPECT_EQ(Read(out + "/torn/frames.csv"), full);
+}
+
+TEST_F(SweepCliTest, ResumeRefusesAnotherScenariosFolder) {
+  const std::string out = (work_ / "out").string();
+  ASSERT_EQ(Run({"sweep", Scenario("same", 1), "--out", out}).status, 0);
+  const std::string before = Read(out + "/same/frames.csv");
+  // Same name, different trials: a different scenario.
+  const Finished f = Run({"sweep", Scenario("same", 2), "--out", out, "--resume"});
+  EXPECT_EQ(f.status, 2);
+  EXPECT_THAT(f.error, HasSubstr("was written by a different scenario"));
+  EXPECT_EQ(Read(out + "/same/frames.csv"), before);
+}
+
+// Each case: exit status 2, a message naming the file, line and key, and no output folder.
+TEST_F(SweepCliTest, BadInputIsRejectedBeforeAnythingIsWritten) {
+  const std::string good = Read(Scenario("bad", 1));
+  auto replaced = [&](const std::string& from, const std::string& to) {
+    std::string text = good;
+    const size_t at = text.find(from);
+    EXPECT_NE(at, std::string::npos) << from;
+    return text.replace(at, from.size(), to);
+  };
+  const struct {
+    std::string text;
+    std::string message;
+  } cases[] = {
+      {"name: bad\nmarkers: [unclosed\n", "bad.yaml:3: not valid YAML"},
+      {good + "threads: 4\n", "bad.yaml:16: key 'threads': unknown key"},
+      {replaced("trials: 1\n", ""), "key 'trials': missing"},
+      {replaced("trials: 1", "trials: one"), "bad.yaml:14: key 'trials': expected an integer"},
+      {replaced("blur_sigma_px: 1.0", "blur_sigma_px: -1.0"),
+       "bad.yaml:12: key 'render.blur_sigma_px': expected a number in [0, 100]"},
+      {replaced("values: [0.0, 0.05, 0.15]", "values: [0.0, -0.05]"),
+       "bad.yaml:13: key 'sweep.values'"},
+      {replaced("values: [0.0, 0.05, 0.15]", "values: []"),
+       "bad.yaml:13: key 'sweep.values': expected a non-empty list"},
+      {replaced("{name: aruco}", "{name: aruko}"),
+       "bad.yaml:10: key 'trackers[2].name': expected one of the available trackers: apriltag, "
+       "apriltag-ippe, aruco"},
+      {replaced("/scenarios/markers/aruco.yaml", "/scenarios/markers/nosuch.yaml"),
+       "nosuch.yaml: cannot open the file"},
+      {replaced("/scenarios/cameras/default.yaml", "/scenarios/cameras/nosuch.yaml"),
+       "nosuch.yaml: cannot open the file"},
+      {replaced("distance_m: 0.8", "distance_m: 0.05"),
+       "bad.yaml:11: key 'poses.distance_m': expected markers in view"},
+  };
+  for (const auto& c : cases) {
+    const std::string path = WriteTestFile("bad.yaml", c.text);
+    const std::string out = (work_ / "never").string();
+    const Finished f = Run({"sweep", path, "--out", out});
+    EXPECT_EQ(f.status, 2) << c.text;
+    EXPECT_THAT(f.error, HasSubstr(c.message)) << c.text;
+    EXPECT_FALSE(fs::exists(out)) << c.text;
+  }
+}
+
+}  // namespace
+}  // namespace markerbench
