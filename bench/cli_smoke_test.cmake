@@ -1,5 +1,5 @@
-# End-to-end: both render forms, marker sheets, and exit status 2 with a located message on
-# bad input. Run by ctest as bench/cli_smoke.
+# End-to-end: both render forms, marker sheets, track, sweep + report with plots, and exit
+# status 2 with a located message on bad input. Run by ctest as bench/cli_smoke.
 file(REMOVE_RECURSE ${WORK_DIR})
 file(MAKE_DIRECTORY ${WORK_DIR})
 
@@ -70,4 +70,23 @@ run(2 track --tracker nosuch --marker scenarios/markers/apriltag.yaml
     --camera scenarios/cameras/default.yaml ${WORK_DIR}/smoke/frame_000001.png)
 if(NOT last_error MATCHES "unknown tracker 'nosuch'")
   message(FATAL_ERROR "unexpected message: ${last_error}")
+endif()
+
+# sweep + report end to end, with the plots (Debian python3-matplotlib).
+run(0 sweep scenarios/smoke.yaml --out ${WORK_DIR}/sweep --threads 2)
+run(0 report ${WORK_DIR}/sweep)
+foreach(f summary.csv report.md manifest.json smoke.png smoke_examples.png smoke/frames.csv
+          smoke/timing.csv smoke/examples/circles_a.png smoke/examples/apriltag.png)
+  if(NOT EXISTS ${WORK_DIR}/sweep/${f})
+    message(FATAL_ERROR "sweep/report did not write ${f}")
+  endif()
+endforeach()
+file(STRINGS ${WORK_DIR}/sweep/summary.csv rows)
+list(LENGTH rows n)
+if(NOT n EQUAL 5)
+  message(FATAL_ERROR "summary.csv has ${n} lines, expected 5 (header + 2 trackers x 2 values)")
+endif()
+file(READ ${WORK_DIR}/sweep/report.md report)
+if(NOT report MATCHES "The paper's claims beside ours" OR NOT report MATCHES "!\\[smoke: error")
+  message(FATAL_ERROR "report.md lacks the reproduction table or the plot")
 endif()

@@ -139,13 +139,23 @@ std::string ScenarioSection(const std::string& scenario,
 std::string EnvironmentSection(const nlohmann::json& manifest) {
   if (!manifest.contains("environment")) return "";
   const nlohmann::json& env = manifest["environment"];
-  std::string md =
-      "Built from commit `" + env.value("git_commit", std::string("?")) + "`" +
-      (env.value("git_dirty", false) ? " (with local changes)" : "") + ", " +
-      env.value("compiler", std::string("?")) + ", " + env.value("build_type", std::string("?")) +
-      "; run on " + env.value("cpu_model", std::string("?")) + " with " +
-      std::to_string(env.value("threads", 0)) + " threads. Details: `manifest.json`.\n\n";
-  return md;
+  std::string md = "Built from commit `" + env.value("git_commit", std::string("?")) + "`" +
+                   (env.value("git_dirty", false) ? " (with local changes)" : "") + ", " +
+                   env.value("compiler", std::string("?")) + ", " +
+                   env.value("build_type", std::string("?")) + "; run on " +
+                   env.value("cpu_model", std::string("?")) + " with " +
+                   std::to_string(env.value("threads", 0)) + " threads";
+  double wall_s = 0.0, frames = 0.0;
+  const nlohmann::json scenarios = manifest.value("scenarios", nlohmann::json::object());
+  for (const auto& [name, entry] : scenarios.items()) {
+    wall_s += entry.value("wall_s", 0.0);
+    frames += entry.value("frames", 0.0);
+  }
+  if (wall_s > 0.0) {
+    md += ": " + Fixed(frames, "%.0f") + " frames in " + DurationText(wall_s) + " (" +
+          Fixed(frames / wall_s, "%.1f") + " frames/s)";
+  }
+  return md + ". Details: `manifest.json`.\n\n";
 }
 
 void RunPlots(const std::string& dir) {

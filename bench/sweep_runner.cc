@@ -79,7 +79,10 @@ std::pair<size_t, uintmax_t> CompleteJobs(const std::string& path,
   size_t line_number = 1;
   size_t complete = 0;
   uintmax_t bytes = pos;
-  for (const Job& job : jobs) {
+  for (size_t j = 0; j < jobs.size(); ++j) {
+    const Job& job = jobs[j];
+    // A job without rows (an example image only) counts once a later job's rows are in.
+    if (job.trackers.empty()) continue;
     for (const size_t t : job.trackers) {
       const size_t end = text.find('\n', pos);
       if (end == std::string::npos) return {complete, bytes};
@@ -95,7 +98,7 @@ std::pair<size_t, uintmax_t> CompleteJobs(const std::string& path,
       }
       pos = end + 1;
     }
-    ++complete;
+    complete = j + 1;
     bytes = pos;
   }
   return {complete, bytes};

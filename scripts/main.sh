@@ -1,11 +1,12 @@
 #!/usr/bin/env bash
-# The main job from a clean clone: install dependencies, build (Release), and render the
-# example scenario (every marker kind under paired poses) plus print-ready marker sheets into
-# out/. The paper's sweeps and their report replace this when the sweep harness lands.
+# The main job from a clean clone: install dependencies, build (Release), run the paper's
+# three sweeps (Fig. 6-8: noise, blur, distance; scenarios/paper/) with every available
+# tracker, and write their report with plots and the reproduction table to results/paper/.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 bash scripts/install-deps.sh
 bash scripts/build.sh
-./build/bench/markerbench render scenarios/examples/all_markers.yaml --out out/examples
-./build/bench/markerbench markers --out out/marker_sheets
-echo "main: wrote out/examples (frames + groundtruth.csv) and out/marker_sheets"
+./build/bench/markerbench sweep scenarios/paper/fig6_noise.yaml scenarios/paper/fig7_blur.yaml \
+  scenarios/paper/fig8_distance.yaml --out results/paper --overwrite
+./build/bench/markerbench report results/paper
+echo "main: wrote results/paper (report.md, summary.csv, plots, manifest.json)"
