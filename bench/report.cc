@@ -119,15 +119,16 @@ std::string ScenarioSection(const std::string& scenario,
     md += "| " + tracker + " | " + marker + " | " + (b ? Fixed(*b, "%g") : "none") + " |\n";
   }
   md += "\n| " + parameter +
-        " | tracker | n | detected | success | median pos. err (mm) | mean (mm) | p90 (mm) | "
+        " | tracker | n | size (px) | detected | success | median pos. err (mm) | mean (mm) | p90 "
+        "(mm) | "
         "median rot. err (°) | oracle median (mm) | flips | median ms |\n"
-        "|---|---|---|---|---|---|---|---|---|---|---|---|\n";
+        "|---|---|---|---|---|---|---|---|---|---|---|---|---|\n";
   for (const SummaryRow& r : summary) {
     if (r.scenario != scenario) continue;
     md += "| " + Fixed(r.sweep_value, "%g") + " | " + r.tracker + " | " + std::to_string(r.n) +
-          " | " + Percent(r.detection_rate) + " | " + Percent(r.success_rate) + " | " +
-          Fixed(1e3 * r.position_error_median_m, "%.2f") + " | " +
-          Fixed(1e3 * r.position_error_mean_m, "%.2f") + " | " +
+          " | " + Fixed(r.apparent_size_median_px, "%.0f") + " | " + Percent(r.detection_rate) +
+          " | " + Percent(r.success_rate) + " | " + Fixed(1e3 * r.position_error_median_m, "%.2f") +
+          " | " + Fixed(1e3 * r.position_error_mean_m, "%.2f") + " | " +
           Fixed(1e3 * r.position_error_p90_m, "%.2f") + " | " +
           Fixed(r.rotation_error_median_deg, "%.2f") + " | " +
           Fixed(1e3 * r.best_position_error_median_m, "%.2f") + " | " + Percent(r.flip_rate) +

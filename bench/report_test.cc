@@ -107,18 +107,18 @@ TEST_F(ReportTest, SummaryOfASyntheticSweep) {
   std::istringstream summary(ReadText(dir_ + "/summary.csv"));
   std::string line;
   std::getline(summary, line);  // header
-  // scenario .. marker, then n, detection, success, median / mean / p90 error, median
-  // rotation, oracle median, flip rate, median time (of every call: 1..5 ms).
+  // scenario .. marker, then n, median apparent size, detection, success, median / mean / p90
+  // error, median rotation, oracle median, flip rate, median time (of every call: 1..5 ms).
   const std::vector<std::vector<double>> expected = {
-      {5, 1.0, 1.0, 0.03, 0.03, 0.046, 0, 0.03, 0, 3},
+      {5, 60, 1.0, 1.0, 0.03, 0.03, 0.046, 0, 0.03, 0, 3},
       // Posed errors 0.01, 0.05, 0.09, 0.2: median 0.07, mean 0.0875, p90 0.167.
-      {5, 0.8, 0.6, 0.07, 0.0875, 0.167, 0, 0.07, 0, 3},
+      {5, 60, 0.8, 0.6, 0.07, 0.0875, 0.167, 0, 0.07, 0, 3},
       // Posed errors 0.02, 0.08, 0.5: median 0.08, mean 0.2, p90 0.416.
-      {5, 0.6, 0.4, 0.08, 0.2, 0.416, 0, 0.08, 0, 3}};
+      {5, 60, 0.6, 0.4, 0.08, 0.2, 0.416, 0, 0.08, 0, 3}};
   for (const std::vector<double>& want : expected) {
     ASSERT_TRUE(std::getline(summary, line));
     const std::vector<std::string> fields = SplitCsvLine(line);
-    ASSERT_EQ(fields.size(), 15u) << line;
+    ASSERT_EQ(fields.size(), 16u) << line;
     EXPECT_EQ(fields[0] + fields[3] + fields[4], "fig6_noiseapriltagtag");
     for (size_t i = 0; i < want.size(); ++i) {
       EXPECT_NEAR(std::stod(fields[5 + i]), want[i], 1e-12) << line << " column " << 5 + i;
@@ -133,7 +133,7 @@ TEST_F(ReportTest, SummaryOfASyntheticSweep) {
               HasSubstr("| AprilTag noise breakdown | σ² > 0.18 | breaks down at noise_var = 0.2 "
                         "| agrees |"));
   EXPECT_THAT(report, HasSubstr("not run: no `artkplus` rows in `fig6_noise`"));
-  EXPECT_THAT(report, HasSubstr("| 0.18 | apriltag | 5 | 80% | 60% | 70.00 |"));
+  EXPECT_THAT(report, HasSubstr("| 0.18 | apriltag | 5 | 60 | 80% | 60% | 70.00 |"));
   EXPECT_THAT(ReadText(dir_ + "/manifest.json"),
               HasSubstr("\"success_position_fraction_of_distance\": 0.1"));
 }

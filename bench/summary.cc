@@ -54,13 +54,14 @@ std::vector<SummaryRow> Summarize(const std::vector<FrameRow>& rows,
     s.marker = first.marker;
     s.n = static_cast<int>(group.size());
     int detected = 0, successes = 0, posed = 0, flips = 0;
-    std::vector<double> position, rotation, best_position, times;
+    std::vector<double> sizes, position, rotation, best_position, times;
     for (const size_t i : group) {
       const FrameRow& r = rows[i];
       const bool has_pose = r.estimate.has_value();
       detected += r.status == TrackStatus::kOk || r.status == TrackStatus::kPoseFailed;
       successes +=
           IsSuccess(has_pose, r.errors.position_error_m, r.distance_m, options.success_fraction);
+      sizes.push_back(r.apparent_size_px);
       times.push_back(i < time_ms.size() ? time_ms[i] : NAN);
       if (!has_pose) continue;
       ++posed;
@@ -69,6 +70,7 @@ std::vector<SummaryRow> Summarize(const std::vector<FrameRow>& rows,
       rotation.push_back(r.errors.rotation_error_deg);
       best_position.push_back(r.errors.best_position_error_m);
     }
+    s.apparent_size_median_px = Median(sizes);
     s.detection_rate = static_cast<double>(detected) / s.n;
     s.success_rate = static_cast<double>(successes) / s.n;
     s.position_error_median_m = Median(position);
@@ -104,17 +106,18 @@ std::vector<SummaryRow> SeriesOf(const std::vector<SummaryRow>& summary,
 
 std::string SummaryCsv(const std::vector<SummaryRow>& rows) {
   std::string csv =
-      "scenario,sweep_parameter,sweep_value,tracker,marker,n,detection_rate,success_rate,"
+      "scenario,sweep_parameter,sweep_value,tracker,marker,n,apparent_size_median_px,"
+      "detection_rate,success_rate,"
       "position_error_median_m,position_error_mean_m,position_error_p90_m,"
       "rotation_error_median_deg,best_position_error_median_m,flip_rate,time_median_ms\n";
   for (const SummaryRow& r : rows) {
     csv += r.scenario + ',' + r.sweep_parameter + ',' + NumberText(r.sweep_value) + ',' +
            r.tracker + ',' + r.marker + ',' + std::to_string(r.n) + ',' +
-           NumberText(r.detection_rate) + ',' + NumberText(r.success_rate) + ',' +
-           Optional(r.position_error_median_m) + ',' + Optional(r.position_error_mean_m) + ',' +
-           Optional(r.position_error_p90_m) + ',' + Optional(r.rotation_error_median_deg) + ',' +
-           Optional(r.best_position_error_median_m) + ',' + Optional(r.flip_rate) + ',' +
-           Optional(r.time_median_ms) + '\n';
+           NumberText(r.apparent_size_median_px) + ',' + NumberText(r.detection_rate) + ',' +
+           NumberText(r.success_rate) + ',' + Optional(r.position_error_median_m) + ',' +
+           Optional(r.position_error_mean_m) + ',' + Optional(r.position_error_p90_m) + ',' +
+           Optional(r.rotation_error_median_deg) + ',' + Optional(r.best_position_error_median_m) +
+           ',' + Optional(r.flip_rate) + ',' + Optional(r.time_median_ms) + '\n';
   }
   return csv;
 }

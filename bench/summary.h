@@ -24,6 +24,7 @@ struct SummaryRow {
   std::string tracker;
   std::string marker;
   int n = 0;
+  double apparent_size_median_px = 0.0;
   double detection_rate = 0.0;  // the marker was found: status ok or pose_failed
   double success_rate = 0.0;
   // Over the frames with a pose (status ok); NaN when there are none.
