@@ -1,5 +1,6 @@
 #include "bench/summary.h"
 
+#include <algorithm>
 #include <cmath>
 #include <map>
 #include <tuple>
@@ -28,22 +29,18 @@ std::vector<SummaryRow> Summarize(const std::vector<FrameRow>& rows,
     it->second.push_back(i);
   }
   // Series (scenario, tracker, marker) in order of appearance, values in order within each.
-  std::vector<GroupKey> sorted;
-  std::vector<bool> taken(order.size(), false);
-  for (size_t a = 0; a < order.size(); ++a) {
-    if (taken[a]) continue;
-    for (size_t b = a; b < order.size(); ++b) {
-      if (!taken[b] && std::get<0>(order[b]) == std::get<0>(order[a]) &&
-          std::get<1>(order[b]) == std::get<1>(order[a]) &&
-          std::get<2>(order[b]) == std::get<2>(order[a])) {
-        taken[b] = true;
-        sorted.push_back(order[b]);
-      }
-    }
+  std::map<std::tuple<std::string, std::string, std::string>, size_t> series_rank;
+  for (const GroupKey& key : order) {
+    series_rank.try_emplace({std::get<0>(key), std::get<1>(key), std::get<2>(key)},
+                            series_rank.size());
   }
+  std::stable_sort(order.begin(), order.end(), [&](const GroupKey& a, const GroupKey& b) {
+    return series_rank.at({std::get<0>(a), std::get<1>(a), std::get<2>(a)}) <
+           series_rank.at({std::get<0>(b), std::get<1>(b), std::get<2>(b)});
+  });
 
   std::vector<SummaryRow> summary;
-  for (const GroupKey& key : sorted) {
+  for (const GroupKey& key : order) {
     const std::vector<size_t>& group = members[key];
     const FrameRow& first = rows[group.front()];
     SummaryRow s;
