@@ -12,6 +12,7 @@
 #include <fstream>
 #include <map>
 #include <mutex>
+#include <opencv2/core/utility.hpp>
 #include <sstream>
 #include <system_error>
 #include <thread>
@@ -404,6 +405,9 @@ void RunSweeps(const std::vector<std::string>& scenario_paths, const SweepOption
   const int threads = options.threads > 0
                           ? options.threads
                           : std::max(1, static_cast<int>(std::thread::hardware_concurrency()));
+  // Parallelism comes from the pool; OpenCV's own threads would oversubscribe the cores and
+  // make time_ms depend on what the other workers do.
+  cv::setNumThreads(1);
   for (PreparedSweep& p : sweeps) Run(p, threads, options.out_dir + "/manifest.json");
 }
 
