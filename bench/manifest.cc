@@ -39,8 +39,10 @@ nlohmann::json EnvironmentManifest(int threads) {
   const std::string git = std::string("git -C '") + MARKERBENCH_SOURCE_DIR + "' ";
   nlohmann::json env;
   env["git_commit"] = CommandOutput(git + "rev-parse HEAD 2>/dev/null");
+  // Changes to tracked files other than results/ (which a run itself rewrites).
   env["git_dirty"] =
-      !CommandOutput(git + "status --porcelain --untracked-files=no 2>/dev/null").empty();
+      !CommandOutput(git + "status --porcelain --untracked-files=no -- . ':!results' 2>/dev/null")
+           .empty();
   env["compiler"] = build_info::kCompiler;
   env["build_type"] = build_info::kBuildType;
   for (const auto& [library, version] : build_info::kLibraries) env["libraries"][library] = version;
