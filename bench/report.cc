@@ -118,10 +118,9 @@ std::string ScenarioSection(const std::string& scenario,
         BreakdownValue(SeriesOf(summary, scenario, tracker, marker), options);
     md += "| " + tracker + " | " + marker + " | " + (b ? Fixed(*b, "%g") : "none") + " |\n";
   }
-  md += "\n| " + parameter +
-        " | tracker | n | size (px) | detected | success | median pos. err (mm) | mean (mm) | p90 "
-        "(mm) | "
-        "median rot. err (°) | oracle median (mm) | flips | median ms |\n"
+  md += "\n| " + parameter + " | tracker | n | size (px) | detected | success" +
+        " | median pos. err (mm) | mean (mm) | p90 (mm) | median rot. err (°)" +
+        " | oracle median (mm) | flips | median ms |\n" +
         "|---|---|---|---|---|---|---|---|---|---|---|---|---|\n";
   for (const SummaryRow& r : summary) {
     if (r.scenario != scenario) continue;
@@ -199,8 +198,8 @@ void WriteReport(const std::string& dir, const ReportOptions& options) {
         " of the true distance. Breakdown: the first sweep value whose success rate is below " +
         Percent(options.summary.breakdown_rate) +
         ". Errors are over the frames with a pose; `oracle` takes the hypothesis nearest the "
-        "truth; `flips` counts first hypotheses more than 30° off while another is within "
-        "5°.\n\n";
+        "truth in rotation; `flips` counts first hypotheses more than 30° off while another "
+        "is within 5°.\n\n";
   md += "## The paper's claims beside ours\n\n";
   md += ReproductionTableMarkdown(ReproduceClaims(summary, options.summary)) + "\n";
   for (const ScenarioResults& r : results) {
