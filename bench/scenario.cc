@@ -145,11 +145,11 @@ Scenario LoadScenario(const std::string& path) {
         t.Fail("name", "one of the available trackers: " + list);
       }
       const std::unique_ptr<Tracker> tracker = MakeScenarioTracker(s, entry);
-      const bool tracks_one =
-          std::any_of(s.markers.begin(), s.markers.end(), [&](const MarkerSpec& m) {
-            return tracker->CanTrack(m);
-          });
-      if (!tracks_one) t.Fail("name", "a tracker for one of the scenario's markers");
+      for (size_t m = 0; m < s.markers.size(); ++m) {
+        if (tracker->CanTrack(s.markers[m])) entry.markers.push_back(m);
+      }
+      if (entry.markers.empty()) t.Fail("name", "a tracker for one of the scenario's markers");
+      entry.parameters = tracker->Parameters();
       s.trackers.push_back(entry);
     }
   }

@@ -8,6 +8,7 @@
 #include <memory>
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "core/camera.h"
@@ -46,6 +47,10 @@ struct TrackerEntry {
   std::string name;
   YAML::Node options;       // validated by the tracker factory when the scenario loads
   std::string options_key;  // "trackers[i].options", for errors
+  // Found at load by building the tracker once: the indices of the scenario's markers it can
+  // track (never empty), and every parameter in effect (Tracker::Parameters).
+  std::vector<size_t> markers;
+  std::vector<std::pair<std::string, std::string>> parameters;
 };
 
 // The sweep parameters a scenario may vary.

@@ -9,11 +9,9 @@
 #include <cstring>
 #include <exception>
 #include <filesystem>
-#include <fstream>
 #include <map>
 #include <mutex>
 #include <opencv2/core/utility.hpp>
-#include <sstream>
 #include <system_error>
 #include <thread>
 
@@ -22,6 +20,7 @@
 #include "bench/manifest.h"
 #include "bench/progress.h"
 #include "bench/scenario.h"
+#include "core/file_bytes.h"
 #include "core/sha256.h"
 #include "core/yaml_reader.h"
 #include "renderer/image_io.h"
@@ -40,53 +39,48 @@ struct Job {
 struct PreparedSweep {
   Scenario scenario;
   std::string dir;
-  std::string fingerprint;
+  std::vector<std::string> input_hashes;  // SHA-256 of each of scenario.input_files
+  std::string fingerprint;                // of the input hashes: a resumed run must match it
   std::vector<Job> jobs;
-  std::vector<std::vector<size_t>> trackers_of_marker;
   std::vector<std::string> idle_markers;  // markers no tracker can track: they only constrain poses
   size_t done = 0;  // jobs already complete in frames.csv and timing.csv (resume)
   uintmax_t frames_bytes = 0;
   uintmax_t timing_bytes = 0;
 };
 
-// Hash of the scenario, camera and marker files' bytes: a resumed run must match it.
-std::string Fingerprint(const Scenario& s) {
-  Sha256 sha;
-  for (const std::string& file : s.input_files) sha.Update(Sha256OfFile(file));
-  return sha.HexDigest();
-}
+// What a frames.csv or timing.csv of a killed run holds.
+struct WrittenJobs {
+  size_t complete = 0;  // jobs 0 .. complete-1 are whole
+  // offsets[k]: the byte size of the header plus the rows of jobs 0 .. k-1, for k <= complete.
+  std::vector<uintmax_t> offsets;
+};
 
-std::string ReadWholeFile(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::ostringstream bytes;
-  bytes << in.rdbuf();
-  return bytes.str();
-}
-
-// How many whole jobs the file holds, and the byte size of its header plus those jobs' rows.
-// `column_of_frame` and `column_of_tracker` locate the ids each row must match.
-std::pair<size_t, uintmax_t> CompleteJobs(const std::string& path,
-                                          const std::string& header,
-                                          const std::vector<Job>& jobs,
-                                          const std::vector<std::string>& tracker_names,
-                                          size_t column_of_frame,
-                                          size_t column_of_tracker) {
-  const std::string text = ReadWholeFile(path);
+// Scans a file whose rows must follow `jobs`; `column_of_frame` and `column_of_tracker`
+// locate the ids each row must match. A missing file holds nothing (offsets {0}).
+WrittenJobs ScanWrittenJobs(const std::string& path,
+                            const std::string& header,
+                            const std::vector<Job>& jobs,
+                            const std::vector<std::string>& tracker_names,
+                            size_t column_of_frame,
+                            size_t column_of_tracker) {
+  WrittenJobs written;
+  if (!fs::exists(path)) {
+    written.offsets.push_back(0);
+    return written;
+  }
+  const std::string text = ReadFileBytes(path);
   if (text.rfind(header, 0) != 0) {
     throw ConfigError(path + ":1: expected the header '" + header.substr(0, header.size() - 1) +
                       "'; this folder was not written by markerbench sweep");
   }
   size_t pos = header.size();
   size_t line_number = 1;
-  size_t complete = 0;
-  uintmax_t bytes = pos;
+  written.offsets.push_back(pos);
   for (size_t j = 0; j < jobs.size(); ++j) {
     const Job& job = jobs[j];
-    // A job without rows (an example image only) counts once a later job's rows are in.
-    if (job.trackers.empty()) continue;
     for (const size_t t : job.trackers) {
       const size_t end = text.find('\n', pos);
-      if (end == std::string::npos) return {complete, bytes};
+      if (end == std::string::npos) return written;
       ++line_number;
       const std::vector<std::string> f = SplitCsvLine(text.substr(pos, end - pos));
       if (f.size() <= std::max(column_of_frame, column_of_tracker) ||
@@ -99,10 +93,11 @@ std::pair<size_t, uintmax_t> CompleteJobs(const std::string& path,
       }
       pos = end + 1;
     }
-    complete = j + 1;
-    bytes = pos;
+    written.offsets.push_back(pos);
+    // A job without rows (an example image only) counts once a later job's rows are in.
+    if (!job.trackers.empty()) written.complete = j + 1;
   }
-  return {complete, bytes};
+  return written;
 }
 
 // Everything checked before anything is written.
@@ -114,20 +109,22 @@ PreparedSweep Prepare(const std::string& path, const SweepOptions& options) {
     throw ConfigError(path + ": key 'trackers': missing; expected at least one tracker to sweep");
   }
   p.dir = (fs::path(options.out_dir) / s.name).string();
-  p.fingerprint = Fingerprint(s);
+  Sha256 fingerprint;
+  for (const std::string& file : s.input_files) {
+    p.input_hashes.push_back(Sha256OfFile(file));
+    fingerprint.Update(p.input_hashes.back());
+  }
+  p.fingerprint = fingerprint.HexDigest();
 
-  p.trackers_of_marker.resize(s.markers.size());
+  std::vector<std::vector<size_t>> trackers_of_marker(s.markers.size());
   for (size_t t = 0; t < s.trackers.size(); ++t) {
-    const std::unique_ptr<Tracker> tracker = MakeScenarioTracker(s, s.trackers[t]);
-    for (size_t m = 0; m < s.markers.size(); ++m) {
-      if (tracker->CanTrack(s.markers[m])) p.trackers_of_marker[m].push_back(t);
-    }
+    for (const size_t m : s.trackers[t].markers) trackers_of_marker[m].push_back(t);
   }
   for (size_t m = 0; m < s.markers.size(); ++m) {
-    if (p.trackers_of_marker[m].empty()) p.idle_markers.push_back(s.markers[m].name);
+    if (trackers_of_marker[m].empty()) p.idle_markers.push_back(s.markers[m].name);
   }
   for (const PlannedFrame& f : PlanFrames(s)) {
-    const auto& trackers = p.trackers_of_marker[static_cast<size_t>(f.marker_index)];
+    const auto& trackers = trackers_of_marker[static_cast<size_t>(f.marker_index)];
     // Markers without a tracker are still rendered for the example-image figure.
     const bool example = f.trial == 0 && f.sweep_value == s.example_value;
     if (!trackers.empty() || example) p.jobs.push_back({f, trackers});
@@ -150,22 +147,13 @@ PreparedSweep Prepare(const std::string& path, const SweepOptions& options) {
   }
   std::vector<std::string> names;
   for (const TrackerEntry& t : s.trackers) names.push_back(t.name);
-  const auto [frames_done, frames_bytes] =
-      CompleteJobs(frames, FramesCsvHeader(), p.jobs, names, 4, 6);
-  const std::string timing = p.dir + "/timing.csv";
-  const auto [timing_done, timing_bytes] =
-      fs::exists(timing) ? CompleteJobs(timing, TimingCsvHeader(), p.jobs, names, 0, 1)
-                         : std::pair<size_t, uintmax_t>{0, 0};
-  p.done = std::min(frames_done, timing_done);
-  // Byte sizes at `done` jobs: re-scan the shorter prefix when the two files disagree.
-  p.frames_bytes = frames_bytes;
-  p.timing_bytes = timing_bytes;
-  if (frames_done != timing_done) {
-    const std::vector<Job> prefix(p.jobs.begin(), p.jobs.begin() + p.done);
-    p.frames_bytes = CompleteJobs(frames, FramesCsvHeader(), prefix, names, 4, 6).second;
-    p.timing_bytes =
-        p.done ? CompleteJobs(timing, TimingCsvHeader(), prefix, names, 0, 1).second : 0;
-  }
+  const WrittenJobs in_frames = ScanWrittenJobs(frames, FramesCsvHeader(), p.jobs, names, 4, 6);
+  const WrittenJobs in_timing =
+      ScanWrittenJobs(p.dir + "/timing.csv", TimingCsvHeader(), p.jobs, names, 0, 1);
+  // Continue after the jobs that both files hold whole.
+  p.done = std::min(in_frames.complete, in_timing.complete);
+  p.frames_bytes = in_frames.offsets[p.done];
+  p.timing_bytes = in_timing.offsets[p.done];
   return p;
 }
 
@@ -302,8 +290,8 @@ nlohmann::json ScenarioManifest(const PreparedSweep& p, int threads) {
   nlohmann::json entry;
   entry["file"] = s.path;
   entry["fingerprint"] = p.fingerprint;
-  for (const std::string& file : s.input_files) {
-    entry["input_files"].push_back({{"path", file}, {"sha256", Sha256OfFile(file)}});
+  for (size_t i = 0; i < s.input_files.size(); ++i) {
+    entry["input_files"].push_back({{"path", s.input_files[i]}, {"sha256", p.input_hashes[i]}});
   }
   entry["seed"] = s.seed;
   entry["trials"] = s.trials;
@@ -314,18 +302,11 @@ nlohmann::json ScenarioManifest(const PreparedSweep& p, int threads) {
       s.equal_ink_area_m2 ? nlohmann::json(*s.equal_ink_area_m2) : nlohmann::json();
   for (const MarkerSpec& m : s.markers) entry["markers"].push_back(m.name);
   entry["markers_without_tracker"] = p.idle_markers;
-  for (size_t t = 0; t < s.trackers.size(); ++t) {
+  for (const TrackerEntry& t : s.trackers) {
     nlohmann::json tracker;
-    tracker["name"] = s.trackers[t].name;
-    for (size_t m = 0; m < s.markers.size(); ++m) {
-      const auto& of = p.trackers_of_marker[m];
-      if (std::find(of.begin(), of.end(), t) != of.end()) {
-        tracker["markers"].push_back(s.markers[m].name);
-      }
-    }
-    for (const auto& [key, value] : MakeScenarioTracker(s, s.trackers[t])->Parameters()) {
-      tracker["parameters"][key] = value;
-    }
+    tracker["name"] = t.name;
+    for (const size_t m : t.markers) tracker["markers"].push_back(s.markers[m].name);
+    for (const auto& [key, value] : t.parameters) tracker["parameters"][key] = value;
     entry["trackers"].push_back(tracker);
   }
   entry["frames"] = p.jobs.size();

@@ -1,9 +1,8 @@
 #include "core/sha256.h"
 
 #include <cstdio>
-#include <fstream>
-#include <sstream>
-#include <stdexcept>
+
+#include "core/file_bytes.h"
 
 namespace markerbench {
 namespace {
@@ -102,12 +101,6 @@ std::string Sha256Hex(const std::string& bytes) {
   return sha.HexDigest();
 }
 
-std::string Sha256OfFile(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw std::runtime_error(path + ": cannot read");
-  std::ostringstream bytes;
-  bytes << in.rdbuf();
-  return Sha256Hex(bytes.str());
-}
+std::string Sha256OfFile(const std::string& path) { return Sha256Hex(ReadFileBytes(path)); }
 
 }  // namespace markerbench
