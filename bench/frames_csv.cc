@@ -38,9 +38,6 @@ const std::vector<std::string>& Columns() {
   return kColumns;
 }
 
-// Empty for NaN (no pose), else the exact number.
-std::string Optional(double value) { return std::isnan(value) ? "" : NumberText(value); }
-
 // Quoted when it holds a comma or a quote; line breaks become spaces (one row per line).
 std::string CsvField(std::string text) {
   for (char& ch : text) {
@@ -109,9 +106,10 @@ std::string FormatFrameRow(const FrameRow& r) {
       std::to_string(r.trial) + ',' + std::to_string(r.frame) + ',' + CsvField(r.marker) + ',' +
       CsvField(r.tracker) + ',' + std::to_string(r.seed) + ',' + NumberText(r.apparent_size_px) +
       ',' + NumberText(r.distance_m) + ',' + ToString(r.status) + ',' +
-      std::to_string(r.hypotheses) + ',' + Optional(r.errors.position_error_m) + ',' +
-      Optional(r.errors.rotation_error_deg) + ',' + Optional(r.errors.best_position_error_m) + ',' +
-      Optional(r.errors.best_rotation_error_deg) + ',' + (r.errors.flip ? "1" : "0");
+      std::to_string(r.hypotheses) + ',' + NumberTextOrEmpty(r.errors.position_error_m) + ',' +
+      NumberTextOrEmpty(r.errors.rotation_error_deg) + ',' +
+      NumberTextOrEmpty(r.errors.best_position_error_m) + ',' +
+      NumberTextOrEmpty(r.errors.best_rotation_error_deg) + ',' + (r.errors.flip ? "1" : "0");
   out += PoseFields(r.truth) + (r.estimate ? PoseFields(*r.estimate) : std::string(12, ','));
   return out + ',' + CsvField(r.message) + '\n';
 }

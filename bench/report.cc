@@ -1,7 +1,6 @@
 #include "bench/report.h"
 
 #include <cmath>
-#include <cstdio>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -10,6 +9,7 @@
 #include "bench/manifest.h"
 #include "bench/progress.h"
 #include "bench/reproduction_table.h"
+#include "core/number_text.h"
 #include "core/yaml_reader.h"
 
 namespace fs = std::filesystem;
@@ -61,14 +61,7 @@ std::vector<ScenarioResults> ReadResults(const std::string& dir) {
   return results;
 }
 
-std::string Fixed(double value, const char* format) {
-  if (std::isnan(value)) return "-";
-  char text[32];
-  std::snprintf(text, sizeof(text), format, value);
-  return text;
-}
-
-std::string Percent(double rate) { return Fixed(100.0 * rate, "%.0f%%"); }
+std::string Percent(double rate) { return FormattedOrDash(100.0 * rate, "%.0f%%"); }
 
 // (tracker, marker) pairs of one scenario, in order of appearance.
 std::vector<std::pair<std::string, std::string>> SeriesNames(const std::vector<SummaryRow>& rows,
@@ -100,7 +93,7 @@ std::string ScenarioSection(const std::string& scenario,
     if (entry.contains("wall_s")) {
       md += " Ran " + std::to_string(entry.value("frames", 0)) + " frames in " +
             DurationText(entry["wall_s"].get<double>()) + " (" +
-            Fixed(entry["frames_per_s"].get<double>(), "%.1f") + " frames/s, " +
+            FormattedOrDash(entry["frames_per_s"].get<double>(), "%.1f") + " frames/s, " +
             std::to_string(entry.value("threads", 0)) + " threads).";
     }
     md += "\n\n";
@@ -116,7 +109,8 @@ std::string ScenarioSection(const std::string& scenario,
   for (const auto& [tracker, marker] : SeriesNames(summary, scenario)) {
     const std::optional<double> b =
         BreakdownValue(SeriesOf(summary, scenario, tracker, marker), options);
-    md += "| " + tracker + " | " + marker + " | " + (b ? Fixed(*b, "%g") : "none") + " |\n";
+    md +=
+        "| " + tracker + " | " + marker + " | " + (b ? FormattedOrDash(*b, "%g") : "none") + " |\n";
   }
   md += "\n| " + parameter + " | tracker | n | size (px) | detected | success" +
         " | median pos. err (mm) | mean (mm) | p90 (mm) | median rot. err (°)" +
@@ -124,14 +118,15 @@ std::string ScenarioSection(const std::string& scenario,
         "|---|---|---|---|---|---|---|---|---|---|---|---|---|\n";
   for (const SummaryRow& r : summary) {
     if (r.scenario != scenario) continue;
-    md += "| " + Fixed(r.sweep_value, "%g") + " | " + r.tracker + " | " + std::to_string(r.n) +
-          " | " + Fixed(r.apparent_size_median_px, "%.0f") + " | " + Percent(r.detection_rate) +
-          " | " + Percent(r.success_rate) + " | " + Fixed(1e3 * r.position_error_median_m, "%.2f") +
-          " | " + Fixed(1e3 * r.position_error_mean_m, "%.2f") + " | " +
-          Fixed(1e3 * r.position_error_p90_m, "%.2f") + " | " +
-          Fixed(r.rotation_error_median_deg, "%.2f") + " | " +
-          Fixed(1e3 * r.best_position_error_median_m, "%.2f") + " | " + Percent(r.flip_rate) +
-          " | " + Fixed(r.time_median_ms, "%.2f") + " |\n";
+    md += "| " + FormattedOrDash(r.sweep_value, "%g") + " | " + r.tracker + " | " +
+          std::to_string(r.n) + " | " + FormattedOrDash(r.apparent_size_median_px, "%.0f") + " | " +
+          Percent(r.detection_rate) + " | " + Percent(r.success_rate) + " | " +
+          FormattedOrDash(1e3 * r.position_error_median_m, "%.2f") + " | " +
+          FormattedOrDash(1e3 * r.position_error_mean_m, "%.2f") + " | " +
+          FormattedOrDash(1e3 * r.position_error_p90_m, "%.2f") + " | " +
+          FormattedOrDash(r.rotation_error_median_deg, "%.2f") + " | " +
+          FormattedOrDash(1e3 * r.best_position_error_median_m, "%.2f") + " | " +
+          Percent(r.flip_rate) + " | " + FormattedOrDash(r.time_median_ms, "%.2f") + " |\n";
   }
   return md + "\n";
 }
@@ -152,8 +147,8 @@ std::string EnvironmentSection(const nlohmann::json& manifest) {
     frames += entry.value("frames", 0.0);
   }
   if (wall_s > 0.0) {
-    md += ": " + Fixed(frames, "%.0f") + " frames in " + DurationText(wall_s) + " (" +
-          Fixed(frames / wall_s, "%.1f") + " frames/s)";
+    md += ": " + FormattedOrDash(frames, "%.0f") + " frames in " + DurationText(wall_s) + " (" +
+          FormattedOrDash(frames / wall_s, "%.1f") + " frames/s)";
   }
   return md + ". Details: `manifest.json`.\n\n";
 }

@@ -1,9 +1,9 @@
 #include "bench/reproduction_table.h"
 
 #include <cmath>
-#include <cstdio>
 
 #include "bench/metrics.h"
+#include "core/number_text.h"
 
 namespace markerbench {
 namespace {
@@ -73,12 +73,6 @@ constexpr Claim kClaims[] = {
     {"circle method speed", "about 10 ms per frame", "", "circle", ClaimKind::kSpeed, 10.0},
 };
 
-std::string Number(double v) {
-  char text[32];
-  std::snprintf(text, sizeof(text), "%g", v);
-  return text;
-}
-
 // The rows of the first marker `tracker` ran on in `scenario`, in sweep order.
 std::vector<SummaryRow> Series(const std::vector<SummaryRow>& summary,
                                const std::string& scenario,
@@ -111,10 +105,10 @@ ClaimResult Check(const Claim& c,
       return out;
     }
     const double apriltag_ms = MedianTime(summary, "apriltag");
-    out.measured = Number(ms) + " ms per frame (median)";
+    out.measured = FormattedOrDash(ms, "%g") + " ms per frame (median)";
     if (!std::isnan(apriltag_ms)) {
-      out.measured += ", " + Number(apriltag_ms / ms) + "× the speed of AprilTag (" +
-                      Number(apriltag_ms) + " ms)";
+      out.measured += ", " + FormattedOrDash(apriltag_ms / ms, "%g") + "× the speed of AprilTag (" +
+                      FormattedOrDash(apriltag_ms, "%g") + " ms)";
     }
     out.verdict = ms <= c.value ? "faster" : "slower";
     return out;
@@ -127,8 +121,9 @@ ClaimResult Check(const Claim& c,
   const std::string parameter = series.front().sweep_parameter;
   const std::optional<double> breakdown = BreakdownValue(series, options);
   const std::string at =
-      breakdown ? "breaks down at " + parameter + " = " + Number(*breakdown)
-                : "no breakdown up to " + parameter + " = " + Number(series.back().sweep_value);
+      breakdown ? "breaks down at " + parameter + " = " + FormattedOrDash(*breakdown, "%g")
+                : "no breakdown up to " + parameter + " = " +
+                      FormattedOrDash(series.back().sweep_value, "%g");
   out.measured = at;
   switch (c.kind) {
     case ClaimKind::kNoBreakdown:

@@ -12,8 +12,6 @@ namespace {
 
 using GroupKey = std::tuple<std::string, std::string, std::string, double>;
 
-std::string Optional(double value) { return std::isnan(value) ? "" : NumberText(value); }
-
 }  // namespace
 
 std::vector<SummaryRow> Summarize(const std::vector<FrameRow>& rows,
@@ -111,10 +109,12 @@ std::string SummaryCsv(const std::vector<SummaryRow>& rows) {
     csv += r.scenario + ',' + r.sweep_parameter + ',' + NumberText(r.sweep_value) + ',' +
            r.tracker + ',' + r.marker + ',' + std::to_string(r.n) + ',' +
            NumberText(r.apparent_size_median_px) + ',' + NumberText(r.detection_rate) + ',' +
-           NumberText(r.success_rate) + ',' + Optional(r.position_error_median_m) + ',' +
-           Optional(r.position_error_mean_m) + ',' + Optional(r.position_error_p90_m) + ',' +
-           Optional(r.rotation_error_median_deg) + ',' + Optional(r.best_position_error_median_m) +
-           ',' + Optional(r.flip_rate) + ',' + Optional(r.time_median_ms) + '\n';
+           NumberText(r.success_rate) + ',' + NumberTextOrEmpty(r.position_error_median_m) + ',' +
+           NumberTextOrEmpty(r.position_error_mean_m) + ',' +
+           NumberTextOrEmpty(r.position_error_p90_m) + ',' +
+           NumberTextOrEmpty(r.rotation_error_median_deg) + ',' +
+           NumberTextOrEmpty(r.best_position_error_median_m) + ',' +
+           NumberTextOrEmpty(r.flip_rate) + ',' + NumberTextOrEmpty(r.time_median_ms) + '\n';
   }
   return csv;
 }

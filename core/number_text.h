@@ -1,7 +1,8 @@
-// Numbers as text for CSV files and manifests: the shortest "%.{15,16,17}g" form that reads
+// Numbers as text. For CSV files and manifests: the shortest "%.{15,16,17}g" form that reads
 // back to the same double, independent of locale and thread count.
 #pragma once
 
+#include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <string>
@@ -15,6 +16,19 @@ inline std::string NumberText(double value) {
     if (std::strtod(buffer, nullptr) == value) return buffer;
   }
   std::snprintf(buffer, sizeof(buffer), "%.17g", value);
+  return buffer;
+}
+
+// An empty CSV field for NaN (no value), else NumberText.
+inline std::string NumberTextOrEmpty(double value) {
+  return std::isnan(value) ? std::string() : NumberText(value);
+}
+
+// `value` through a printf `format` for reports and tables; "-" for NaN (no value).
+inline std::string FormattedOrDash(double value, const char* format) {
+  if (std::isnan(value)) return "-";
+  char buffer[64];
+  std::snprintf(buffer, sizeof(buffer), format, value);
   return buffer;
 }
 
