@@ -8,7 +8,7 @@
 #include <sstream>
 
 #include "bench/frames_csv.h"
-#include "bench/reproduction_table.h"
+#include "core/file_bytes.h"
 #include "core/yaml_reader.h"
 
 namespace markerbench {
@@ -49,13 +49,6 @@ FrameRow Row(const std::string& scenario,
     r.errors = {error_m, 0.0, error_m, 0.0, false};
   }
   return r;
-}
-
-std::string ReadText(const std::string& path) {
-  std::ifstream in(path);
-  std::stringstream text;
-  text << in.rdbuf();
-  return text.str();
 }
 
 TEST(FramesCsv, RowsRoundTrip) {
@@ -104,7 +97,7 @@ TEST_F(ReportTest, SummaryOfASyntheticSweep) {
   ReportOptions options;
   options.plots = false;
   WriteReport(dir_, options);
-  std::istringstream summary(ReadText(dir_ + "/summary.csv"));
+  std::istringstream summary(ReadFileBytes(dir_ + "/summary.csv"));
   std::string line;
   std::getline(summary, line);  // header
   // scenario .. marker, then n, median apparent size, detection, success, median / mean / p90
@@ -126,7 +119,7 @@ TEST_F(ReportTest, SummaryOfASyntheticSweep) {
   }
   EXPECT_FALSE(std::getline(summary, line));
 
-  const std::string report = ReadText(dir_ + "/report.md");
+  const std::string report = ReadFileBytes(dir_ + "/report.md");
   // Breakdown: the first value under 50% success is 0.2, the paper says "fails above 0.18".
   EXPECT_THAT(report, HasSubstr("| apriltag | tag | 0.2 |"));
   EXPECT_THAT(report,
@@ -134,7 +127,7 @@ TEST_F(ReportTest, SummaryOfASyntheticSweep) {
                         "| agrees |"));
   EXPECT_THAT(report, HasSubstr("not run: no `artkplus` rows in `fig6_noise`"));
   EXPECT_THAT(report, HasSubstr("| 0.18 | apriltag | 5 | 60 | 80% | 60% | 70.00 |"));
-  EXPECT_THAT(ReadText(dir_ + "/manifest.json"),
+  EXPECT_THAT(ReadFileBytes(dir_ + "/manifest.json"),
               HasSubstr("\"success_position_fraction_of_distance\": 0.1"));
 }
 
@@ -143,7 +136,7 @@ TEST_F(ReportTest, StricterSuccessMovesTheBreakdown) {
   options.plots = false;
   options.summary.success_fraction = 0.045;  // 0.1: 4 of 5 succeed; 0.18: 1 of 5
   WriteReport(dir_, options);
-  EXPECT_THAT(ReadText(dir_ + "/report.md"), HasSubstr("| apriltag | tag | 0.18 |"));
+  EXPECT_THAT(ReadFileBytes(dir_ + "/report.md"), HasSubstr("| apriltag | tag | 0.18 |"));
 }
 
 TEST_F(ReportTest, MisalignedTimingIsAnError) {
