@@ -1,0 +1,63 @@
+#include "trackers/circle/circle_geometry.h"
+
+#include <cmath>
+
+namespace markerbench {
+
+std::optional<CircleGeometry> CircleGeometryOf(const MarkerSpec& marker, std::string* error) {
+  CircleGeometry geometry;
+  switch (marker.kind) {
+    case MarkerKind::kCirclesA:
+    case MarkerKind::kCirclesB:
+      geometry.layout = CircleLayout::kTwoCircles;
+      break;
+    case MarkerKind::kCirclesC:
+      geometry.layout = CircleLayout::kConcentric;
+      break;
+    case MarkerKind::kCircleD:
+      geometry.layout = CircleLayout::kCircleWithCenter;
+      break;
+    default:
+      if (error)
+        *error = std::string(
+                     "the circle tracker supports circles_a, circles_b, circles_c "
+                     "and circle_d, not ") +
+                 ToString(marker.kind);
+      return std::nullopt;
+  }
+  const size_t expected_circles = geometry.layout == CircleLayout::kCircleWithCenter ? 1 : 2;
+  if (marker.circles.size() != expected_circles || marker.keypoints.size() < 2) {
+    if (error) *error = std::string("malformed ") + ToString(marker.kind) + " marker";
+    return std::nullopt;
+  }
+  // Paper frame: origin at m0, +X along m0 -> m1, same plane normal (a rotation about z).
+  const Eigen::Vector2d m0 = marker.keypoints[0];
+  const Eigen::Vector2d axis = marker.keypoints[1] - m0;
+  geometry.Lx = axis.norm();
+  if (!(geometry.Lx > 0.0)) {
+    if (error) *error = "m0 and m1 coincide";
+    return std::nullopt;
+  }
+  const Eigen::Vector2d x = axis / geometry.Lx;
+  Eigen::Matrix2d marker_from_paper_2d;
+  marker_from_paper_2d << x.x(), -x.y(), x.y(), x.x();
+  geometry.marker_from_paper.rotation.topLeftCorner<2, 2>() = marker_from_paper_2d;
+  geometry.marker_from_paper.translation << m0, 0.0;
+  for (size_t i = 0; i < marker.circles.size(); ++i) {
+    const Eigen::Vector2d center =
+        marker_from_paper_2d.transpose() * (marker.circles[i].center - m0);
+    geometry.centers.push_back(center);
+    geometry.radii_m.push_back(marker.circles[i].radius_m);
+    const double tolerance = 1e-9 * geometry.Lx;
+    if (i > 0 && (center - Eigen::Vector2d(geometry.Lx, 0.0)).norm() <= tolerance) {
+      geometry.m1_circle = static_cast<int>(i);
+    }
+  }
+  if (geometry.centers[0].norm() > 1e-9 * geometry.Lx) {
+    if (error) *error = "the first circle must be centred at m0";
+    return std::nullopt;
+  }
+  return geometry;
+}
+
+}  // namespace markerbench

@@ -1,0 +1,38 @@
+// The geometry a circle tracker needs, read from a MarkerSpec (markers a-d of the paper's
+// Fig. 3) and expressed in the paper's frame: origin at m0, +X towards m1, +Z towards the
+// camera (circle-method.md §0). `marker_from_paper` maps it back to the marker file's frame,
+// so poses are reported in the frame of the YAML even where the two differ.
+#pragma once
+
+#include <Eigen/Core>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "core/marker_spec.h"
+#include "core/rigid3.h"
+
+namespace markerbench {
+
+// How l_inf and m0 are found (§4).
+enum class CircleLayout {
+  kTwoCircles,        // (a), (b): the pencil of two separate circles (§4.3)
+  kConcentric,        // (c): two concentric circles (§4.4)
+  kCircleWithCenter,  // (d): one circle and its detected centre dot (§4.5)
+};
+
+struct CircleGeometry {
+  CircleLayout layout = CircleLayout::kTwoCircles;
+  std::vector<Eigen::Vector2d> centers;  // paper frame; centers[0] = m0 = origin
+  std::vector<double> radii_m;
+  double Lx = 0.0;  // paper frame distance from m0 to m1 (§5.4)
+  // Index of a circle centred at m1, whose imaged centre (a pole) then gives m1; -1 when m1 is
+  // a detected feature point.
+  int m1_circle = -1;
+  Rigid3 marker_from_paper;
+};
+
+// nullopt (with `error` set) for markers other than circles_a/b/c and circle_d.
+std::optional<CircleGeometry> CircleGeometryOf(const MarkerSpec& marker, std::string* error);
+
+}  // namespace markerbench

@@ -1,0 +1,195 @@
+#include "trackers/circle/pose_refinement.h"
+
+#include <ceres/ceres.h>
+#include <ceres/rotation.h>
+
+#include <cmath>
+
+#include "trackers/circle/conic.h"
+
+namespace markerbench {
+namespace {
+
+// Huber's ρ applied inside the residual: r̃ = sign(r) sqrt(ρ(r²)), so ½ Σ r̃² is the Huber cost
+// and every edge point can share one residual block per circle.
+template <typename T>
+T Robust(const T& r, double huber) {
+  using std::abs;
+  using std::sqrt;
+  if (huber <= 0.0 || abs(r) <= T(huber)) return r;
+  const T scaled = sqrt(T(2.0 * huber) * abs(r) - T(huber * huber));
+  return r < T(0) ? -scaled : scaled;
+}
+
+template <typename T>
+Eigen::Matrix<T, 3, 3> RotationOf(const T* angle_axis) {
+  Eigen::Matrix<T, 3, 3> R;
+  ceres::AngleAxisToRotationMatrix(angle_axis, ceres::ColumnMajorAdapter3x3(R.data()));
+  return R;
+}
+
+// Cost B for one circle: PND distance of each edge point to the projected circle.
+struct EdgeCost {
+  EdgeCost(const Eigen::Matrix3d& K, const RefinementCircle& circle, double huber)
+      : K_(K), circle_(circle), huber_(huber) {}
+  template <typename T>
+  bool operator()(T const* const* parameters, T* residuals) const {
+    const Eigen::Matrix<T, 3, 3> R = RotationOf(parameters[0]);
+    Eigen::Matrix<T, 3, 3> Rt;
+    Rt.col(0) = R.col(0);
+    Rt.col(1) = R.col(1);
+    Rt.col(2) << parameters[1][0], parameters[1][1], parameters[1][2];
+    const Eigen::Matrix<T, 3, 3> H = K_.cast<T>() * Rt;
+    Eigen::Matrix<T, 3, 3> C = ImageOfCircle<T>(H, circle_.center, circle_.radius_m);
+    // Scale C to unit Frobenius norm: the PND distance ignores it, but Jets stay well scaled.
+    C /= C.norm();
+    for (size_t j = 0; j < circle_.edge_points_px.size(); ++j) {
+      const Eigen::Vector2d& x = circle_.edge_points_px[j];
+      residuals[j] = Robust(PndResidual<T>(C, T(x.x()), T(x.y())), huber_);
+    }
+    return true;
+  }
+  Eigen::Matrix3d K_;
+  const RefinementCircle& circle_;
+  double huber_;
+};
+
+// Cost A for one circle (eq. 19): projected model points against the fitted conic.
+struct ModelPointCost {
+  ModelPointCost(const Eigen::Matrix3d& K, const RefinementCircle& circle, int n, double huber)
+      : K_(K), conic_(CanonicalConic(circle.conic_px)), huber_(huber) {
+    for (int k = 0; k < n; ++k) {
+      const double theta = 2.0 * M_PI * k / n;
+      points_.emplace_back(circle.center.x() + circle.radius_m * std::cos(theta),
+                           circle.center.y() + circle.radius_m * std::sin(theta),
+                           0.0);
+    }
+  }
+  template <typename T>
+  bool operator()(T const* const* parameters, T* residuals) const {
+    const Eigen::Matrix<T, 3, 3> R = RotationOf(parameters[0]);
+    const Eigen::Matrix<T, 3, 1> t(parameters[1][0], parameters[1][1], parameters[1][2]);
+    const Eigen::Matrix<T, 3, 3> C = conic_.cast<T>();
+    for (size_t k = 0; k < points_.size(); ++k) {
+      const Eigen::Matrix<T, 3, 1> p = K_.cast<T>() * (R * points_[k].cast<T>() + t);
+      residuals[k] = Robust(PndResidual<T>(C, p.x() / p.z(), p.y() / p.z()), huber_);
+    }
+    return true;
+  }
+  Eigen::Matrix3d K_;
+  Eigen::Matrix3d conic_;
+  std::vector<Eigen::Vector3d> points_;
+  double huber_;
+};
+
+// Weighted reprojection of one marker point (§6, point terms).
+struct PointCost {
+  PointCost(const Eigen::Matrix3d& K, const RefinementPoint& point, double weight, double huber)
+      : K_(K), point_(point), weight_(weight), huber_(huber) {}
+  template <typename T>
+  bool operator()(const T* angle_axis, const T* translation, T* residuals) const {
+    const Eigen::Matrix<T, 3, 3> R = RotationOf(angle_axis);
+    const Eigen::Matrix<T, 3, 1> X(T(point_.marker_xy.x()), T(point_.marker_xy.y()), T(0));
+    const Eigen::Matrix<T, 3, 1> p =
+        K_.cast<T>() *
+        (R * X + Eigen::Matrix<T, 3, 1>(translation[0], translation[1], translation[2]));
+    residuals[0] = Robust(T(weight_) * (p.x() / p.z() - T(point_.observed_px.x())), huber_);
+    residuals[1] = Robust(T(weight_) * (p.y() / p.z() - T(point_.observed_px.y())), huber_);
+    return true;
+  }
+  Eigen::Matrix3d K_;
+  RefinementPoint point_;
+  double weight_;
+  double huber_;
+};
+
+template <typename Functor>
+ceres::CostFunction* PerCircleCost(Functor* functor, int num_residuals) {
+  auto* cost = new ceres::DynamicAutoDiffCostFunction<Functor, 6>(functor);
+  cost->AddParameterBlock(3);
+  cost->AddParameterBlock(3);
+  cost->SetNumResiduals(num_residuals);
+  return cost;
+}
+
+}  // namespace
+
+const char* ToString(RefinementCost cost) {
+  return cost == RefinementCost::kConics ? "conics" : "edges";
+}
+
+bool RefinementOptions::IsValid(std::string* error) const {
+  auto fail = [error](const std::string& message) {
+    if (error) *error = message;
+    return false;
+  };
+  if (!(huber_px >= 0.0)) return fail("huber_px must be >= 0, got " + std::to_string(huber_px));
+  if (!(point_weight >= 0.0))
+    return fail("point_weight must be >= 0, got " + std::to_string(point_weight));
+  if (model_points < 8)
+    return fail("model_points must be >= 8, got " + std::to_string(model_points));
+  if (max_iterations < 1)
+    return fail("max_iterations must be >= 1, got " + std::to_string(max_iterations));
+  return true;
+}
+
+RefinementResult RefinePose(const RefinementProblem& problem,
+                            const Rigid3& cam_from_paper,
+                            const RefinementOptions& options) {
+  double angle_axis[3];
+  ceres::RotationMatrixToAngleAxis(ceres::ColumnMajorAdapter3x3(cam_from_paper.rotation.data()),
+                                   angle_axis);
+  double translation[3] = {cam_from_paper.translation.x(),
+                           cam_from_paper.translation.y(),
+                           cam_from_paper.translation.z()};
+
+  ceres::Problem ceres_problem;
+  for (const RefinementCircle& circle : problem.circles) {
+    if (options.cost == RefinementCost::kEdges) {
+      if (circle.edge_points_px.empty()) continue;
+      ceres_problem.AddResidualBlock(
+          PerCircleCost(new EdgeCost(problem.K, circle, options.huber_px),
+                        static_cast<int>(circle.edge_points_px.size())),
+          nullptr,
+          angle_axis,
+          translation);
+    } else {
+      ceres_problem.AddResidualBlock(
+          PerCircleCost(
+              new ModelPointCost(problem.K, circle, options.model_points, options.huber_px),
+              options.model_points),
+          nullptr,
+          angle_axis,
+          translation);
+    }
+  }
+  for (const RefinementPoint& point : problem.points) {
+    ceres_problem.AddResidualBlock(
+        new ceres::AutoDiffCostFunction<PointCost, 2, 3, 3>(
+            new PointCost(problem.K, point, options.point_weight, options.huber_px)),
+        nullptr,
+        angle_axis,
+        translation);
+  }
+
+  ceres::Solver::Options solver;
+  solver.linear_solver_type = ceres::DENSE_QR;
+  solver.max_num_iterations = options.max_iterations;
+  solver.num_threads = 1;
+  solver.logging_type = ceres::SILENT;
+  ceres::Solver::Summary summary;
+  ceres::Solve(solver, &ceres_problem, &summary);
+
+  RefinementResult result;
+  ceres::AngleAxisToRotationMatrix(
+      angle_axis, ceres::ColumnMajorAdapter3x3(result.cam_from_paper.rotation.data()));
+  result.cam_from_paper.translation =
+      Eigen::Vector3d(translation[0], translation[1], translation[2]);
+  result.iterations = static_cast<int>(summary.iterations.size()) - 1;
+  result.initial_cost = summary.initial_cost;
+  result.final_cost = summary.final_cost;
+  result.converged = summary.termination_type == ceres::CONVERGENCE;
+  return result;
+}
+
+}  // namespace markerbench
