@@ -3,6 +3,7 @@
 #include "core/yaml_reader.h"
 #include "trackers/apriltag/apriltag_tracker.h"
 #include "trackers/aruco/aruco_tracker.h"
+#include "trackers/circle/circle_tracker.h"
 
 namespace markerbench {
 namespace {
@@ -15,7 +16,7 @@ Options ReadOptions(const YamlMap* map) {
 
 }  // namespace
 
-std::vector<std::string> TrackerNames() { return {"apriltag", "apriltag-ippe", "aruco"}; }
+std::vector<std::string> TrackerNames() { return {"apriltag", "apriltag-ippe", "aruco", "circle"}; }
 
 std::unique_ptr<Tracker> MakeTracker(const std::string& name, const YamlMap* options) {
   if (name == "apriltag" || name == "apriltag-ippe") {
@@ -23,6 +24,7 @@ std::unique_ptr<Tracker> MakeTracker(const std::string& name, const YamlMap* opt
                                name == "apriltag" ? AprilTagPose::kNative : AprilTagPose::kIppe);
   }
   if (name == "aruco") return MakeArucoTracker(ReadOptions<ArucoOptions>(options));
+  if (name == "circle") return MakeCircleTracker(ReadOptions<CircleTrackerOptions>(options));
   std::string names;
   for (const std::string& n : TrackerNames()) names += (names.empty() ? "" : ", ") + n;
   throw ConfigError("unknown tracker '" + name + "'; available: " + names);

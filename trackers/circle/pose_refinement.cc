@@ -4,6 +4,7 @@
 #include <ceres/rotation.h>
 
 #include <cmath>
+#include <sstream>
 
 #include "trackers/circle/conic.h"
 
@@ -119,18 +120,20 @@ const char* ToString(RefinementCost cost) {
 }
 
 bool RefinementOptions::IsValid(std::string* error) const {
-  auto fail = [error](const std::string& message) {
-    if (error) *error = message;
-    return false;
-  };
-  if (!(huber_px >= 0.0)) return fail("huber_px must be >= 0, got " + std::to_string(huber_px));
-  if (!(point_weight >= 0.0))
-    return fail("point_weight must be >= 0, got " + std::to_string(point_weight));
-  if (model_points < 8)
-    return fail("model_points must be >= 8, got " + std::to_string(model_points));
-  if (max_iterations < 1)
-    return fail("max_iterations must be >= 1, got " + std::to_string(max_iterations));
-  return true;
+  std::ostringstream msg;
+  if (!(huber_px >= 0.0)) {
+    msg << "huber_px=" << huber_px << " must be >= 0";
+  } else if (!(point_weight >= 0.0)) {
+    msg << "point_weight=" << point_weight << " must be >= 0";
+  } else if (model_points < 8) {
+    msg << "model_points=" << model_points << " must be >= 8";
+  } else if (max_iterations < 1) {
+    msg << "max_iterations=" << max_iterations << " must be >= 1";
+  } else {
+    return true;
+  }
+  if (error) *error = msg.str();
+  return false;
 }
 
 RefinementResult RefinePose(const RefinementProblem& problem,

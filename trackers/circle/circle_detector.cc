@@ -1,0 +1,441 @@
+#include "trackers/circle/circle_detector.h"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <limits>
+#include <map>
+#include <opencv2/imgproc.hpp>
+#include <sstream>
+
+#include "trackers/circle/conic.h"
+
+namespace markerbench {
+namespace {
+
+// A thresholded blob whose outline is close to an ellipse.
+struct Hole {
+  double area_px = 0.0;
+  Eigen::Vector2d centroid = Eigen::Vector2d::Zero();
+  std::optional<Eigen::Matrix3d> conic;
+};
+struct Candidate {
+  Eigen::Matrix3d conic = Eigen::Matrix3d::Zero();
+  Ellipse ellipse;
+  double area_px = 0.0;
+  Eigen::Vector2d centroid = Eigen::Vector2d::Zero();
+  std::vector<Hole> holes;
+};
+
+std::vector<Eigen::Vector2d> ToPoints(const std::vector<cv::Point>& contour) {
+  std::vector<Eigen::Vector2d> points;
+  points.reserve(contour.size());
+  for (const cv::Point& p : contour) points.emplace_back(p.x, p.y);
+  return points;
+}
+
+Eigen::Vector2d Centroid(const std::vector<cv::Point>& contour) {
+  const cv::Moments m = cv::moments(contour);
+  if (m.m00 <= 0.0) return ToPoints(contour).front();
+  return {m.m10 / m.m00, m.m01 / m.m00};
+}
+
+// Robust noise σ (0-1 units) from the median absolute horizontal difference, every other row.
+double EstimateNoiseSigma(const cv::Mat& channel) {
+  std::array<int, 256> histogram{};
+  int count = 0;
+  for (int y = 0; y < channel.rows; y += 2) {
+    const uint8_t* row = channel.ptr<uint8_t>(y);
+    for (int x = 1; x < channel.cols; ++x) {
+      ++histogram[std::abs(row[x] - row[x - 1])];
+      ++count;
+    }
+  }
+  int seen = 0, median = 0;
+  while (median < 255 && (seen += histogram[median]) < (count + 1) / 2) ++median;
+  return 1.4826 * median / std::sqrt(2.0) / 255.0;
+}
+
+struct Threshold {
+  double paper = 0.0;  // level of the paper
+  double level = 0.0;  // between paper and the most extreme ink
+  double contrast = 0.0;
+};
+
+Threshold FindThreshold(const cv::Mat& smoothed, bool ink_dark) {
+  std::array<int, 256> histogram{};
+  for (int y = 0; y < smoothed.rows; ++y) {
+    const uint8_t* row = smoothed.ptr<uint8_t>(y);
+    for (int x = 0; x < smoothed.cols; ++x) ++histogram[row[x]];
+  }
+  const int total = smoothed.rows * smoothed.cols;
+  int seen = 0, median = 0;
+  while (median < 255 && (seen += histogram[median]) < (total + 1) / 2) ++median;
+  int extreme = ink_dark ? 0 : 255;
+  while (histogram[extreme] == 0 && extreme != median) extreme += ink_dark ? 1 : -1;
+  Threshold t;
+  t.paper = median;
+  t.level = 0.5 * (median + extreme);
+  t.contrast = std::abs(median - extreme) / 255.0;
+  return t;
+}
+
+bool TouchesBorder(const cv::Rect& box, const cv::Size& size) {
+  return box.x <= 0 || box.y <= 0 || box.x + box.width >= size.width ||
+         box.y + box.height >= size.height;
+}
+
+// Ellipse hypothesis for a contour, if its outline is close enough to one.
+std::optional<Eigen::Matrix3d> OutlineEllipse(const std::vector<cv::Point>& contour,
+                                              double area_px,
+                                              const CircleDetectorOptions& options) {
+  if (contour.size() < 6) return std::nullopt;
+  const std::vector<Eigen::Vector2d> points = ToPoints(contour);
+  ConicFitOptions direct;
+  direct.refine_pnd = false;
+  const std::optional<ConicFit> fit = FitEllipse(points, direct);
+  if (!fit) return std::nullopt;
+  const Ellipse e = EllipseFromConic(fit->conic);
+  const double ellipse_area = M_PI * e.semi_major * e.semi_minor;
+  // Contour pixels sit half a pixel inside the region's outline.
+  const double outline_area = M_PI * (e.semi_major + 0.5) * (e.semi_minor + 0.5);
+  if (!(area_px > 0.6 * ellipse_area && area_px < 1.25 * outline_area)) return std::nullopt;
+  if (fit->rms_px > options.max_outline_rms_px + 0.08 * e.semi_minor) return std::nullopt;
+  return fit->conic;
+}
+
+std::vector<Candidate> FindCandidates(const cv::Mat& smoothed,
+                                      bool ink_dark,
+                                      const Threshold& threshold,
+                                      const CircleDetectorOptions& options) {
+  cv::Mat binary;
+  cv::threshold(
+      smoothed, binary, threshold.level, 255, ink_dark ? cv::THRESH_BINARY_INV : cv::THRESH_BINARY);
+  std::vector<std::vector<cv::Point>> contours;
+  std::vector<cv::Vec4i> hierarchy;
+  cv::findContours(binary, contours, hierarchy, cv::RETR_CCOMP, cv::CHAIN_APPROX_NONE);
+  std::vector<Candidate> candidates;
+  for (size_t i = 0; i < contours.size(); ++i) {
+    if (hierarchy[i][3] >= 0) continue;  // a hole; handled with its parent
+    const double area = cv::contourArea(contours[i]);
+    if (area < options.min_area_px) continue;
+    if (TouchesBorder(cv::boundingRect(contours[i]), smoothed.size())) continue;
+    const std::optional<Eigen::Matrix3d> conic = OutlineEllipse(contours[i], area, options);
+    if (!conic) continue;
+    Candidate c;
+    c.conic = *conic;
+    c.ellipse = EllipseFromConic(*conic);
+    c.area_px = area;
+    c.centroid = Centroid(contours[i]);
+    for (int h = hierarchy[i][2]; h >= 0; h = hierarchy[h][0]) {
+      Hole hole;
+      hole.area_px = cv::contourArea(contours[h]);
+      hole.centroid = Centroid(contours[h]);
+      hole.conic = OutlineEllipse(contours[h], hole.area_px, options);
+      c.holes.push_back(hole);
+    }
+    candidates.push_back(std::move(c));
+  }
+  std::sort(candidates.begin(), candidates.end(), [](const Candidate& a, const Candidate& b) {
+    return a.area_px > b.area_px;
+  });
+  return candidates;
+}
+
+double Luma(const Rgb& c) { return 0.299 * c.x() + 0.587 * c.y() + 0.114 * c.z(); }
+
+// Pixels per metre near a candidate, from its minor axis (the smaller, conservative scale).
+double PixelsPerMetre(const Ellipse& e, double radius_m) { return e.semi_minor / radius_m; }
+
+// The hole nearest `where` within `max_distance`, with area in [min_area, max_area].
+const Hole* FindHole(const Candidate& c,
+                     const Eigen::Vector2d& where,
+                     double max_distance,
+                     double min_area,
+                     double max_area) {
+  const Hole* best = nullptr;
+  double best_distance = max_distance;
+  for (const Hole& h : c.holes) {
+    const double d = (h.centroid - where).norm();
+    if (h.area_px >= min_area && h.area_px <= max_area && d <= best_distance) {
+      best = &h;
+      best_distance = d;
+    }
+  }
+  return best;
+}
+
+}  // namespace
+
+bool CircleDetectorOptions::IsValid(std::string* error) const {
+  std::ostringstream msg;
+  if (!(smoothing_min_px > 0.0)) {
+    msg << "smoothing_min_px=" << smoothing_min_px << " must be > 0";
+  } else if (!(smoothing_max_px >= smoothing_min_px)) {
+    msg << "smoothing_max_px=" << smoothing_max_px << " must be >= smoothing_min_px";
+  } else if (!(smoothing_per_noise >= 0.0)) {
+    msg << "smoothing_per_noise=" << smoothing_per_noise << " must be >= 0";
+  } else if (!(min_contrast > 0.0 && min_contrast < 1.0)) {
+    msg << "min_contrast=" << min_contrast << " must be in (0, 1)";
+  } else if (!(min_area_px >= 5.0)) {
+    msg << "min_area_px=" << min_area_px << " must be >= 5";
+  } else if (!(max_outline_rms_px > 0.0)) {
+    msg << "max_outline_rms_px=" << max_outline_rms_px << " must be > 0";
+  } else if (edge_passes < 1) {
+    msg << "edge_passes=" << edge_passes << " must be >= 1";
+  } else if (edges.max_rays < edges.min_rays || edges.min_rays < 8) {
+    msg << "max_rays=" << edges.max_rays << " must be >= " << std::max(8, edges.min_rays);
+  } else {
+    return true;
+  }
+  if (error) *error = msg.str();
+  return false;
+}
+
+CircleDetector::ChannelPlan CircleDetector::PlanFor(const MarkerSpec& marker, size_t i) const {
+  const Rgb& bg = marker.background;
+  Rgb color = marker.circles[i].color;
+  // A circle painted in the paper colour (the inner circle of c) is the edge of the ink
+  // around it: same channel and polarity as circle 0.
+  if ((color - bg).cwiseAbs().maxCoeff() < 0.1) color = marker.circles[0].color;
+  ChannelPlan plan;
+  if (!needs_color_) {
+    plan.ink_dark = Luma(color) < Luma(bg);
+    return plan;
+  }
+  double best = -std::numeric_limits<double>::infinity();
+  for (int ch = 0; ch < 3; ++ch) {
+    double others = 0.0;
+    for (size_t j = 0; j < marker.circles.size(); ++j) {
+      if (j != i) others = std::max(others, std::abs(bg[ch] - marker.circles[j].color[ch]));
+    }
+    const double score = std::abs(bg[ch] - color[ch]) - others;
+    if (score > best) {
+      best = score;
+      plan.channel = ch;
+      plan.ink_dark = color[ch] < bg[ch];
+    }
+  }
+  return plan;
+}
+
+CircleDetector::CircleDetector(const MarkerSpec& marker,
+                               const CircleGeometry& geometry,
+                               const CircleDetectorOptions& options)
+    : kind_(marker.kind), geometry_(geometry), options_(options), needs_color_(marker.HasColor()) {
+  for (size_t i = 0; i < marker.circles.size(); ++i) plans_.push_back(PlanFor(marker, i));
+  // Ink-free margins around each circle's edge, in the circle's own channel: from every other
+  // painted disk, with a floor so that small dots (which cost a few rays) do not shrink them.
+  for (size_t i = 0; i < marker.circles.size(); ++i) {
+    const Disk& circle = marker.circles[i];
+    double inward = circle.radius_m, outward = std::numeric_limits<double>::infinity();
+    for (const PaintedShape& layer : marker.layers) {
+      const auto* disk = std::get_if<DiskShape>(&layer.shape);
+      if (!disk) continue;
+      const double d = (disk->center - circle.center).norm();
+      if (d < 1e-12 && std::abs(disk->radius - circle.radius_m) < 1e-12) continue;
+      if (needs_color_ &&
+          std::abs(layer.color[plans_[i].channel] - marker.background[plans_[i].channel]) < 0.1)
+        continue;
+      if (d + disk->radius <= circle.radius_m) {
+        inward = std::min(inward, circle.radius_m - d - disk->radius);
+      } else if (d + circle.radius_m <= disk->radius) {
+        outward = std::min(outward, disk->radius - d - circle.radius_m);
+      } else if (d >= circle.radius_m + disk->radius) {
+        outward = std::min(outward, d - circle.radius_m - disk->radius);
+      }
+    }
+    inward_clear_m_.push_back(std::max(inward, 0.3 * circle.radius_m));
+    outward_clear_m_.push_back(std::max(outward, 0.3 * circle.radius_m));
+  }
+  // The dots: every painted disk that is not one of the circles.
+  for (const PaintedShape& layer : marker.layers) {
+    const auto* disk = std::get_if<DiskShape>(&layer.shape);
+    if (!disk) continue;
+    bool is_circle = false;
+    for (const Disk& circle : marker.circles) {
+      is_circle |= (disk->center - circle.center).norm() < 1e-12 &&
+                   std::abs(disk->radius - circle.radius_m) < 1e-12;
+    }
+    if (!is_circle) dot_radius_m_ = std::max(dot_radius_m_, disk->radius);
+  }
+}
+
+std::optional<MarkerDetection> CircleDetector::Detect(const Image8& image,
+                                                      const cv::Rect& roi,
+                                                      std::string* why) const {
+  auto fail = [why](const std::string& message) -> std::optional<MarkerDetection> {
+    if (why) *why = message;
+    return std::nullopt;
+  };
+  if (needs_color_ && image.channels != 3) {
+    return fail(std::string(ToString(kind_)) + " is told apart by colour and needs an RGB image");
+  }
+  const cv::Mat full(image.height,
+                     image.width,
+                     image.channels == 3 ? CV_8UC3 : CV_8UC1,
+                     const_cast<uint8_t*>(image.pixels.data()));
+  const cv::Rect region = roi & cv::Rect(0, 0, image.width, image.height);
+  if (region.width < 8 || region.height < 8) return fail("search region is empty");
+  const cv::Mat view = full(region);
+  const Eigen::Vector2d offset(region.x, region.y);
+
+  // One smoothed image per channel in use, smoothing adapted to the noise.
+  std::map<int, cv::Mat> raw, smoothed;
+  for (const ChannelPlan& plan : plans_) {
+    if (raw.count(plan.channel)) continue;
+    cv::Mat channel;
+    if (view.channels() == 1) {
+      channel = view;
+    } else if (plan.channel < 0) {
+      cv::cvtColor(view, channel, cv::COLOR_RGB2GRAY);
+    } else {
+      cv::extractChannel(view, channel, plan.channel);
+    }
+    raw[plan.channel] = channel;
+  }
+  MarkerDetection detection;
+  detection.noise_sigma = EstimateNoiseSigma(raw.begin()->second);
+  detection.smoothing_sigma_px =
+      std::clamp(options_.smoothing_min_px + options_.smoothing_per_noise * detection.noise_sigma,
+                 options_.smoothing_min_px,
+                 options_.smoothing_max_px);
+  for (const auto& [channel, mat] : raw) {
+    cv::GaussianBlur(mat, smoothed[channel], cv::Size(0, 0), detection.smoothing_sigma_px);
+  }
+
+  std::map<int, std::vector<Candidate>> candidates;
+  for (const ChannelPlan& plan : plans_) {
+    if (candidates.count(plan.channel)) continue;
+    const Threshold threshold = FindThreshold(smoothed[plan.channel], plan.ink_dark);
+    if (threshold.contrast < options_.min_contrast) return fail("no ink in the search region");
+    candidates[plan.channel] =
+        FindCandidates(smoothed[plan.channel], plan.ink_dark, threshold, options_);
+  }
+
+  // Identify the circles: initial ellipses in geometry order, plus the dots.
+  std::vector<Eigen::Matrix3d> initial;
+  const std::vector<double>& r = geometry_.radii_m;
+  switch (geometry_.layout) {
+    case CircleLayout::kTwoCircles: {
+      const std::vector<Candidate>& first = candidates[plans_[0].channel];
+      const std::vector<Candidate>& second = candidates[plans_[1].channel];
+      const double separation = geometry_.centers[1].norm();
+      double best_score = 0.0;
+      for (size_t i = 0; i < first.size(); ++i) {
+        for (size_t j = 0; j < second.size(); ++j) {
+          if (plans_[0].channel == plans_[1].channel && i == j) continue;
+          const Candidate& a = first[i];
+          const Candidate& b = second[j];
+          // Size ratio as designed, up to perspective; centre distance in radii likewise.
+          const double size_ratio = std::sqrt(a.area_px / b.area_px) / (r[0] / r[1]);
+          const double distance_ratio =
+              (a.centroid - b.centroid).norm() / std::sqrt(a.area_px / M_PI) / (separation / r[0]);
+          if (size_ratio < 0.4 || size_ratio > 2.5 || distance_ratio < 0.35 || distance_ratio > 2.5)
+            continue;
+          if (kind_ == MarkerKind::kCirclesB) {
+            // The feature dot lies in the second circle, and only there.
+            const double dot_area = b.area_px * std::pow(dot_radius_m_ / r[1], 2);
+            const Hole* dot =
+                FindHole(b, b.ellipse.center, b.ellipse.semi_major, 0.2 * dot_area, 4.0 * dot_area);
+            if (!dot ||
+                FindHole(a, a.ellipse.center, a.ellipse.semi_major, 0.2 * dot_area, 4.0 * dot_area))
+              continue;
+            if (geometry_.m1_circle < 0) detection.m1_px = dot->centroid + offset;
+          }
+          const double score = std::min(a.area_px, b.area_px);
+          if (score > best_score) {
+            best_score = score;
+            initial = {a.conic, b.conic};
+          }
+        }
+      }
+      if (initial.empty()) return fail("no pair of ellipses matches the marker");
+      break;
+    }
+    case CircleLayout::kConcentric: {
+      for (const Candidate& c : candidates[plans_[0].channel]) {
+        const double inner_area = c.area_px * std::pow(r[1] / r[0], 2);
+        const Hole* inner = FindHole(
+            c, c.ellipse.center, 0.25 * c.ellipse.semi_minor, 0.5 * inner_area, 2.0 * inner_area);
+        if (!inner || !inner->conic) continue;
+        const double dot_area = c.area_px * std::pow(dot_radius_m_ / r[0], 2);
+        const double ring_m = geometry_.Lx;  // the feature dot lies on the ring at Lx
+        const double dot_distance = ring_m * PixelsPerMetre(c.ellipse, r[0]);
+        const Hole* dot = nullptr;
+        for (const Hole& h : c.holes) {
+          if (&h == inner || h.area_px < 0.2 * dot_area || h.area_px > 4.0 * dot_area) continue;
+          const double d = (h.centroid - inner->centroid).norm();
+          if (d > 0.3 * dot_distance && d < 3.0 * dot_distance) dot = &h;
+        }
+        if (!dot) continue;
+        initial = {c.conic, *inner->conic};
+        detection.m1_px = dot->centroid + offset;
+        break;
+      }
+      if (initial.empty()) return fail("no ring with its inner circle and feature dot");
+      break;
+    }
+    case CircleLayout::kCircleWithCenter: {
+      const std::vector<Candidate>& all = candidates[plans_[0].channel];
+      for (const Candidate& c : all) {
+        const double dot_area = c.area_px * std::pow(dot_radius_m_ / r[0], 2);
+        const Hole* center = FindHole(
+            c, c.ellipse.center, 0.3 * c.ellipse.semi_minor, 0.2 * dot_area, 4.0 * dot_area);
+        if (!center) continue;
+        const double expected = geometry_.Lx / r[0] * std::sqrt(c.area_px / M_PI);
+        const Candidate* dot = nullptr;
+        for (const Candidate& other : all) {
+          if (&other == &c || other.area_px < 0.2 * dot_area || other.area_px > 4.0 * dot_area)
+            continue;
+          const double d = (other.centroid - center->centroid).norm();
+          if (d > 0.4 * expected && d < 2.5 * expected && (!dot || other.area_px > dot->area_px)) {
+            dot = &other;
+          }
+        }
+        if (!dot) continue;
+        initial = {c.conic};
+        detection.m0_px = center->centroid + offset;
+        detection.m1_px = dot->centroid + offset;
+        break;
+      }
+      if (initial.empty()) return fail("no disk with its centre dot and feature dot");
+      break;
+    }
+  }
+
+  // Sub-pixel edges and the conic fit, twice: the second pass starts from the first fit.
+  for (size_t i = 0; i < initial.size(); ++i) {
+    const cv::Mat& channel = smoothed[plans_[i].channel];
+    DetectedCircle circle;
+    Eigen::Matrix3d hypothesis = initial[i];
+    double sigma = detection.smoothing_sigma_px + 1.0;
+    for (int pass = 0; pass < options_.edge_passes; ++pass) {
+      const Ellipse e = EllipseFromConic(hypothesis);
+      const double scale = PixelsPerMetre(e, r[i]);
+      const double inward = std::min(0.6 * inward_clear_m_[i] * scale, 0.8 * e.semi_minor);
+      const double outward = 0.6 * outward_clear_m_[i] * scale;
+      circle.edges = FindCircleEdges(channel,
+                                     hypothesis,
+                                     std::max(1.5, inward),
+                                     std::max(1.5, outward),
+                                     sigma,
+                                     options_.edges);
+      if (circle.edges.points_px.size() < 8) return fail("too few edge points on a circle");
+      const std::optional<ConicFit> fit = FitEllipse(circle.edges.points_px, options_.fit);
+      if (!fit) return fail("the edge points of a circle give no ellipse");
+      hypothesis = fit->conic;
+      circle.fit_rms_px = fit->rms_px;
+      sigma = circle.edges.sigma_px;
+    }
+    // Back to full-image pixels: x_full = x_roi + offset.
+    Eigen::Matrix3d shift = Eigen::Matrix3d::Identity();
+    shift.topRightCorner<2, 1>() = -offset;
+    circle.conic_px = CanonicalConic(shift.transpose() * hypothesis * shift);
+    for (Eigen::Vector2d& p : circle.edges.points_px) p += offset;
+    detection.circles.push_back(std::move(circle));
+  }
+  return detection;
+}
+
+}  // namespace markerbench

@@ -1,0 +1,273 @@
+#include "trackers/circle/circle_tracker.h"
+
+#include <Eigen/LU>
+#include <algorithm>
+#include <cmath>
+
+#include "core/number_text.h"
+#include "core/yaml_reader.h"
+#include "trackers/circle/conic.h"
+
+namespace markerbench {
+namespace {
+
+// Plane-to-pixel homography H = K [r1 r2 t] (circle-method.md §0).
+Eigen::Matrix3d Homography(const Eigen::Matrix3d& K, const Rigid3& cam_from_paper) {
+  Eigen::Matrix3d Rt;
+  Rt << cam_from_paper.rotation.col(0), cam_from_paper.rotation.col(1), cam_from_paper.translation;
+  return K * Rt;
+}
+
+Eigen::Vector2d Undistorted(const Camera& camera, const Eigen::Vector2d& px) {
+  const Eigen::Vector3d ray = camera.CamFromImg(px);
+  return {camera.fx * ray.x() + camera.cx, camera.fy * ray.y() + camera.cy};
+}
+
+// Bounding box of an ellipse conic.
+cv::Rect2d EllipseBox(const Eigen::Matrix3d& C) {
+  const Ellipse e = EllipseFromConic(C);
+  const double c = std::cos(e.angle_rad), s = std::sin(e.angle_rad);
+  const double hw = std::hypot(e.semi_major * c, e.semi_minor * s);
+  const double hh = std::hypot(e.semi_major * s, e.semi_minor * c);
+  return {e.center.x() - hw, e.center.y() - hh, 2 * hw, 2 * hh};
+}
+
+}  // namespace
+
+bool CircleTrackerOptions::IsValid(std::string* error) const {
+  if (!detector.IsValid(error) || !refinement.IsValid(error)) return false;
+  std::ostringstream msg;
+  if (!(roi_margin >= 0.0)) {
+    msg << "roi_margin=" << roi_margin << " must be >= 0";
+  } else if (!(max_edge_rms_px > 0.0)) {
+    msg << "max_edge_rms_px=" << max_edge_rms_px << " must be > 0";
+  } else {
+    return true;
+  }
+  if (error) *error = msg.str();
+  return false;
+}
+
+CircleTrackerOptions CircleTrackerOptions::FromYaml(const YamlMap& map) {
+  CircleTrackerOptions o;
+  const std::string cost = map.GetOr<std::string>("cost", ToString(o.refinement.cost));
+  if (cost == "edges") {
+    o.refinement.cost = RefinementCost::kEdges;
+  } else if (cost == "conics") {
+    o.refinement.cost = RefinementCost::kConics;
+  } else {
+    map.Fail("cost", "'edges' (cost B) or 'conics' (cost A, the paper's eq. 19)");
+  }
+  const std::string depth = map.GetOr<std::string>("depth", ToString(o.analytic.depth));
+  if (depth == "radius") {
+    o.analytic.depth = AnalyticDepth::kRadius;
+  } else if (depth == "lx") {
+    o.analytic.depth = AnalyticDepth::kLx;
+  } else {
+    map.Fail("depth", "'radius' or 'lx'");
+  }
+  o.refinement.huber_px = map.GetOr<double>("huber_px", o.refinement.huber_px);
+  o.refinement.point_weight = map.GetOr<double>("point_weight", o.refinement.point_weight);
+  o.refinement.max_iterations = map.GetOr<int>("max_iterations", o.refinement.max_iterations);
+  o.analytic.k_normal = map.GetOr<bool>("k_normal", o.analytic.k_normal);
+  o.refine = map.GetOr<bool>("refine", o.refine);
+  o.tracking = map.GetOr<bool>("tracking", o.tracking);
+  o.roi_margin = map.GetOr<double>("roi_margin", o.roi_margin);
+  o.max_edge_rms_px = map.GetOr<double>("max_edge_rms_px", o.max_edge_rms_px);
+  o.detector.min_contrast = map.GetOr<double>("min_contrast", o.detector.min_contrast);
+  o.detector.edge_passes = map.GetOr<int>("edge_passes", o.detector.edge_passes);
+  o.detector.edges.max_rays = map.GetOr<int>("max_rays", o.detector.edges.max_rays);
+  map.RejectUnknownKeys();
+  std::string error;
+  if (!o.IsValid(&error)) map.Fail(error.substr(0, error.find('=')), error);
+  return o;
+}
+
+CircleTracker::CircleTracker(const CircleTrackerOptions& options) : options_(options) {}
+
+bool CircleTracker::CanTrack(const MarkerSpec& marker) const {
+  return CircleGeometryOf(marker, nullptr).has_value();
+}
+
+std::vector<std::pair<std::string, std::string>> CircleTracker::Parameters() const {
+  const CircleTrackerOptions& o = options_;
+  return {
+      {"cost", ToString(o.refinement.cost)},
+      {"huber_px", NumberText(o.refinement.huber_px)},
+      {"point_weight", NumberText(o.refinement.point_weight)},
+      {"max_iterations", std::to_string(o.refinement.max_iterations)},
+      {"k_normal", o.analytic.k_normal ? "true" : "false"},
+      {"depth", ToString(o.analytic.depth)},
+      {"refine", o.refine ? "true" : "false"},
+      {"tracking", o.tracking ? "true" : "false"},
+      {"roi_margin", NumberText(o.roi_margin)},
+      {"max_edge_rms_px", NumberText(o.max_edge_rms_px)},
+      {"min_contrast", NumberText(o.detector.min_contrast)},
+      {"edge_passes", std::to_string(o.detector.edge_passes)},
+      {"max_rays", std::to_string(o.detector.edges.max_rays)},
+  };
+}
+
+TrackResult CircleTracker::Track(const Observation& observation) {
+  const MarkerSpec& marker = *observation.marker;
+  std::string error;
+  const std::optional<CircleGeometry> geometry = CircleGeometryOf(marker, &error);
+  if (!geometry) {
+    TrackResult result;
+    result.status = TrackStatus::kError;
+    result.message = "the circle tracker cannot track marker '" + marker.name + "': " + error;
+    return result;
+  }
+  const Image8& image = *observation.image;
+  const cv::Rect whole(0, 0, image.width, image.height);
+  if (options_.tracking && previous_cam_from_paper_) {
+    // Predicted ellipses (and the marker's points) from the previous pose, grown by a margin.
+    const Camera& camera = *observation.camera;
+    const Eigen::Matrix3d H = Homography(camera.K(), *previous_cam_from_paper_);
+    cv::Rect2d box;
+    for (size_t i = 0; i < geometry->centers.size(); ++i) {
+      const cv::Rect2d b =
+          EllipseBox(ImageOfCircle<double>(H, geometry->centers[i], geometry->radii_m[i]));
+      box = i == 0 ? b : (box | b);
+    }
+    const Eigen::Vector3d m1 = H * Eigen::Vector3d(geometry->Lx, 0.0, 1.0);
+    box |= cv::Rect2d(m1.x() / m1.z(), m1.y() / m1.z(), 1.0, 1.0);
+    const double grow = options_.roi_margin * std::max(box.width, box.height) + 10.0;
+    const cv::Rect region(cv::Point(static_cast<int>(std::floor(box.x - grow)),
+                                    static_cast<int>(std::floor(box.y - grow))),
+                          cv::Point(static_cast<int>(std::ceil(box.x + box.width + grow)),
+                                    static_cast<int>(std::ceil(box.y + box.height + grow))));
+    const cv::Rect clipped = region & whole;
+    if (clipped.area() > 0) {
+      TrackResult result = TrackIn(observation, *geometry, clipped);
+      diagnostics_.used_tracking_region = true;
+      if (result.status == TrackStatus::kOk) return result;
+    }
+  }
+  TrackResult result = TrackIn(observation, *geometry, whole);
+  diagnostics_.used_tracking_region = false;
+  return result;
+}
+
+TrackResult CircleTracker::TrackIn(const Observation& observation,
+                                   const CircleGeometry& geometry,
+                                   const cv::Rect& region) {
+  diagnostics_ = CircleDiagnostics{};
+  previous_cam_from_paper_.reset();
+  TrackResult result;
+  const Camera& camera = *observation.camera;
+  const Eigen::Matrix3d K = camera.K();
+
+  std::string why;
+  const CircleDetector detector(*observation.marker, geometry, options_.detector);
+  std::optional<MarkerDetection> detection = detector.Detect(*observation.image, region, &why);
+  if (!detection) {
+    result.status = TrackStatus::kNotDetected;
+    result.message = why;
+    return result;
+  }
+  diagnostics_.noise_sigma = detection->noise_sigma;
+
+  // Lens distortion: move edges and points to the ideal pinhole image, refit the conics.
+  CircleMeasurements measurements;
+  RefinementProblem problem;
+  problem.K = K;
+  for (size_t i = 0; i < detection->circles.size(); ++i) {
+    DetectedCircle& circle = detection->circles[i];
+    if (camera.HasDistortion()) {
+      for (Eigen::Vector2d& p : circle.edges.points_px) p = Undistorted(camera, p);
+      const std::optional<ConicFit> fit = FitEllipse(circle.edges.points_px, options_.detector.fit);
+      if (!fit) {
+        result.status = TrackStatus::kPoseFailed;
+        result.message = "undistorted edges give no ellipse";
+        return result;
+      }
+      circle.conic_px = fit->conic;
+    }
+    measurements.conics_px.push_back(circle.conic_px);
+    diagnostics_.conics_px.push_back(circle.conic_px);
+    diagnostics_.edges.push_back(circle.edges.points_px);
+    diagnostics_.blur_sigma_px = std::max(diagnostics_.blur_sigma_px, circle.edges.sigma_px);
+    RefinementCircle rc;
+    rc.center = geometry.centers[i];
+    rc.radius_m = geometry.radii_m[i];
+    rc.edge_points_px = circle.edges.points_px;
+    rc.conic_px = circle.conic_px;
+    problem.circles.push_back(std::move(rc));
+  }
+  if (detection->m0_px)
+    measurements.m0_px =
+        camera.HasDistortion() ? Undistorted(camera, *detection->m0_px) : *detection->m0_px;
+  if (detection->m1_px)
+    measurements.m1_px =
+        camera.HasDistortion() ? Undistorted(camera, *detection->m1_px) : *detection->m1_px;
+
+  const std::optional<AnalyticSolution> analytic =
+      SolveAnalytic(geometry, K, measurements, options_.analytic, &why);
+  if (!analytic) {
+    result.status = TrackStatus::kPoseFailed;
+    result.message = why;
+    return result;
+  }
+  diagnostics_.l_inf_norm = analytic->l_inf_norm;
+  const Rigid3 paper_from_marker = geometry.marker_from_paper.Inverse();
+  diagnostics_.analytic_cam_from_marker = analytic->pose.cam_from_paper * paper_from_marker;
+
+  // Point terms (erratum 7): m0 where it is a detected dot, m1 where no circle gives it.
+  if (measurements.m0_px && geometry.layout == CircleLayout::kCircleWithCenter) {
+    problem.points.push_back({Eigen::Vector2d::Zero(), *measurements.m0_px});
+  }
+  if (measurements.m1_px && geometry.m1_circle < 0) {
+    problem.points.push_back({Eigen::Vector2d(geometry.Lx, 0.0), *measurements.m1_px});
+  }
+  Rigid3 cam_from_paper = analytic->pose.cam_from_paper;
+  if (options_.refine) {
+    const RefinementResult refined = RefinePose(problem, cam_from_paper, options_.refinement);
+    cam_from_paper = refined.cam_from_paper;
+    diagnostics_.iterations = refined.iterations;
+    diagnostics_.final_cost = refined.final_cost;
+  }
+
+  // Acceptance: the marker in front of the camera, and its projected circles on the edges.
+  const Eigen::Matrix3d H = Homography(K, cam_from_paper);
+  double sum = 0.0;
+  size_t count = 0;
+  for (const RefinementCircle& circle : problem.circles) {
+    const Eigen::Matrix3d C = ImageOfCircle<double>(H, circle.center, circle.radius_m);
+    for (const Eigen::Vector2d& p : circle.edge_points_px) {
+      const double r = PndResidual<double>(C, p.x(), p.y());
+      sum += r * r;
+      ++count;
+    }
+  }
+  diagnostics_.edge_rms_px = std::sqrt(sum / std::max<size_t>(1, count));
+  const Rigid3 cam_from_marker = cam_from_paper * paper_from_marker;
+  diagnostics_.refined_cam_from_marker = cam_from_marker;
+  if (!(cam_from_paper.translation.z() > 0.0) ||
+      !(CameraCenterInMarker(cam_from_paper).z() > 0.0)) {
+    result.status = TrackStatus::kPoseFailed;
+    result.message = "the pose puts the marker behind the camera";
+    return result;
+  }
+  if (!(diagnostics_.edge_rms_px <= options_.max_edge_rms_px)) {
+    result.status = TrackStatus::kNotDetected;
+    result.message = "ellipses rejected: edge residual " + NumberText(diagnostics_.edge_rms_px) +
+                     " px > max_edge_rms_px";
+    return result;
+  }
+
+  result.status = TrackStatus::kOk;
+  result.hypotheses = {cam_from_marker};
+  for (const Eigen::Vector2d& k : observation.marker->keypoints) {
+    result.keypoints_px.push_back(
+        camera.ImgFromCam(cam_from_marker * Eigen::Vector3d(k.x(), k.y(), 0.0)));
+  }
+  previous_cam_from_paper_ = cam_from_paper;
+  return result;
+}
+
+std::unique_ptr<Tracker> MakeCircleTracker(const CircleTrackerOptions& options) {
+  return std::make_unique<CircleTracker>(options);
+}
+
+}  // namespace markerbench

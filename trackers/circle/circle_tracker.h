@@ -1,0 +1,75 @@
+// `circle`: the method of Tang and Wu, "Efficient Circle-Based Camera Pose Tracking Free of
+// PnP", as corrected in circle-method.md. Per frame: detect and fit the marker's ellipses
+// (CircleDetector), l_inf and the analytic pose (SolveAnalytic), then Ceres LM (RefinePose).
+// In tracking mode (the paper's step 5) the previous pose predicts the ellipses and only a
+// region around them is searched; a miss there falls back to the whole image.
+#pragma once
+
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "trackers/circle/analytic_solver.h"
+#include "trackers/circle/circle_detector.h"
+#include "trackers/circle/pose_refinement.h"
+#include "trackers/tracker.h"
+
+namespace markerbench {
+
+class YamlMap;
+
+struct CircleTrackerOptions {
+  CircleDetectorOptions detector;
+  AnalyticOptions analytic;
+  RefinementOptions refinement;
+  bool refine = true;            // run the LM refinement (§6); off = analytic pose only
+  bool tracking = true;          // search around the previous pose first (paper step 5)
+  double roi_margin = 0.5;       // tracking region: predicted box grown by this fraction
+  double max_edge_rms_px = 2.0;  // accept a pose only if its edge residual RMS is below
+
+  bool IsValid(std::string* error) const;
+  // Reads flat keys (cost, huber_px, point_weight, max_iterations, k_normal, depth, refine,
+  // tracking, roi_margin, max_edge_rms_px, min_contrast, edge_passes, max_rays); throws
+  // ConfigError naming the file and key.
+  static CircleTrackerOptions FromYaml(const YamlMap& map);
+};
+
+// Every stage of the last Track call, for tests and reports (style.md, item 4).
+struct CircleDiagnostics {
+  bool used_tracking_region = false;
+  std::vector<Eigen::Matrix3d> conics_px;           // fitted, canonical
+  std::vector<std::vector<Eigen::Vector2d>> edges;  // per circle, bias-corrected
+  double blur_sigma_px = 0.0;                       // fitted edge σ (blur + pre-smoothing)
+  double noise_sigma = 0.0;                         // estimated image noise σ, 0-1 units
+  Eigen::Vector3d l_inf_norm = Eigen::Vector3d::Zero();
+  std::optional<Rigid3> analytic_cam_from_marker;
+  std::optional<Rigid3> refined_cam_from_marker;
+  int iterations = 0;
+  double final_cost = 0.0;
+  double edge_rms_px = 0.0;  // PND residual RMS of the edges to the final pose's conics
+};
+
+class CircleTracker final : public Tracker {
+ public:
+  explicit CircleTracker(const CircleTrackerOptions& options = {});
+  TrackResult Track(const Observation& observation) override;
+  bool CanTrack(const MarkerSpec& marker) const override;
+  void Reset() override { previous_cam_from_paper_.reset(); }
+  std::vector<std::pair<std::string, std::string>> Parameters() const override;
+
+  const CircleDiagnostics& diagnostics() const { return diagnostics_; }
+
+ private:
+  TrackResult TrackIn(const Observation& observation,
+                      const CircleGeometry& geometry,
+                      const cv::Rect& region);
+
+  CircleTrackerOptions options_;
+  std::optional<Rigid3> previous_cam_from_paper_;
+  CircleDiagnostics diagnostics_;
+};
+
+std::unique_ptr<Tracker> MakeCircleTracker(const CircleTrackerOptions& options);
+
+}  // namespace markerbench

@@ -1,0 +1,198 @@
+#include "trackers/circle/subpixel_edges.h"
+
+#include <Eigen/Dense>
+#include <algorithm>
+#include <cmath>
+
+#include "trackers/circle/conic.h"
+
+namespace markerbench {
+namespace {
+
+double Phi(double z) { return 0.5 * std::erfc(-z / std::sqrt(2.0)); }
+double phi(double z) { return std::exp(-0.5 * z * z) / std::sqrt(2.0 * M_PI); }
+
+// Bilinear sample; callers keep (x, y) inside [0, w-1] x [0, h-1].
+double Sample(const cv::Mat& image, double x, double y) {
+  const int x0 = static_cast<int>(x), y0 = static_cast<int>(y);
+  const int x1 = std::min(x0 + 1, image.cols - 1), y1 = std::min(y0 + 1, image.rows - 1);
+  const double fx = x - x0, fy = y - y0;
+  const uint8_t* r0 = image.ptr<uint8_t>(y0);
+  const uint8_t* r1 = image.ptr<uint8_t>(y1);
+  return (1 - fy) * ((1 - fx) * r0[x0] + fx * r0[x1]) + fy * ((1 - fx) * r1[x0] + fx * r1[x1]);
+}
+
+struct Ray {
+  Eigen::Vector2d base;    // on the hypothesised ellipse
+  Eigen::Vector2d normal;  // unit, outward
+  double curvature = 0.0;  // of the ellipse at base (1/px)
+  std::vector<double> offsets;
+  std::vector<double> values;
+  double edge = 0.0;  // fitted e
+};
+
+double Median(std::vector<double> v) {
+  if (v.empty()) return 0.0;
+  std::nth_element(v.begin(), v.begin() + v.size() / 2, v.end());
+  return v[v.size() / 2];
+}
+
+// Ellipse curvature at p from the implicit form f = pᵀ C p.
+double CurvatureAt(const Eigen::Matrix3d& C, const Eigen::Vector2d& p) {
+  const Eigen::Vector3d g = C * p.homogeneous();
+  const double fx = 2 * g(0), fy = 2 * g(1);
+  const double fxx = 2 * C(0, 0), fyy = 2 * C(1, 1), fxy = 2 * C(0, 1);
+  const double n2 = fx * fx + fy * fy;
+  return std::abs(fy * fy * fxx - 2 * fx * fy * fxy + fx * fx * fyy) / std::pow(n2, 1.5);
+}
+
+struct LevelState {
+  double inside, outside, sigma;
+};
+
+// Sum of squared residuals of the model with levels `s` and per-ray edges `edges`.
+double Cost(const std::vector<Ray>& rays, const LevelState& s, const std::vector<double>& edges) {
+  double cost = 0.0;
+  for (size_t k = 0; k < rays.size(); ++k) {
+    const Ray& ray = rays[k];
+    for (size_t j = 0; j < ray.offsets.size(); ++j) {
+      const double z = (edges[k] - ray.offsets[j]) / s.sigma - 0.5 * s.sigma * ray.curvature;
+      const double r = s.outside + (s.inside - s.outside) * Phi(z) - ray.values[j];
+      cost += r * r;
+    }
+  }
+  return cost;
+}
+
+}  // namespace
+
+CircleEdges FindCircleEdges(const cv::Mat& image,
+                            const Eigen::Matrix3d& ellipse_px,
+                            double max_inward_px,
+                            double max_outward_px,
+                            double sigma_start_px,
+                            const EdgeSearchOptions& options) {
+  CircleEdges out;
+  const Eigen::Matrix3d C = CanonicalConic(ellipse_px);
+  const Ellipse e = EllipseFromConic(C);
+  const double perimeter = M_PI * (e.semi_major + e.semi_minor);
+  const int n_rays =
+      std::clamp(static_cast<int>(perimeter / 3.0), options.min_rays, options.max_rays);
+  const double reach = options.reach_sigmas * sigma_start_px + 3.0;
+  const double reach_out = std::min(reach, max_outward_px);
+  const double reach_in = std::min(reach, max_inward_px);
+  const Eigen::Vector2d u(std::cos(e.angle_rad), std::sin(e.angle_rad)), v(-u.y(), u.x());
+
+  std::vector<Ray> rays;
+  for (int k = 0; k < n_rays; ++k) {
+    const double t = 2.0 * M_PI * k / n_rays;
+    Ray ray;
+    ray.base = e.center + e.semi_major * std::cos(t) * u + e.semi_minor * std::sin(t) * v;
+    ray.normal = (C * ray.base.homogeneous()).head<2>().normalized();
+    ray.curvature = CurvatureAt(C, ray.base);
+    bool inside_image = true;
+    for (double d = -reach_in; d <= reach_out + 1e-9; d += options.sample_step_px) {
+      const Eigen::Vector2d p = ray.base + d * ray.normal;
+      if (!(p.x() >= 0 && p.y() >= 0 && p.x() <= image.cols - 1 && p.y() <= image.rows - 1)) {
+        inside_image = false;
+        break;
+      }
+      ray.offsets.push_back(d);
+      ray.values.push_back(Sample(image, p.x(), p.y()));
+    }
+    if (inside_image && ray.offsets.size() >= 4) rays.push_back(std::move(ray));
+  }
+  out.rays = n_rays;
+  if (rays.size() < static_cast<size_t>(options.min_rays) / 2) return out;
+
+  // Start: levels from the ray ends, σ given, edges on the hypothesis.
+  std::vector<double> inner, outer;
+  for (const Ray& ray : rays) {
+    inner.push_back(ray.values.front());
+    outer.push_back(ray.values.back());
+  }
+  LevelState s{Median(inner), Median(outer), std::max(0.5, sigma_start_px)};
+  std::vector<double> edges(rays.size(), 0.0);
+  double cost = Cost(rays, s, edges);
+  double lambda = 1e-3;
+  for (int it = 0; it < options.iterations; ++it) {
+    Eigen::Matrix3d A = Eigen::Matrix3d::Zero();
+    Eigen::Vector3d b = Eigen::Vector3d::Zero();
+    std::vector<double> D(rays.size()), c(rays.size());
+    std::vector<Eigen::Vector3d> B(rays.size());
+    for (size_t k = 0; k < rays.size(); ++k) {
+      const Ray& ray = rays[k];
+      double Dk = 0.0, ck = 0.0;
+      Eigen::Vector3d Bk = Eigen::Vector3d::Zero();
+      for (size_t j = 0; j < ray.offsets.size(); ++j) {
+        const double dist = edges[k] - ray.offsets[j];
+        const double z = dist / s.sigma - 0.5 * s.sigma * ray.curvature;
+        const double P = Phi(z), p = phi(z), delta = s.inside - s.outside;
+        const double r = s.outside + delta * P - ray.values[j];
+        const Eigen::Vector3d Jg(
+            P, 1.0 - P, delta * p * (-dist / (s.sigma * s.sigma) - 0.5 * ray.curvature));
+        const double Je = delta * p / s.sigma;
+        A += Jg * Jg.transpose();
+        b += Jg * r;
+        Dk += Je * Je;
+        Bk += Jg * Je;
+        ck += Je * r;
+      }
+      D[k] = Dk * (1.0 + lambda) + 1e-12;
+      B[k] = Bk;
+      c[k] = ck;
+    }
+    Eigen::Matrix3d S = A;
+    S.diagonal() *= 1.0 + lambda;
+    Eigen::Vector3d rhs = b;
+    for (size_t k = 0; k < rays.size(); ++k) {
+      S -= B[k] * B[k].transpose() / D[k];
+      rhs -= B[k] * c[k] / D[k];
+    }
+    const Eigen::Vector3d dg = -S.ldlt().solve(rhs);
+    LevelState trial{s.inside + dg(0), s.outside + dg(1), std::clamp(s.sigma + dg(2), 0.3, 40.0)};
+    std::vector<double> trial_edges(rays.size());
+    for (size_t k = 0; k < rays.size(); ++k) {
+      const double de = -(c[k] + B[k].dot(dg)) / D[k];
+      trial_edges[k] = std::clamp(edges[k] + de, -reach_in, reach_out);
+    }
+    const double trial_cost = Cost(rays, trial, trial_edges);
+    if (trial_cost < cost) {
+      const bool converged = cost - trial_cost < 1e-6 * cost;
+      s = trial;
+      edges = trial_edges;
+      cost = trial_cost;
+      lambda = std::max(1e-6, lambda / 10);
+      if (converged) break;
+    } else {
+      lambda *= 10;
+    }
+  }
+
+  // Per-ray residuals: drop rays whose profile the model does not explain (other edges,
+  // occlusion) and edges pinned at the reach limits.
+  std::vector<double> ray_rms(rays.size());
+  for (size_t k = 0; k < rays.size(); ++k) {
+    double sum = 0.0;
+    const Ray& ray = rays[k];
+    for (size_t j = 0; j < ray.offsets.size(); ++j) {
+      const double z = (edges[k] - ray.offsets[j]) / s.sigma - 0.5 * s.sigma * ray.curvature;
+      const double r = s.outside + (s.inside - s.outside) * Phi(z) - ray.values[j];
+      sum += r * r;
+    }
+    ray_rms[k] = std::sqrt(sum / ray.offsets.size());
+  }
+  const double typical = Median(ray_rms);
+  for (size_t k = 0; k < rays.size(); ++k) {
+    const bool at_limit = edges[k] <= -reach_in + 1e-6 || edges[k] >= reach_out - 1e-6;
+    if (at_limit || ray_rms[k] > 3.0 * typical + 1.0) continue;
+    out.points_px.push_back(rays[k].base + edges[k] * rays[k].normal);
+  }
+  out.sigma_px = s.sigma;
+  out.inside_level = s.inside;
+  out.outside_level = s.outside;
+  out.rms_residual = typical;
+  return out;
+}
+
+}  // namespace markerbench

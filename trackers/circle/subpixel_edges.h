@@ -1,0 +1,44 @@
+// Sub-pixel edge points of one imaged circle, taken along the normals of a hypothesised
+// ellipse (circle-method.md §11). Each ray's profile is fitted with the blurred-edge model
+//   f(d) = I_out + (I_in - I_out) Φ((e - d)/σ - σκ/2),
+// d the offset along the outward normal, e the edge, κ the ellipse's curvature there. The
+// σκ/2 term is the curvature bias: a blurred disk's 50% level sits σ²κ/2 inside the true
+// edge (2.5 px at σ = 10, R = 20 px). σ and the two levels are shared by all rays; the rays'
+// edges e are solved jointly with them by Gauss-Newton (Schur complement on the levels).
+#pragma once
+
+#include <Eigen/Core>
+#include <opencv2/core.hpp>
+#include <vector>
+
+namespace markerbench {
+
+struct EdgeSearchOptions {
+  int min_rays = 24;            // rays on small ellipses
+  int max_rays = 96;            // rays on large ellipses (about one per 3 px of perimeter)
+  double sample_step_px = 0.7;  // spacing of the profile samples along a ray
+  double reach_sigmas = 3.0;    // a ray reaches reach_sigmas σ + 3 px past the edge, both ways
+  int iterations = 10;          // Gauss-Newton iterations
+};
+
+struct CircleEdges {
+  std::vector<Eigen::Vector2d> points_px;  // edge points, curvature bias removed
+  double sigma_px = 0.0;                   // fitted edge blur (optics + pre-smoothing)
+  double inside_level = 0.0;               // fitted intensity levels (image units)
+  double outside_level = 0.0;
+  double rms_residual = 0.0;  // of the profile fit (image units): the noise level
+  int rays = 0;               // rays tried; points_px.size() kept
+};
+
+// `image` is one 8-bit channel (the pre-smoothed ink channel). `ellipse_px` the hypothesis;
+// `max_inward_px` and `max_outward_px` bound how far rays look inside and outside (to stay
+// clear of other edges of the marker). `sigma_start_px` is the initial σ. Coordinates are image
+// pixels (architecture.md).
+CircleEdges FindCircleEdges(const cv::Mat& image,
+                            const Eigen::Matrix3d& ellipse_px,
+                            double max_inward_px,
+                            double max_outward_px,
+                            double sigma_start_px,
+                            const EdgeSearchOptions& options = {});
+
+}  // namespace markerbench
