@@ -4,13 +4,11 @@
 #include <algorithm>
 #include <cmath>
 
+#include "trackers/circle/blurred_disk_profile.h"
 #include "trackers/circle/conic.h"
 
 namespace markerbench {
 namespace {
-
-double Phi(double z) { return 0.5 * std::erfc(-z / std::sqrt(2.0)); }
-double phi(double z) { return std::exp(-0.5 * z * z) / std::sqrt(2.0 * M_PI); }
 
 // Bilinear sample; callers keep (x, y) inside [0, w-1] x [0, h-1].
 double Sample(const cv::Mat& image, double x, double y) {
@@ -22,10 +20,16 @@ double Sample(const cv::Mat& image, double x, double y) {
   return (1 - fy) * ((1 - fx) * r0[x0] + fx * r0[x1]) + fy * ((1 - fx) * r1[x0] + fx * r1[x1]);
 }
 
+// In the affine frame y = M (x - centre), M = diag(ρ/a, ρ/b) Rᵀ, the hypothesised ellipse is
+// a circle of radius ρ = √(ab) and the blur an anisotropic Gaussian σ² M Mᵀ. A ray along the
+// image normal moves radially in that frame by `radial_gain` per pixel; the blur there has
+// normal and tangential widths σ·normal_blur and σ·tangential_blur.
 struct Ray {
   Eigen::Vector2d base;    // on the hypothesised ellipse
   Eigen::Vector2d normal;  // unit, outward
-  double curvature = 0.0;  // of the ellipse at base (1/px)
+  double radial_gain = 1.0;
+  double normal_blur = 1.0;
+  double tangential_blur = 1.0;
   std::vector<double> offsets;
   std::vector<double> values;
   double edge = 0.0;  // fitted e
@@ -37,27 +41,41 @@ double Median(std::vector<double> v) {
   return v[v.size() / 2];
 }
 
-// Ellipse curvature at p from the implicit form f = pᵀ C p.
-double CurvatureAt(const Eigen::Matrix3d& C, const Eigen::Vector2d& p) {
-  const Eigen::Vector3d g = C * p.homogeneous();
-  const double fx = 2 * g(0), fy = 2 * g(1);
-  const double fxx = 2 * C(0, 0), fyy = 2 * C(1, 1), fxy = 2 * C(0, 1);
-  const double n2 = fx * fx + fy * fy;
-  return std::abs(fy * fy * fxx - 2 * fx * fy * fxy + fx * fx * fyy) / std::pow(n2, 1.5);
-}
-
 struct LevelState {
   double inside, outside, sigma;
 };
 
+// The model in the affine frame, where the ellipse with its edge at `edge` on this ray is a
+// disk of radius ρ + edge·gain: its blurred-disk profile (BlurredDiskProfile) with the normal
+// width setting z and the tangential width setting the curvature shift σ_t²/(2ρ).
+struct RayModel {
+  ProfileValue G;
+  double s, z;  // arguments of G
+  double ds_dedge, dz_dedge;
+};
+RayModel Model(const Ray& ray, double rho, double edge, double offset, double sigma) {
+  RayModel m;
+  const double sigma_n = sigma * ray.normal_blur, sigma_t = sigma * ray.tangential_blur;
+  const double radius = rho + edge * ray.radial_gain;
+  m.s = radius * sigma_n / (sigma_t * sigma_t);
+  m.z = (edge - offset) * ray.radial_gain / sigma_n;
+  m.ds_dedge = ray.radial_gain * sigma_n / (sigma_t * sigma_t);
+  m.dz_dedge = ray.radial_gain / sigma_n;
+  m.G = BlurredDiskProfile(m.s, m.z);
+  return m;
+}
+
 // Sum of squared residuals of the model with levels `s` and per-ray edges `edges`.
-double Cost(const std::vector<Ray>& rays, const LevelState& s, const std::vector<double>& edges) {
+double Cost(const std::vector<Ray>& rays,
+            double rho,
+            const LevelState& s,
+            const std::vector<double>& edges) {
   double cost = 0.0;
   for (size_t k = 0; k < rays.size(); ++k) {
     const Ray& ray = rays[k];
     for (size_t j = 0; j < ray.offsets.size(); ++j) {
-      const double z = (edges[k] - ray.offsets[j]) / s.sigma - 0.5 * s.sigma * ray.curvature;
-      const double r = s.outside + (s.inside - s.outside) * Phi(z) - ray.values[j];
+      const double G = Model(ray, rho, edges[k], ray.offsets[j], s.sigma).G.value;
+      const double r = s.outside + (s.inside - s.outside) * G - ray.values[j];
       cost += r * r;
     }
   }
@@ -82,6 +100,7 @@ CircleEdges FindCircleEdges(const cv::Mat& image,
   const double reach_out = std::min(reach, max_outward_px);
   const double reach_in = std::min(reach, max_inward_px);
   const Eigen::Vector2d u(std::cos(e.angle_rad), std::sin(e.angle_rad)), v(-u.y(), u.x());
+  const double rho = std::sqrt(e.semi_major * e.semi_minor);
 
   std::vector<Ray> rays;
   for (int k = 0; k < n_rays; ++k) {
@@ -89,7 +108,14 @@ CircleEdges FindCircleEdges(const cv::Mat& image,
     Ray ray;
     ray.base = e.center + e.semi_major * std::cos(t) * u + e.semi_minor * std::sin(t) * v;
     ray.normal = (C * ray.base.homogeneous()).head<2>().normalized();
-    ray.curvature = CurvatureAt(C, ray.base);
+    // Affine frame: the base maps to ρ (cos t, sin t); M = diag(ρ/a, ρ/b) [u v]ᵀ.
+    const Eigen::Vector2d radial(std::cos(t), std::sin(t)), tangent(-std::sin(t), std::cos(t));
+    Eigen::Matrix2d M;
+    M.row(0) = rho / e.semi_major * u.transpose();
+    M.row(1) = rho / e.semi_minor * v.transpose();
+    ray.radial_gain = radial.dot(M * ray.normal);
+    ray.normal_blur = (M.transpose() * radial).norm();
+    ray.tangential_blur = (M.transpose() * tangent).norm();
     bool inside_image = true;
     for (double d = -reach_in; d <= reach_out + 1e-9; d += options.sample_step_px) {
       const Eigen::Vector2d p = ray.base + d * ray.normal;
@@ -113,7 +139,7 @@ CircleEdges FindCircleEdges(const cv::Mat& image,
   }
   LevelState s{Median(inner), Median(outer), std::max(0.5, sigma_start_px)};
   std::vector<double> edges(rays.size(), 0.0);
-  double cost = Cost(rays, s, edges);
+  double cost = Cost(rays, rho, s, edges);
   double lambda = 1e-3;
   for (int it = 0; it < options.iterations; ++it) {
     Eigen::Matrix3d A = Eigen::Matrix3d::Zero();
@@ -125,13 +151,13 @@ CircleEdges FindCircleEdges(const cv::Mat& image,
       double Dk = 0.0, ck = 0.0;
       Eigen::Vector3d Bk = Eigen::Vector3d::Zero();
       for (size_t j = 0; j < ray.offsets.size(); ++j) {
-        const double dist = edges[k] - ray.offsets[j];
-        const double z = dist / s.sigma - 0.5 * s.sigma * ray.curvature;
-        const double P = Phi(z), p = phi(z), delta = s.inside - s.outside;
-        const double r = s.outside + delta * P - ray.values[j];
+        const RayModel m = Model(ray, rho, edges[k], ray.offsets[j], s.sigma);
+        const double delta = s.inside - s.outside;
+        const double r = s.outside + delta * m.G.value - ray.values[j];
+        // s and z both scale as 1/σ.
         const Eigen::Vector3d Jg(
-            P, 1.0 - P, delta * p * (-dist / (s.sigma * s.sigma) - 0.5 * ray.curvature));
-        const double Je = delta * p / s.sigma;
+            m.G.value, 1.0 - m.G.value, -delta * (m.G.d_ds * m.s + m.G.d_dz * m.z) / s.sigma);
+        const double Je = delta * (m.G.d_ds * m.ds_dedge + m.G.d_dz * m.dz_dedge);
         A += Jg * Jg.transpose();
         b += Jg * r;
         Dk += Je * Je;
@@ -156,7 +182,7 @@ CircleEdges FindCircleEdges(const cv::Mat& image,
       const double de = -(c[k] + B[k].dot(dg)) / D[k];
       trial_edges[k] = std::clamp(edges[k] + de, -reach_in, reach_out);
     }
-    const double trial_cost = Cost(rays, trial, trial_edges);
+    const double trial_cost = Cost(rays, rho, trial, trial_edges);
     if (trial_cost < cost) {
       const bool converged = cost - trial_cost < 1e-6 * cost;
       s = trial;
@@ -176,8 +202,8 @@ CircleEdges FindCircleEdges(const cv::Mat& image,
     double sum = 0.0;
     const Ray& ray = rays[k];
     for (size_t j = 0; j < ray.offsets.size(); ++j) {
-      const double z = (edges[k] - ray.offsets[j]) / s.sigma - 0.5 * s.sigma * ray.curvature;
-      const double r = s.outside + (s.inside - s.outside) * Phi(z) - ray.values[j];
+      const double G = Model(ray, rho, edges[k], ray.offsets[j], s.sigma).G.value;
+      const double r = s.outside + (s.inside - s.outside) * G - ray.values[j];
       sum += r * r;
     }
     ray_rms[k] = std::sqrt(sum / ray.offsets.size());

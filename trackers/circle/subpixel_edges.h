@@ -1,10 +1,11 @@
 // Sub-pixel edge points of one imaged circle, taken along the normals of a hypothesised
-// ellipse (circle-method.md §11). Each ray's profile is fitted with the blurred-edge model
-//   f(d) = I_out + (I_in - I_out) Φ((e - d)/σ - σκ/2),
-// d the offset along the outward normal, e the edge, κ the ellipse's curvature there. The
-// σκ/2 term is the curvature bias: a blurred disk's 50% level sits σ²κ/2 inside the true
-// edge (2.5 px at σ = 10, R = 20 px). σ and the two levels are shared by all rays; the rays'
-// edges e are solved jointly with them by Gauss-Newton (Schur complement on the levels).
+// ellipse (circle-method.md §11). Each ray's profile is fitted with the blurred-disk model
+//   f(d) = I_out + (I_in - I_out) G((1/κ + e)/σ, (e - d)/σ)
+// (BlurredDiskProfile): d the offset along the outward normal, e the edge, κ the ellipse's
+// curvature there, so the osculating disk stands in for the ellipse. This removes the
+// curvature bias: a blurred disk's 50% level sits about σ²κ/2 inside the true edge (2.5 px
+// at σ = 10, R = 20 px). σ and the two levels are shared by all rays; the rays' edges are
+// solved jointly with them by Gauss-Newton (Schur complement on the levels).
 #pragma once
 
 #include <Eigen/Core>
