@@ -1,5 +1,5 @@
 // Frames for tracker benchmarks: 640x480, the marker at 0.6 m (tilt 0-40°, any roll),
-// imnoise σ² = 0.02, rendered once before timing (issue 4's protocol).
+// imnoise σ² = 0.02, rendered once before timing (issue 4's protocol); RGB for colour markers.
 #pragma once
 
 #include <vector>
@@ -21,6 +21,7 @@ inline std::vector<Image8> BenchmarkFrames(const MarkerSpec& marker, int count) 
     request.scene.cam_from_marker.translation -=
         request.scene.cam_from_marker.rotation * Eigen::Vector3d(c.x(), c.y(), 0.0);
     request.degradations.noise_var = 0.02;
+    request.channels = marker.HasColor() ? 3 : 1;
     request.noise_seed = SeedFor(11, 0, static_cast<uint64_t>(i), SeedPurpose::kNoise);
     frames.push_back(RenderFrame(request).image);
   }

@@ -59,33 +59,42 @@ struct Table {
         values[i * (kZSteps + 1) + j] = Integrate(s, -kMaxZ + j * kZStep);
     }
   }
-  double at(int i, int j) const { return values[i * (kZSteps + 1) + j]; }
+  const double* row(int i) const { return values.data() + static_cast<size_t>(i) * (kZSteps + 1); }
 };
+
+const Table& TheTable() {
+  static const Table table;
+  return table;
+}
 
 }  // namespace
 
-ProfileValue BlurredDiskProfile(double s, double z) {
-  static const Table table;
+BlurredDiskProfile::BlurredDiskProfile(double s) {
+  const Table& table = TheTable();
+  const double t = 1.0 / std::clamp(s, kMinS, kMaxS);
+  const double ti = (t - kMinT) / (kMaxT - kMinT) * kTSteps;
+  const int i = std::min(static_cast<int>(ti), kTSteps - 1);
+  row0_ = table.row(i);
+  row1_ = table.row(i + 1);
+  weight_ = ti - i;
+  // dt/ds = -1/s² (zero where s is clamped).
+  if (s > kMinS && s < kMaxS) d_weight_ds_ = kTSteps / (kMaxT - kMinT) * (-t * t);
+}
+
+ProfileValue BlurredDiskProfile::At(double z) const {
   ProfileValue out;
-  const double s_clamped = std::clamp(s, kMinS, kMaxS);
   if (z <= -kMaxZ) return out;
   if (z >= kMaxZ) {
     out.value = 1.0;
     return out;
   }
-  const double t = 1.0 / s_clamped;
-  const double ti = (t - kMinT) / (kMaxT - kMinT) * kTSteps;
   const double zj = (z + kMaxZ) / kZStep;
-  const int i = std::min(static_cast<int>(ti), kTSteps - 1),
-            j = std::min(static_cast<int>(zj), kZSteps - 1);
-  const double ft = ti - i, fz = zj - j;
-  const double g00 = table.at(i, j), g01 = table.at(i, j + 1), g10 = table.at(i + 1, j),
-               g11 = table.at(i + 1, j + 1);
+  const int j = std::min(static_cast<int>(zj), kZSteps - 1);
+  const double fz = zj - j, ft = weight_;
+  const double g00 = row0_[j], g01 = row0_[j + 1], g10 = row1_[j], g11 = row1_[j + 1];
   out.value = (1 - ft) * ((1 - fz) * g00 + fz * g01) + ft * ((1 - fz) * g10 + fz * g11);
   out.d_dz = ((1 - ft) * (g01 - g00) + ft * (g11 - g10)) / kZStep;
-  const double d_dti = (1 - fz) * (g10 - g00) + fz * (g11 - g01);
-  // dt/ds = -1/s², and t moves (kMaxT - kMinT)/kTSteps per table step.
-  if (s > kMinS && s < kMaxS) out.d_ds = d_dti * kTSteps / (kMaxT - kMinT) * (-t * t);
+  out.d_ds = ((1 - fz) * (g10 - g00) + fz * (g11 - g01)) * d_weight_ds_;
   return out;
 }
 

@@ -14,7 +14,18 @@ struct ProfileValue {
   double d_dz = 0.0;  // ∂G/∂z
 };
 
+// G for one disk radius s, evaluated at many z (one table row interpolation per disk).
 // s is clamped to [0.5, 40] (beyond 40 the curvature term is below σ/80).
-ProfileValue BlurredDiskProfile(double s, double z);
+class BlurredDiskProfile {
+ public:
+  explicit BlurredDiskProfile(double s);
+  ProfileValue At(double z) const;
+
+ private:
+  const double* row0_;  // the two table rows around s
+  const double* row1_;
+  double weight_ = 0.0;  // of row1_
+  double d_weight_ds_ = 0.0;
+};
 
 }  // namespace markerbench

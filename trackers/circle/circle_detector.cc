@@ -142,6 +142,26 @@ std::vector<Candidate> FindCandidates(const cv::Mat& smoothed,
   return candidates;
 }
 
+// From search-image to region pixels: x = scale x_search + (scale - 1)/2.
+void ToFullResolution(int scale, Candidate* c) {
+  if (scale == 1) return;
+  const double k = (scale - 1) / 2.0;
+  Eigen::Matrix3d to_search;  // x_search = to_search x
+  to_search << 1.0 / scale, 0, -k / scale, 0, 1.0 / scale, -k / scale, 0, 0, 1;
+  auto conic = [&](const Eigen::Matrix3d& C) {
+    return CanonicalConic(to_search.transpose() * C * to_search);
+  };
+  c->conic = conic(c->conic);
+  c->ellipse = EllipseFromConic(c->conic);
+  c->area_px *= scale * scale;
+  c->centroid = scale * c->centroid + Eigen::Vector2d(k, k);
+  for (Hole& h : c->holes) {
+    h.area_px *= scale * scale;
+    h.centroid = scale * h.centroid + Eigen::Vector2d(k, k);
+    if (h.conic) h.conic = conic(*h.conic);
+  }
+}
+
 double Luma(const Rgb& c) { return 0.299 * c.x() + 0.587 * c.y() + 0.114 * c.z(); }
 
 // Pixels per metre near a candidate, from its minor axis (the smaller, conservative scale).
@@ -261,9 +281,11 @@ CircleDetector::CircleDetector(const MarkerSpec& marker,
   }
 }
 
-std::optional<MarkerDetection> CircleDetector::Detect(const Image8& image,
-                                                      const cv::Rect& roi,
-                                                      std::string* why) const {
+std::optional<MarkerDetection> CircleDetector::Detect(
+    const Image8& image,
+    const cv::Rect& roi,
+    const std::vector<Eigen::Matrix3d>* predicted_conics_px,
+    std::string* why) const {
   auto fail = [why](const std::string& message) -> std::optional<MarkerDetection> {
     if (why) *why = message;
     return std::nullopt;
@@ -281,7 +303,7 @@ std::optional<MarkerDetection> CircleDetector::Detect(const Image8& image,
   const Eigen::Vector2d offset(region.x, region.y);
 
   // One smoothed image per channel in use, smoothing adapted to the noise.
-  std::map<int, cv::Mat> raw, smoothed;
+  std::map<int, cv::Mat> raw;
   for (const ChannelPlan& plan : plans_) {
     if (raw.count(plan.channel)) continue;
     cv::Mat channel;
@@ -300,24 +322,55 @@ std::optional<MarkerDetection> CircleDetector::Detect(const Image8& image,
       std::clamp(options_.smoothing_min_px + options_.smoothing_per_noise * detection.noise_sigma,
                  options_.smoothing_min_px,
                  options_.smoothing_max_px);
+  // x_roi = shift * x_full.
+  Eigen::Matrix3d shift = Eigen::Matrix3d::Identity();
+  shift.topRightCorner<2, 1>() = -offset;
+  const bool from_prediction = predicted_conics_px &&
+                               geometry_.layout == CircleLayout::kTwoCircles &&
+                               geometry_.m1_circle >= 0;
+  std::vector<Eigen::Matrix3d> initial;
+  if (from_prediction) {
+    const Eigen::Matrix3d inverse_shift = shift.inverse();
+    for (const Eigen::Matrix3d& C : *predicted_conics_px) {
+      initial.push_back(CanonicalConic(inverse_shift.transpose() * C * inverse_shift));
+    }
+  }
+
+  // Candidates are searched at half resolution in large regions (2x2 means, then the
+  // smoothing at half scale); x_full = scale x_search + (scale - 1)/2.
+  const int scale = region.width >= options_.half_resolution_min_px &&
+                            region.height >= options_.half_resolution_min_px
+                        ? 2
+                        : 1;
+  std::map<int, cv::Mat> search;
   for (const auto& [channel, mat] : raw) {
-    cv::GaussianBlur(mat, smoothed[channel], cv::Size(0, 0), detection.smoothing_sigma_px);
+    if (from_prediction) break;
+    cv::Mat source = mat;
+    if (scale == 2) cv::resize(mat, source, cv::Size(), 0.5, 0.5, cv::INTER_AREA);
+    cv::GaussianBlur(source,
+                     search[channel],
+                     cv::Size(0, 0),
+                     std::max(0.5, detection.smoothing_sigma_px / scale));
   }
 
   std::map<int, std::vector<Candidate>> candidates;
+  CircleDetectorOptions search_options = options_;
+  search_options.min_area_px /= scale * scale;
   for (const ChannelPlan& plan : plans_) {
+    if (from_prediction) break;
     if (candidates.count(plan.channel)) continue;
-    const Threshold threshold = FindThreshold(smoothed[plan.channel], plan.ink_dark);
+    const Threshold threshold = FindThreshold(search[plan.channel], plan.ink_dark);
     if (threshold.contrast < options_.min_contrast) return fail("no ink in the search region");
     candidates[plan.channel] =
-        FindCandidates(smoothed[plan.channel], plan.ink_dark, threshold, options_);
+        FindCandidates(search[plan.channel], plan.ink_dark, threshold, search_options);
+    for (Candidate& candidate : candidates[plan.channel]) ToFullResolution(scale, &candidate);
   }
 
   // Identify the circles: initial ellipses in geometry order, plus the dots.
-  std::vector<Eigen::Matrix3d> initial;
   const std::vector<double>& r = geometry_.radii_m;
-  switch (geometry_.layout) {
+  switch (from_prediction ? CircleLayout::kTwoCircles : geometry_.layout) {
     case CircleLayout::kTwoCircles: {
+      if (from_prediction) break;
       const std::vector<Candidate>& first = candidates[plans_[0].channel];
       const std::vector<Candidate>& second = candidates[plans_[1].channel];
       const double separation = geometry_.centers[1].norm();
@@ -404,13 +457,41 @@ std::optional<MarkerDetection> CircleDetector::Detect(const Image8& image,
     }
   }
 
-  // Sub-pixel edges and the conic fit, twice: the second pass starts from the first fit.
+  // Sub-pixel edges and the conic fit, in passes that each start from the previous fit; the
+  // PND refinement of the conic only in the last. A prediction needs one pass.
+  const int passes = from_prediction ? 1 : options_.edge_passes;
+  ConicFitOptions direct = options_.fit;
+  direct.refine_pnd = false;
+  // Full-resolution smoothing only around the circles, with room for rays at σ up to 12 px.
+  cv::Rect patch;
+  for (size_t i = 0; i < initial.size(); ++i) {
+    const Ellipse e = EllipseFromConic(initial[i]);
+    const int half = static_cast<int>(std::ceil(e.semi_major)) + 50;
+    const cv::Rect box(static_cast<int>(e.center.x()) - half,
+                       static_cast<int>(e.center.y()) - half,
+                       2 * half + 1,
+                       2 * half + 1);
+    patch = i == 0 ? box : (patch | box);
+  }
+  patch &= cv::Rect(0, 0, view.cols, view.rows);
+  if (patch.empty()) return fail("the circles lie outside the search region");
+  std::map<int, cv::Mat> smoothed;
+  for (const auto& [channel, mat] : raw) {
+    cv::GaussianBlur(mat(patch), smoothed[channel], cv::Size(0, 0), detection.smoothing_sigma_px);
+  }
+  // x_patch = to_patch x_region.
+  Eigen::Matrix3d to_patch = Eigen::Matrix3d::Identity();
+  to_patch.topRightCorner<2, 1>() = -Eigen::Vector2d(patch.x, patch.y);
+  const Eigen::Matrix3d from_patch = to_patch.inverse();
+  for (Eigen::Matrix3d& C : initial) C = CanonicalConic(from_patch.transpose() * C * from_patch);
+  const Eigen::Vector2d patch_offset = offset + Eigen::Vector2d(patch.x, patch.y);
+  shift.topRightCorner<2, 1>() = -patch_offset;
   for (size_t i = 0; i < initial.size(); ++i) {
     const cv::Mat& channel = smoothed[plans_[i].channel];
     DetectedCircle circle;
     Eigen::Matrix3d hypothesis = initial[i];
     double sigma = detection.smoothing_sigma_px + 1.0;
-    for (int pass = 0; pass < options_.edge_passes; ++pass) {
+    for (int pass = 0; pass < passes; ++pass) {
       const Ellipse e = EllipseFromConic(hypothesis);
       const double scale = PixelsPerMetre(e, r[i]);
       const double inward = std::min(0.6 * inward_clear_m_[i] * scale, 0.8 * e.semi_minor);
@@ -422,17 +503,15 @@ std::optional<MarkerDetection> CircleDetector::Detect(const Image8& image,
                                      sigma,
                                      options_.edges);
       if (circle.edges.points_px.size() < 8) return fail("too few edge points on a circle");
-      const std::optional<ConicFit> fit = FitEllipse(circle.edges.points_px, options_.fit);
+      const std::optional<ConicFit> fit =
+          FitEllipse(circle.edges.points_px, pass + 1 == passes ? options_.fit : direct);
       if (!fit) return fail("the edge points of a circle give no ellipse");
       hypothesis = fit->conic;
       circle.fit_rms_px = fit->rms_px;
       sigma = circle.edges.sigma_px;
     }
-    // Back to full-image pixels: x_full = x_roi + offset.
-    Eigen::Matrix3d shift = Eigen::Matrix3d::Identity();
-    shift.topRightCorner<2, 1>() = -offset;
     circle.conic_px = CanonicalConic(shift.transpose() * hypothesis * shift);
-    for (Eigen::Vector2d& p : circle.edges.points_px) p += offset;
+    for (Eigen::Vector2d& p : circle.edges.points_px) p += patch_offset;
     detection.circles.push_back(std::move(circle));
   }
   return detection;

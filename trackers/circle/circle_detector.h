@@ -23,10 +23,11 @@ struct CircleDetectorOptions {
   double smoothing_min_px = 0.7;
   double smoothing_per_noise = 5.0;
   double smoothing_max_px = 3.0;
-  double min_contrast = 0.08;       // ink vs paper after smoothing, as a fraction of full scale
-  double min_area_px = 12.0;        // smallest blob (a disk of about 2 px radius)
-  double max_outline_rms_px = 1.0;  // contour-to-ellipse RMS allowed, plus 8% of the minor axis
-  int edge_passes = 2;              // edge search, fit, and again from the fitted ellipse
+  int half_resolution_min_px = 240;  // search candidates at half resolution in regions this big
+  double min_contrast = 0.08;        // ink vs paper after smoothing, as a fraction of full scale
+  double min_area_px = 12.0;         // smallest blob (a disk of about 2 px radius)
+  double max_outline_rms_px = 1.0;   // contour-to-ellipse RMS allowed, plus 8% of the minor axis
+  int edge_passes = 2;               // edge search, fit, and again from the fitted ellipse
   EdgeSearchOptions edges;
   ConicFitOptions fit;
 
@@ -55,8 +56,12 @@ class CircleDetector {
 
   // Searches `roi` (image pixels) of `image`; coordinates in the result are full-image
   // pixels. nullopt, with `why` set, when the marker is not found whole.
+  // With `predicted_conics_px` (one per circle, from the previous pose), markers whose pose
+  // needs no detected dot skip the candidate search and take one edge pass from the
+  // prediction (the paper's step 5).
   std::optional<MarkerDetection> Detect(const Image8& image,
                                         const cv::Rect& roi,
+                                        const std::vector<Eigen::Matrix3d>* predicted_conics_px,
                                         std::string* why) const;
 
  private:

@@ -125,9 +125,11 @@ TrackResult CircleTracker::Track(const Observation& observation) {
     const Camera& camera = *observation.camera;
     const Eigen::Matrix3d H = Homography(camera.K(), *previous_cam_from_paper_);
     cv::Rect2d box;
+    std::vector<Eigen::Matrix3d> predicted;
     for (size_t i = 0; i < geometry->centers.size(); ++i) {
-      const cv::Rect2d b =
-          EllipseBox(ImageOfCircle<double>(H, geometry->centers[i], geometry->radii_m[i]));
+      predicted.push_back(
+          CanonicalConic(ImageOfCircle<double>(H, geometry->centers[i], geometry->radii_m[i])));
+      const cv::Rect2d b = EllipseBox(predicted.back());
       box = i == 0 ? b : (box | b);
     }
     const Eigen::Vector3d m1 = H * Eigen::Vector3d(geometry->Lx, 0.0, 1.0);
@@ -139,19 +141,24 @@ TrackResult CircleTracker::Track(const Observation& observation) {
                                     static_cast<int>(std::ceil(box.y + box.height + grow))));
     const cv::Rect clipped = region & whole;
     if (clipped.area() > 0) {
-      TrackResult result = TrackIn(observation, *geometry, clipped);
-      diagnostics_.used_tracking_region = true;
-      if (result.status == TrackStatus::kOk) return result;
+      // The predicted ellipses first, then a search of the region, then the whole image.
+      const std::vector<Eigen::Matrix3d>* const predictions[] = {&predicted, nullptr};
+      for (const std::vector<Eigen::Matrix3d>* prediction : predictions) {
+        TrackResult result = TrackIn(observation, *geometry, clipped, prediction);
+        diagnostics_.used_tracking_region = true;
+        if (result.status == TrackStatus::kOk) return result;
+      }
     }
   }
-  TrackResult result = TrackIn(observation, *geometry, whole);
+  TrackResult result = TrackIn(observation, *geometry, whole, nullptr);
   diagnostics_.used_tracking_region = false;
   return result;
 }
 
 TrackResult CircleTracker::TrackIn(const Observation& observation,
                                    const CircleGeometry& geometry,
-                                   const cv::Rect& region) {
+                                   const cv::Rect& region,
+                                   const std::vector<Eigen::Matrix3d>* predicted_conics_px) {
   diagnostics_ = CircleDiagnostics{};
   previous_cam_from_paper_.reset();
   TrackResult result;
@@ -160,7 +167,8 @@ TrackResult CircleTracker::TrackIn(const Observation& observation,
 
   std::string why;
   const CircleDetector detector(*observation.marker, geometry, options_.detector);
-  std::optional<MarkerDetection> detection = detector.Detect(*observation.image, region, &why);
+  std::optional<MarkerDetection> detection =
+      detector.Detect(*observation.image, region, predicted_conics_px, &why);
   if (!detection) {
     result.status = TrackStatus::kNotDetected;
     result.message = why;

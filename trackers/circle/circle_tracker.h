@@ -63,7 +63,8 @@ class CircleTracker final : public Tracker {
  private:
   TrackResult TrackIn(const Observation& observation,
                       const CircleGeometry& geometry,
-                      const cv::Rect& region);
+                      const cv::Rect& region,
+                      const std::vector<Eigen::Matrix3d>* predicted_conics_px);
 
   CircleTrackerOptions options_;
   std::optional<Rigid3> previous_cam_from_paper_;

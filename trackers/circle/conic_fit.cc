@@ -70,18 +70,22 @@ Eigen::Matrix3d ConicOf(const double* theta) {
   return C;
 }
 
-// Residual of one Hartley-frame point, in pixels (§3.3).
-struct PndPointCost {
-  PndPointCost(const Eigen::Vector2d& q, double inverse_scale)
+// Residuals of all Hartley-frame points, in pixels (§3.3): one block, so that Ceres
+// differentiates the conic once per evaluation rather than once per point.
+struct PndPointsCost {
+  PndPointsCost(const std::vector<Eigen::Vector2d>& q, double inverse_scale)
       : q_(q), inverse_scale_(inverse_scale) {}
   template <typename T>
-  bool operator()(const T* theta, T* residual) const {
+  bool operator()(T const* const* parameters, T* residuals) const {
+    const T* theta = parameters[0];
     Eigen::Matrix<T, 3, 3> C;
     C << theta[0], theta[1], theta[3], theta[1], theta[2], theta[4], theta[3], theta[4], theta[5];
-    residual[0] = PndResidual<T>(C, T(q_.x()), T(q_.y())) * inverse_scale_;
+    for (size_t j = 0; j < q_.size(); ++j) {
+      residuals[j] = PndResidual<T>(C, T(q_[j].x()), T(q_[j].y())) * inverse_scale_;
+    }
     return true;
   }
-  Eigen::Vector2d q_;
+  const std::vector<Eigen::Vector2d>& q_;
   double inverse_scale_;
 };
 
@@ -110,12 +114,11 @@ std::optional<ConicFit> FitEllipse(const std::vector<Eigen::Vector2d>& points_px
     const double norm = Eigen::Map<Eigen::Matrix<double, 6, 1>>(theta).norm();
     for (double& v : theta) v /= norm;
     ceres::Problem problem;
-    for (const Eigen::Vector2d& q : frame.points) {
-      problem.AddResidualBlock(new ceres::AutoDiffCostFunction<PndPointCost, 1, 6>(
-                                   new PndPointCost(q, 1.0 / frame.scale)),
-                               nullptr,
-                               theta);
-    }
+    auto* cost = new ceres::DynamicAutoDiffCostFunction<PndPointsCost, 6>(
+        new PndPointsCost(frame.points, 1.0 / frame.scale));
+    cost->AddParameterBlock(6);
+    cost->SetNumResiduals(static_cast<int>(frame.points.size()));
+    problem.AddResidualBlock(cost, nullptr, theta);
     problem.SetManifold(theta, new ceres::SphereManifold<6>());
     ceres::Solver::Options solver;
     solver.linear_solver_type = ceres::DENSE_QR;

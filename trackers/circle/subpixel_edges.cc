@@ -46,40 +46,70 @@ struct LevelState {
 };
 
 // The model in the affine frame, where the ellipse with its edge at `edge` on this ray is a
-// disk of radius ρ + edge·gain: its blurred-disk profile (BlurredDiskProfile) with the normal
-// width setting z and the tangential width setting the curvature shift σ_t²/(2ρ).
+// disk of radius ρ + edge·gain: its blurred-disk profile with the normal width setting z and
+// the tangential width setting the curvature shift σ_t²/(2ρ). One per ray and state.
 struct RayModel {
-  ProfileValue G;
-  double s, z;  // arguments of G
-  double ds_dedge, dz_dedge;
+  RayModel(const Ray& ray, double rho, double edge, double sigma)
+      : sigma_n(sigma * ray.normal_blur),
+        s((rho + edge * ray.radial_gain) * sigma_n /
+          (sigma * ray.tangential_blur * sigma * ray.tangential_blur)),
+        ds_dedge(ray.radial_gain * sigma_n /
+                 (sigma * ray.tangential_blur * sigma * ray.tangential_blur)),
+        dz_dedge(ray.radial_gain / sigma_n),
+        edge(edge),
+        profile(s) {}
+  double z(double offset) const { return (edge - offset) * dz_dedge; }
+  double sigma_n, s, ds_dedge, dz_dedge, edge;
+  BlurredDiskProfile profile;
 };
-RayModel Model(const Ray& ray, double rho, double edge, double offset, double sigma) {
-  RayModel m;
-  const double sigma_n = sigma * ray.normal_blur, sigma_t = sigma * ray.tangential_blur;
-  const double radius = rho + edge * ray.radial_gain;
-  m.s = radius * sigma_n / (sigma_t * sigma_t);
-  m.z = (edge - offset) * ray.radial_gain / sigma_n;
-  m.ds_dedge = ray.radial_gain * sigma_n / (sigma_t * sigma_t);
-  m.dz_dedge = ray.radial_gain / sigma_n;
-  m.G = BlurredDiskProfile(m.s, m.z);
-  return m;
-}
 
-// Sum of squared residuals of the model with levels `s` and per-ray edges `edges`.
-double Cost(const std::vector<Ray>& rays,
-            double rho,
-            const LevelState& s,
-            const std::vector<double>& edges) {
+// The model's residuals at (levels, edges) and its Gauss-Newton normal equations, arranged
+// for the Schur complement: global block A (levels), per-ray diagonal D and coupling B.
+struct Linearization {
   double cost = 0.0;
+  Eigen::Matrix3d A = Eigen::Matrix3d::Zero();
+  Eigen::Vector3d b = Eigen::Vector3d::Zero();
+  std::vector<double> D, c, ray_cost;
+  std::vector<Eigen::Vector3d> B;
+};
+
+Linearization Linearize(const std::vector<Ray>& rays,
+                        double rho,
+                        const LevelState& s,
+                        const std::vector<double>& edges) {
+  Linearization lin;
+  lin.D.resize(rays.size());
+  lin.c.resize(rays.size());
+  lin.ray_cost.resize(rays.size());
+  lin.B.resize(rays.size());
+  const double delta = s.inside - s.outside;
   for (size_t k = 0; k < rays.size(); ++k) {
     const Ray& ray = rays[k];
+    double Dk = 0.0, ck = 0.0, cost = 0.0;
+    Eigen::Vector3d Bk = Eigen::Vector3d::Zero();
+    const RayModel m(ray, rho, edges[k], s.sigma);
     for (size_t j = 0; j < ray.offsets.size(); ++j) {
-      const double G = Model(ray, rho, edges[k], ray.offsets[j], s.sigma).G.value;
-      const double r = s.outside + (s.inside - s.outside) * G - ray.values[j];
+      const double z = m.z(ray.offsets[j]);
+      const ProfileValue G = m.profile.At(z);
+      const double r = s.outside + delta * G.value - ray.values[j];
+      // s and z both scale as 1/σ.
+      const Eigen::Vector3d Jg(
+          G.value, 1.0 - G.value, -delta * (G.d_ds * m.s + G.d_dz * z) / s.sigma);
+      const double Je = delta * (G.d_ds * m.ds_dedge + G.d_dz * m.dz_dedge);
+      lin.A += Jg * Jg.transpose();
+      lin.b += Jg * r;
+      Dk += Je * Je;
+      Bk += Jg * Je;
+      ck += Je * r;
       cost += r * r;
     }
+    lin.D[k] = Dk;
+    lin.B[k] = Bk;
+    lin.c[k] = ck;
+    lin.ray_cost[k] = cost;
+    lin.cost += cost;
   }
-  return cost;
+  return lin;
 }
 
 }  // namespace
@@ -139,55 +169,32 @@ CircleEdges FindCircleEdges(const cv::Mat& image,
   }
   LevelState s{Median(inner), Median(outer), std::max(0.5, sigma_start_px)};
   std::vector<double> edges(rays.size(), 0.0);
-  double cost = Cost(rays, rho, s, edges);
+  Linearization lin = Linearize(rays, rho, s, edges);
   double lambda = 1e-3;
   for (int it = 0; it < options.iterations; ++it) {
-    Eigen::Matrix3d A = Eigen::Matrix3d::Zero();
-    Eigen::Vector3d b = Eigen::Vector3d::Zero();
-    std::vector<double> D(rays.size()), c(rays.size());
-    std::vector<Eigen::Vector3d> B(rays.size());
-    for (size_t k = 0; k < rays.size(); ++k) {
-      const Ray& ray = rays[k];
-      double Dk = 0.0, ck = 0.0;
-      Eigen::Vector3d Bk = Eigen::Vector3d::Zero();
-      for (size_t j = 0; j < ray.offsets.size(); ++j) {
-        const RayModel m = Model(ray, rho, edges[k], ray.offsets[j], s.sigma);
-        const double delta = s.inside - s.outside;
-        const double r = s.outside + delta * m.G.value - ray.values[j];
-        // s and z both scale as 1/σ.
-        const Eigen::Vector3d Jg(
-            m.G.value, 1.0 - m.G.value, -delta * (m.G.d_ds * m.s + m.G.d_dz * m.z) / s.sigma);
-        const double Je = delta * (m.G.d_ds * m.ds_dedge + m.G.d_dz * m.dz_dedge);
-        A += Jg * Jg.transpose();
-        b += Jg * r;
-        Dk += Je * Je;
-        Bk += Jg * Je;
-        ck += Je * r;
-      }
-      D[k] = Dk * (1.0 + lambda) + 1e-12;
-      B[k] = Bk;
-      c[k] = ck;
-    }
-    Eigen::Matrix3d S = A;
+    // Levenberg-Marquardt step, the per-ray edges eliminated (Schur complement).
+    Eigen::Matrix3d S = lin.A;
     S.diagonal() *= 1.0 + lambda;
-    Eigen::Vector3d rhs = b;
+    Eigen::Vector3d rhs = lin.b;
+    std::vector<double> D(rays.size());
     for (size_t k = 0; k < rays.size(); ++k) {
-      S -= B[k] * B[k].transpose() / D[k];
-      rhs -= B[k] * c[k] / D[k];
+      D[k] = lin.D[k] * (1.0 + lambda) + 1e-12;
+      S -= lin.B[k] * lin.B[k].transpose() / D[k];
+      rhs -= lin.B[k] * lin.c[k] / D[k];
     }
     const Eigen::Vector3d dg = -S.ldlt().solve(rhs);
     LevelState trial{s.inside + dg(0), s.outside + dg(1), std::clamp(s.sigma + dg(2), 0.3, 40.0)};
     std::vector<double> trial_edges(rays.size());
     for (size_t k = 0; k < rays.size(); ++k) {
-      const double de = -(c[k] + B[k].dot(dg)) / D[k];
+      const double de = -(lin.c[k] + lin.B[k].dot(dg)) / D[k];
       trial_edges[k] = std::clamp(edges[k] + de, -reach_in, reach_out);
     }
-    const double trial_cost = Cost(rays, rho, trial, trial_edges);
-    if (trial_cost < cost) {
-      const bool converged = cost - trial_cost < 1e-6 * cost;
+    Linearization trial_lin = Linearize(rays, rho, trial, trial_edges);
+    if (trial_lin.cost < lin.cost) {
+      const bool converged = lin.cost - trial_lin.cost < 1e-4 * lin.cost;
       s = trial;
-      edges = trial_edges;
-      cost = trial_cost;
+      edges = std::move(trial_edges);
+      lin = std::move(trial_lin);
       lambda = std::max(1e-6, lambda / 10);
       if (converged) break;
     } else {
@@ -199,14 +206,7 @@ CircleEdges FindCircleEdges(const cv::Mat& image,
   // occlusion) and edges pinned at the reach limits.
   std::vector<double> ray_rms(rays.size());
   for (size_t k = 0; k < rays.size(); ++k) {
-    double sum = 0.0;
-    const Ray& ray = rays[k];
-    for (size_t j = 0; j < ray.offsets.size(); ++j) {
-      const double G = Model(ray, rho, edges[k], ray.offsets[j], s.sigma).G.value;
-      const double r = s.outside + (s.inside - s.outside) * G - ray.values[j];
-      sum += r * r;
-    }
-    ray_rms[k] = std::sqrt(sum / ray.offsets.size());
+    ray_rms[k] = std::sqrt(lin.ray_cost[k] / rays[k].offsets.size());
   }
   const double typical = Median(ray_rms);
   for (size_t k = 0; k < rays.size(); ++k) {

@@ -17,9 +17,9 @@ namespace markerbench {
 struct EdgeSearchOptions {
   int min_rays = 24;            // rays on small ellipses
   int max_rays = 96;            // rays on large ellipses (about one per 3 px of perimeter)
-  double sample_step_px = 0.7;  // spacing of the profile samples along a ray
+  double sample_step_px = 1.0;  // spacing of the profile samples along a ray
   double reach_sigmas = 3.0;    // a ray reaches reach_sigmas σ + 3 px past the edge, both ways
-  int iterations = 10;          // Gauss-Newton iterations
+  int iterations = 6;           // Gauss-Newton iterations (stops earlier once converged)
 };
 
 struct CircleEdges {

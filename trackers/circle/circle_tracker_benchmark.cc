@@ -1,0 +1,65 @@
+// circle tracker per-frame time on one thread (issue 3; results/speed.md): full detection +
+// analytic pose + refinement, and tracking mode (the region predicted from the previous
+// pose). circles_a with a 0.1 m equal-area footprint at 0.6 m, σ² = 0.02, the frames of the
+// other tracker benchmarks. Run from the project root.
+#include <benchmark/benchmark.h>
+
+#include <opencv2/core.hpp>
+
+#include "core/marker_scaling.h"
+#include "core/marker_yaml.h"
+#include "trackers/benchmark_frames.h"
+#include "trackers/circle/circle_tracker.h"
+
+namespace markerbench {
+namespace {
+
+MarkerSpec PaperCirclesA() {
+  const MarkerSpec marker = LoadMarkerYaml("scenarios/markers/circles_a.yaml");
+  return ScaledMarker(marker, EqualAreaFactor(marker, 0.01));
+}
+
+void BM_CircleFullDetection(benchmark::State& state) {
+  cv::setNumThreads(1);
+  const MarkerSpec marker = PaperCirclesA();
+  const std::vector<Image8> frames = BenchmarkFrames(marker, 16);
+  const Camera camera;
+  CircleTracker tracker;
+  size_t i = 0, ok = 0;
+  for (auto _ : state) {
+    tracker.Reset();
+    ok +=
+        tracker.Track({&frames[i++ % frames.size()], &camera, &marker}).status == TrackStatus::kOk;
+  }
+  state.counters["ok_fraction"] = static_cast<double>(ok) / static_cast<double>(i);
+}
+
+// Each frame is tracked twice: untimed (full detection, sets the previous pose), then timed
+// from that pose, as for a marker that did not move between frames.
+void BM_CircleTrackingMode(benchmark::State& state) {
+  cv::setNumThreads(1);
+  const MarkerSpec marker = PaperCirclesA();
+  const std::vector<Image8> frames = BenchmarkFrames(marker, 16);
+  const Camera camera;
+  CircleTracker tracker;
+  size_t i = 0, ok = 0, in_region = 0;
+  for (auto _ : state) {
+    const Image8& frame = frames[i++ % frames.size()];
+    state.PauseTiming();
+    tracker.Reset();
+    tracker.Track({&frame, &camera, &marker});
+    state.ResumeTiming();
+    ok += tracker.Track({&frame, &camera, &marker}).status == TrackStatus::kOk;
+    in_region += tracker.diagnostics().used_tracking_region;
+  }
+  state.counters["ok_fraction"] = static_cast<double>(ok) / static_cast<double>(i);
+  state.counters["region_fraction"] = static_cast<double>(in_region) / static_cast<double>(i);
+}
+
+BENCHMARK(BM_CircleFullDetection)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_CircleTrackingMode)->Unit(benchmark::kMillisecond);
+
+}  // namespace
+}  // namespace markerbench
+
+BENCHMARK_MAIN();
