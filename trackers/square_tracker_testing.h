@@ -30,6 +30,7 @@ inline TrackedFrame RenderAndTrack(Tracker* tracker,
   request.scene.marker = &rendered;
   request.scene.cam_from_marker = cam_from_marker;
   request.degradations.noise_var = noise_var;
+  request.channels = rendered.HasColor() || expected.HasColor() ? 3 : 1;
   request.noise_seed = SeedFor(seed, 0, 0, SeedPurpose::kNoise);
   TrackedFrame out;
   out.frame = RenderFrame(request);

@@ -20,21 +20,27 @@ TEST(TrackStatus, NamesRoundTrip) {
   EXPECT_FALSE(TrackStatusFromString("lost").has_value());
 }
 
-// Each library tracker takes exactly its own marker kind and family, as the harness pairs
-// trackers with markers by CanTrack.
+// Each tracker takes exactly its own marker kinds and family, as the harness pairs trackers
+// with markers by CanTrack.
 TEST(TrackerFactory, TrackersCanTrackTheirOwnMarkersOnly) {
   const MarkerSpec apriltag = LoadMarkerYaml("scenarios/markers/apriltag.yaml");
   const MarkerSpec aruco = LoadMarkerYaml("scenarios/markers/aruco.yaml");
-  const MarkerSpec circles = LoadMarkerYaml("scenarios/markers/circles_a.yaml");
   MarkerSpec other_family = apriltag;
   other_family.family = "tag25h9";
   for (const std::string& name : TrackerNames()) {
     const auto tracker = MakeTracker(name, nullptr);
-    const bool is_aruco = name == "aruco";
-    EXPECT_EQ(tracker->CanTrack(apriltag), !is_aruco) << name;
+    const bool is_aruco = name == "aruco", is_circle = name == "circle";
+    EXPECT_EQ(tracker->CanTrack(apriltag), !is_aruco && !is_circle) << name;
     EXPECT_EQ(tracker->CanTrack(aruco), is_aruco) << name;
-    EXPECT_FALSE(tracker->CanTrack(circles)) << name;
     EXPECT_FALSE(tracker->CanTrack(other_family)) << name;
+    for (const char* kind : {"circles_a", "circles_b", "circles_c", "circle_d"}) {
+      const MarkerSpec circles = LoadMarkerYaml(std::string("scenarios/markers/") + kind + ".yaml");
+      EXPECT_EQ(tracker->CanTrack(circles), is_circle) << name << " " << kind;
+    }
+    for (const char* kind : {"circle_e", "circle_f", "bit_grid", "dot_rings"}) {
+      const MarkerSpec other = LoadMarkerYaml(std::string("scenarios/markers/") + kind + ".yaml");
+      EXPECT_FALSE(tracker->CanTrack(other)) << name << " " << kind;
+    }
   }
 }
 

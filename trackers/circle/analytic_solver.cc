@@ -15,46 +15,57 @@ std::optional<AnalyticSolution> Fail(std::string* error, const std::string& mess
 
 Eigen::Vector2d Dehomogenized(const Eigen::Vector3d& x) { return x.head<2>() / x.z(); }
 
-}  // namespace
-
-const char* ToString(AnalyticDepth depth) { return depth == AnalyticDepth::kLx ? "lx" : "radius"; }
-
-std::optional<AnalyticSolution> SolveAnalytic(const CircleGeometry& geometry,
-                                              const Eigen::Matrix3d& K,
-                                              const CircleMeasurements& measurements,
-                                              const AnalyticOptions& options,
-                                              std::string* error) {
-  const size_t n = geometry.centers.size();
-  if (measurements.conics_px.size() != n) return Fail(error, "one conic per circle expected");
+std::vector<Eigen::Matrix3d> NormalizedConics(const Eigen::Matrix3d& K,
+                                              const CircleMeasurements& measurements) {
   std::vector<Eigen::Matrix3d> conics_n;
   for (const Eigen::Matrix3d& C : measurements.conics_px) {
     conics_n.push_back(CanonicalConic(K.transpose() * C * K));
   }
-  const Eigen::Matrix3d K_inv = K.inverse();
+  return conics_n;
+}
 
-  Eigen::Vector3d l_inf;
+// The projective l_inf of the layout (§4.3-4.5), before any use of K's normals.
+std::optional<Eigen::Vector3d> ProjectiveLineAtInfinity(
+    const CircleGeometry& geometry,
+    const Eigen::Matrix3d& K_inv,
+    const std::vector<Eigen::Matrix3d>& conics_n,
+    const CircleMeasurements& measurements,
+    std::string* error) {
   switch (geometry.layout) {
     case CircleLayout::kTwoCircles: {
       const std::optional<Eigen::Vector3d> l =
           LineAtInfinityFromTwoCircles(conics_n[0], conics_n[1]);
-      if (!l) return Fail(error, "no line in the pencil passes the quasi-affine test");
-      l_inf = *l;
-      break;
+      if (!l && error) *error = "no line in the pencil passes the quasi-affine test";
+      return l;
     }
     case CircleLayout::kConcentric: {
       const std::optional<ConcentricSolution> s =
           LineAtInfinityFromConcentric(conics_n[0], conics_n[1]);
-      if (!s) return Fail(error, "the concentric pencil has no finite centre");
-      l_inf = s->l_inf;
-      break;
+      if (!s) {
+        if (error) *error = "the concentric pencil has no finite centre";
+        return std::nullopt;
+      }
+      return s->l_inf;
     }
     case CircleLayout::kCircleWithCenter:
-      if (!measurements.m0_px) return Fail(error, "the centre point m0 was not detected");
-      l_inf = LineAtInfinityFromCenter(conics_n[0], K_inv * measurements.m0_px->homogeneous());
-      break;
+      if (!measurements.m0_px) {
+        if (error) *error = "the centre point m0 was not detected";
+        return std::nullopt;
+      }
+      return LineAtInfinityFromCenter(conics_n[0], K_inv * measurements.m0_px->homogeneous());
   }
-  if (options.k_normal) l_inf = KNormalLineAtInfinity(conics_n, l_inf);
+  return std::nullopt;
+}
 
+// Given l_inf: imaged centres as poles (§4.6), the pose (§5.2) and the depth (§5.3).
+std::optional<AnalyticSolution> SolutionFromLine(const CircleGeometry& geometry,
+                                                 const Eigen::Matrix3d& K,
+                                                 const std::vector<Eigen::Matrix3d>& conics_n,
+                                                 const CircleMeasurements& measurements,
+                                                 Eigen::Vector3d l_inf,
+                                                 AnalyticDepth depth,
+                                                 std::string* error) {
+  const Eigen::Matrix3d K_inv = K.inverse();
   std::vector<Eigen::Vector3d> centers_n;
   for (const Eigen::Matrix3d& C : conics_n) {
     const std::optional<Eigen::Vector3d> m = ImagedCenter(C, l_inf);
@@ -75,16 +86,16 @@ std::optional<AnalyticSolution> SolveAnalytic(const CircleGeometry& geometry,
 
   std::optional<AnalyticPose> pose = AnalyticPoseFromLine(l_inf, m0, m1, geometry.Lx);
   if (!pose) return Fail(error, "edge-on view: m0 and m1 coincide in the image");
-  if (options.depth == AnalyticDepth::kRadius) {
+  if (depth == AnalyticDepth::kRadius) {
     const Eigen::Matrix3d& R = pose->cam_from_paper.rotation;
     Eigen::Vector3d t = Eigen::Vector3d::Zero();
-    for (size_t i = 0; i < n; ++i) {
+    for (size_t i = 0; i < conics_n.size(); ++i) {
       const double s =
           DepthFromRadius(conics_n[i], R.col(0), R.col(1), centers_n[i], geometry.radii_m[i]);
       t += s * centers_n[i] - geometry.centers[i].x() * R.col(0) -
            geometry.centers[i].y() * R.col(1);
     }
-    t /= static_cast<double>(n);
+    t /= static_cast<double>(conics_n.size());
     if (!t.allFinite() || !(t.z() > 0.0)) return Fail(error, "no positive depth from the radii");
     pose->cam_from_paper.translation = t;
   }
@@ -92,12 +103,58 @@ std::optional<AnalyticSolution> SolveAnalytic(const CircleGeometry& geometry,
   AnalyticSolution solution;
   solution.l_inf_norm = l_inf;
   solution.l_inf_px = OrientLineAtInfinity(K_inv.transpose() * l_inf, K * m0);
-  for (const Eigen::Vector3d& m : centers_n)
+  for (const Eigen::Vector3d& m : centers_n) {
     solution.imaged_centers_px.push_back(Dehomogenized(K * m));
+  }
   solution.m0_px = Dehomogenized(K * m0);
   solution.m1_px = Dehomogenized(K * m1);
   solution.pose = *pose;
   return solution;
+}
+
+}  // namespace
+
+const char* ToString(AnalyticDepth depth) { return depth == AnalyticDepth::kLx ? "lx" : "radius"; }
+
+std::optional<AnalyticSolution> SolveAnalytic(const CircleGeometry& geometry,
+                                              const Eigen::Matrix3d& K,
+                                              const CircleMeasurements& measurements,
+                                              const AnalyticOptions& options,
+                                              std::string* error) {
+  if (measurements.conics_px.size() != geometry.centers.size()) {
+    return Fail(error, "one conic per circle expected");
+  }
+  const std::vector<Eigen::Matrix3d> conics_n = NormalizedConics(K, measurements);
+  std::optional<Eigen::Vector3d> l_inf =
+      ProjectiveLineAtInfinity(geometry, K.inverse(), conics_n, measurements, error);
+  if (!l_inf) return std::nullopt;
+  if (options.k_normal) l_inf = KNormalLineAtInfinity(conics_n, *l_inf);
+  return SolutionFromLine(geometry, K, conics_n, measurements, *l_inf, options.depth, error);
+}
+
+std::vector<AnalyticSolution> AnalyticCandidates(const CircleGeometry& geometry,
+                                                 const Eigen::Matrix3d& K,
+                                                 const CircleMeasurements& measurements,
+                                                 AnalyticDepth depth) {
+  std::vector<AnalyticSolution> candidates;
+  if (measurements.conics_px.size() != geometry.centers.size()) return candidates;
+  const std::vector<Eigen::Matrix3d> conics_n = NormalizedConics(K, measurements);
+  std::vector<Eigen::Vector3d> lines;
+  const std::optional<Eigen::Vector3d> projective =
+      ProjectiveLineAtInfinity(geometry, K.inverse(), conics_n, measurements, nullptr);
+  if (projective) {
+    lines.push_back(*projective);
+    lines.push_back(KNormalLineAtInfinity(conics_n, *projective));
+  }
+  for (const Eigen::Matrix3d& C : conics_n) {
+    for (const Eigen::Vector3d& normal : SingleCircleNormals(C)) lines.push_back(normal);
+  }
+  for (const Eigen::Vector3d& l : lines) {
+    std::optional<AnalyticSolution> s =
+        SolutionFromLine(geometry, K, conics_n, measurements, l, depth, nullptr);
+    if (s) candidates.push_back(std::move(*s));
+  }
+  return candidates;
 }
 
 }  // namespace markerbench

@@ -50,4 +50,13 @@ std::optional<AnalyticSolution> SolveAnalytic(const CircleGeometry& geometry,
                                               const AnalyticOptions& options,
                                               std::string* error);
 
+// Every start worth refining, for frames where the choice of l_inf is ill-conditioned (small
+// or blurred ellipses): the projective l_inf, its K-normal variant, and each circle's two
+// calibrated normals (§4.7; one is r3 whatever the noise on the other circles). The caller
+// ranks them by how well they explain the image.
+std::vector<AnalyticSolution> AnalyticCandidates(const CircleGeometry& geometry,
+                                                 const Eigen::Matrix3d& K,
+                                                 const CircleMeasurements& measurements,
+                                                 AnalyticDepth depth);
+
 }  // namespace markerbench

@@ -197,10 +197,14 @@ bool CircleDetectorOptions::IsValid(std::string* error) const {
     msg << "smoothing_per_noise=" << smoothing_per_noise << " must be >= 0";
   } else if (!(min_contrast > 0.0 && min_contrast < 1.0)) {
     msg << "min_contrast=" << min_contrast << " must be in (0, 1)";
+  } else if (!(min_contrast_snr >= 0.0)) {
+    msg << "min_contrast_snr=" << min_contrast_snr << " must be >= 0";
   } else if (!(min_area_px >= 5.0)) {
     msg << "min_area_px=" << min_area_px << " must be >= 5";
   } else if (!(max_outline_rms_px > 0.0)) {
     msg << "max_outline_rms_px=" << max_outline_rms_px << " must be > 0";
+  } else if (!(min_edge_fraction > 0.0 && min_edge_fraction <= 1.0)) {
+    msg << "min_edge_fraction=" << min_edge_fraction << " must be in (0, 1]";
   } else if (edge_passes < 1) {
     msg << "edge_passes=" << edge_passes << " must be >= 1";
   } else if (edges.max_rays < edges.min_rays || edges.min_rays < 8) {
@@ -338,7 +342,8 @@ std::optional<MarkerDetection> CircleDetector::Detect(
 
   // Candidates are searched at half resolution in large regions (2x2 means, then the
   // smoothing at half scale); x_full = scale x_search + (scale - 1)/2.
-  const int scale = region.width >= options_.half_resolution_min_px &&
+  // Markers told apart by small dots (b, c, d) are searched at full resolution.
+  const int scale = dot_radius_m_ == 0.0 && region.width >= options_.half_resolution_min_px &&
                             region.height >= options_.half_resolution_min_px
                         ? 2
                         : 1;
@@ -502,13 +507,26 @@ std::optional<MarkerDetection> CircleDetector::Detect(
                                      std::max(1.5, outward),
                                      sigma,
                                      options_.edges);
-      if (circle.edges.points_px.size() < 8) return fail("too few edge points on a circle");
+      const size_t kept = circle.edges.points_px.size();
+      if (kept < 8 || kept < options_.min_edge_fraction * circle.edges.rays) {
+        return fail("edges found on only " + std::to_string(kept) + " of " +
+                    std::to_string(circle.edges.rays) + " rays of circle " + std::to_string(i));
+      }
       const std::optional<ConicFit> fit =
           FitEllipse(circle.edges.points_px, pass + 1 == passes ? options_.fit : direct);
       if (!fit) return fail("the edge points of a circle give no ellipse");
       hypothesis = fit->conic;
       circle.fit_rms_px = fit->rms_px;
       sigma = circle.edges.sigma_px;
+    }
+    // The edge contrast must stand out of the noise left after smoothing (a Gaussian of σ_s
+    // divides white noise by 2√π σ_s): blobs of pure noise reach about 6 of those σ.
+    const double contrast =
+        std::abs(circle.edges.inside_level - circle.edges.outside_level) / 255.0;
+    const double smoothed_noise =
+        detection.noise_sigma / (2.0 * std::sqrt(M_PI) * detection.smoothing_sigma_px);
+    if (contrast < options_.min_contrast || contrast < options_.min_contrast_snr * smoothed_noise) {
+      return fail("circle " + std::to_string(i) + " has too little contrast for the noise");
     }
     circle.conic_px = CanonicalConic(shift.transpose() * hypothesis * shift);
     for (Eigen::Vector2d& p : circle.edges.points_px) p += patch_offset;

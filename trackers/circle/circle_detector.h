@@ -25,9 +25,13 @@ struct CircleDetectorOptions {
   double smoothing_max_px = 3.0;
   int half_resolution_min_px = 240;  // search candidates at half resolution in regions this big
   double min_contrast = 0.08;        // ink vs paper after smoothing, as a fraction of full scale
-  double min_area_px = 12.0;         // smallest blob (a disk of about 2 px radius)
-  double max_outline_rms_px = 1.0;   // contour-to-ellipse RMS allowed, plus 8% of the minor axis
-  int edge_passes = 2;               // edge search, fit, and again from the fitted ellipse
+  // Edge contrast in units of the smoothed noise σ. Marker disks measure 16 or more at
+  // σ² = 0.3; blobs of noise at most about 6.
+  double min_contrast_snr = 10.0;
+  double min_area_px = 12.0;        // smallest blob (a disk of about 2 px radius)
+  double max_outline_rms_px = 1.0;  // contour-to-ellipse RMS allowed, plus 8% of the minor axis
+  int edge_passes = 2;              // edge search, fit, and again from the fitted ellipse
+  double min_edge_fraction = 0.7;   // of a circle's rays that must find its edge
   EdgeSearchOptions edges;
   ConicFitOptions fit;
 

@@ -210,6 +210,14 @@ TrackResult CircleTracker::TrackIn(const Observation& observation,
     measurements.m1_px =
         camera.HasDistortion() ? Undistorted(camera, *detection->m1_px) : *detection->m1_px;
 
+  // Point terms (erratum 7): m0 where it is a detected dot, m1 where no circle gives it.
+  if (measurements.m0_px && geometry.layout == CircleLayout::kCircleWithCenter) {
+    problem.points.push_back({Eigen::Vector2d::Zero(), *measurements.m0_px});
+  }
+  if (measurements.m1_px && geometry.m1_circle < 0) {
+    problem.points.push_back({Eigen::Vector2d(geometry.Lx, 0.0), *measurements.m1_px});
+  }
+
   const std::optional<AnalyticSolution> analytic =
       SolveAnalytic(geometry, K, measurements, options_.analytic, &why);
   if (!analytic) {
@@ -221,15 +229,20 @@ TrackResult CircleTracker::TrackIn(const Observation& observation,
   const Rigid3 paper_from_marker = geometry.marker_from_paper.Inverse();
   diagnostics_.analytic_cam_from_marker = analytic->pose.cam_from_paper * paper_from_marker;
 
-  // Point terms (erratum 7): m0 where it is a detected dot, m1 where no circle gives it.
-  if (measurements.m0_px && geometry.layout == CircleLayout::kCircleWithCenter) {
-    problem.points.push_back({Eigen::Vector2d::Zero(), *measurements.m0_px});
-  }
-  if (measurements.m1_px && geometry.m1_circle < 0) {
-    problem.points.push_back({Eigen::Vector2d(geometry.Lx, 0.0), *measurements.m1_px});
-  }
+  // The refinement starts from whichever analytic solution explains the image best: when the
+  // ellipses are small or blurred, the chosen l_inf can land in the wrong basin.
   Rigid3 cam_from_paper = analytic->pose.cam_from_paper;
   if (options_.refine) {
+    double best_cost = RefinementCostAt(problem, cam_from_paper, options_.refinement);
+    for (const AnalyticSolution& candidate :
+         AnalyticCandidates(geometry, K, measurements, options_.analytic.depth)) {
+      const double cost =
+          RefinementCostAt(problem, candidate.pose.cam_from_paper, options_.refinement);
+      if (cost < best_cost) {
+        best_cost = cost;
+        cam_from_paper = candidate.pose.cam_from_paper;
+      }
+    }
     const RefinementResult refined = RefinePose(problem, cam_from_paper, options_.refinement);
     cam_from_paper = refined.cam_from_paper;
     diagnostics_.iterations = refined.iterations;

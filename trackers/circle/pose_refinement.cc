@@ -136,28 +136,25 @@ bool RefinementOptions::IsValid(std::string* error) const {
   return false;
 }
 
-RefinementResult RefinePose(const RefinementProblem& problem,
-                            const Rigid3& cam_from_paper,
-                            const RefinementOptions& options) {
-  double angle_axis[3];
-  ceres::RotationMatrixToAngleAxis(ceres::ColumnMajorAdapter3x3(cam_from_paper.rotation.data()),
-                                   angle_axis);
-  double translation[3] = {cam_from_paper.translation.x(),
-                           cam_from_paper.translation.y(),
-                           cam_from_paper.translation.z()};
+namespace {
 
-  ceres::Problem ceres_problem;
+// The Ceres problem of RefinePose over the two parameter blocks.
+void AddResiduals(const RefinementProblem& problem,
+                  const RefinementOptions& options,
+                  double* angle_axis,
+                  double* translation,
+                  ceres::Problem* ceres_problem) {
   for (const RefinementCircle& circle : problem.circles) {
     if (options.cost == RefinementCost::kEdges) {
       if (circle.edge_points_px.empty()) continue;
-      ceres_problem.AddResidualBlock(
+      ceres_problem->AddResidualBlock(
           PerCircleCost(new EdgeCost(problem.K, circle, options.huber_px),
                         static_cast<int>(circle.edge_points_px.size())),
           nullptr,
           angle_axis,
           translation);
     } else {
-      ceres_problem.AddResidualBlock(
+      ceres_problem->AddResidualBlock(
           PerCircleCost(
               new ModelPointCost(problem.K, circle, options.model_points, options.huber_px),
               options.model_points),
@@ -167,13 +164,44 @@ RefinementResult RefinePose(const RefinementProblem& problem,
     }
   }
   for (const RefinementPoint& point : problem.points) {
-    ceres_problem.AddResidualBlock(
+    ceres_problem->AddResidualBlock(
         new ceres::AutoDiffCostFunction<PointCost, 2, 3, 3>(
             new PointCost(problem.K, point, options.point_weight, options.huber_px)),
         nullptr,
         angle_axis,
         translation);
   }
+}
+
+struct PoseParameters {
+  explicit PoseParameters(const Rigid3& cam_from_paper) {
+    ceres::RotationMatrixToAngleAxis(ceres::ColumnMajorAdapter3x3(cam_from_paper.rotation.data()),
+                                     angle_axis);
+    for (int k = 0; k < 3; ++k) translation[k] = cam_from_paper.translation[k];
+  }
+  double angle_axis[3];
+  double translation[3];
+};
+
+}  // namespace
+
+double RefinementCostAt(const RefinementProblem& problem,
+                        const Rigid3& cam_from_paper,
+                        const RefinementOptions& options) {
+  PoseParameters p(cam_from_paper);
+  ceres::Problem ceres_problem;
+  AddResiduals(problem, options, p.angle_axis, p.translation, &ceres_problem);
+  double cost = 0.0;
+  ceres_problem.Evaluate(ceres::Problem::EvaluateOptions(), &cost, nullptr, nullptr, nullptr);
+  return cost;
+}
+
+RefinementResult RefinePose(const RefinementProblem& problem,
+                            const Rigid3& cam_from_paper,
+                            const RefinementOptions& options) {
+  PoseParameters p(cam_from_paper);
+  ceres::Problem ceres_problem;
+  AddResiduals(problem, options, p.angle_axis, p.translation, &ceres_problem);
 
   ceres::Solver::Options solver;
   solver.linear_solver_type = ceres::DENSE_QR;
@@ -185,9 +213,9 @@ RefinementResult RefinePose(const RefinementProblem& problem,
 
   RefinementResult result;
   ceres::AngleAxisToRotationMatrix(
-      angle_axis, ceres::ColumnMajorAdapter3x3(result.cam_from_paper.rotation.data()));
+      p.angle_axis, ceres::ColumnMajorAdapter3x3(result.cam_from_paper.rotation.data()));
   result.cam_from_paper.translation =
-      Eigen::Vector3d(translation[0], translation[1], translation[2]);
+      Eigen::Vector3d(p.translation[0], p.translation[1], p.translation[2]);
   result.iterations = static_cast<int>(summary.iterations.size()) - 1;
   result.initial_cost = summary.initial_cost;
   result.final_cost = summary.final_cost;

@@ -61,6 +61,11 @@ struct RefinementResult {
   bool converged = false;
 };
 
+// The cost RefinePose starts from at `cam_from_paper` (½ Σ ρ(r²)), to rank starts.
+double RefinementCostAt(const RefinementProblem& problem,
+                        const Rigid3& cam_from_paper,
+                        const RefinementOptions& options = {});
+
 RefinementResult RefinePose(const RefinementProblem& problem,
                             const Rigid3& cam_from_paper,
                             const RefinementOptions& options = {});

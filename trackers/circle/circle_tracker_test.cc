@@ -1,0 +1,249 @@
+// The circle tracker on rendered frames with known ground truth (issue 3): round trips for
+// markers a-d over distance, tilt and roll; no marker; a half-visible marker; frames and
+// signs; tracking mode; options.
+#include "trackers/circle/circle_tracker.h"
+
+#include <gtest/gtest.h>
+
+#include <Eigen/Geometry>
+
+#include "core/marker_yaml.h"
+#include "core/pose_error.h"
+#include "core/random.h"
+#include "core/test_files.h"
+#include "core/yaml_reader.h"
+#include "renderer/render_frame.h"
+#include "renderer/test_scenes.h"
+#include "trackers/square_tracker_testing.h"
+#include "trackers/tracker_factory.h"
+
+namespace markerbench {
+namespace {
+
+// Clean frames (σ² = 0.001): camera-centre error as a fraction of the distance, and
+// rotation error. Bounds are the measured envelope over the grid below, with margin.
+// - Tilted views (30-60°) up to 1 m: measured <= 0.6 % and 0.35°.
+constexpr double kTiltedPositionFraction = 0.01;
+constexpr double kTiltedRotationDeg = 1.0;
+// - Fronto-parallel views: the tilt is weakly observable (circle-method.md §7; its eccentricity
+//   is second order), so 0.002 px of edge bias costs degrees. Measured <= 5.0 % and 2.9° at 1 m.
+constexpr double kFrontalPositionFraction = 0.06;
+constexpr double kFrontalRotationDeg = 3.5;
+// - The far end of each marker's range (below): measured <= 8 % and 4.6°; 10 % is the
+//   harness's success criterion.
+constexpr double kFarPositionFraction = 0.10;
+constexpr double kFarRotationDeg = 6.0;
+constexpr double kLowNoiseVar = 0.001;
+
+// Renders `marker` (RGB when it has colour) and tracks it.
+TrackedFrame RenderAndTrack(CircleTracker* tracker,
+                            const MarkerSpec& marker,
+                            const Rigid3& cam_from_marker,
+                            double noise_var,
+                            uint64_t seed) {
+  return markerbench::RenderAndTrack(tracker, marker, marker, cam_from_marker, noise_var, seed);
+}
+
+MarkerSpec Load(const std::string& kind) {
+  return LoadMarkerYaml("scenarios/markers/" + kind + ".yaml");
+}
+
+// The same printed marker drawn in another in-plane frame: every layer, circle and keypoint
+// moved by marker_from_paper (rotation about z by angle_rad, then translation).
+MarkerSpec InAnotherFrame(const MarkerSpec& marker,
+                          double angle_rad,
+                          const Eigen::Vector2d& shift) {
+  const Eigen::Rotation2Dd rotation(angle_rad);
+  auto move = [&](const Eigen::Vector2d& p) -> Eigen::Vector2d { return rotation * p + shift; };
+  MarkerSpec moved = marker;
+  for (Disk& disk : moved.circles) disk.center = move(disk.center);
+  for (Eigen::Vector2d& k : moved.keypoints) k = move(k);
+  for (PaintedShape& layer : moved.layers) {
+    DiskShape* disk = std::get_if<DiskShape>(&layer.shape);
+    EXPECT_TRUE(disk) << "circle markers a-d are drawn with disks only";
+    if (disk) disk->center = move(disk->center);
+  }
+  return moved;
+}
+
+// How far each marker is tracked in the round trips, and the largest tilt there: c and d are
+// identified by dots of 6-8 mm, lost beyond about 3 px across; b's fronto-parallel view at
+// 3 m measured 10.5 %, just over the success criterion, so its far end is 2 m (4.7 %).
+struct Range {
+  const char* kind;
+  double far_m;
+  double far_max_tilt_deg;
+};
+
+class CircleTrackerTest : public ::testing::TestWithParam<Range> {};
+
+TEST_P(CircleTrackerTest, RoundTripsOverDistanceTiltAndRoll) {
+  const Range range = GetParam();
+  const MarkerSpec marker = Load(range.kind);
+  CircleTracker tracker;
+  int frames = 0;
+  for (double distance : {0.3, 1.0, range.far_m}) {
+    for (double tilt : {0.0, 30.0, 60.0}) {
+      const bool far = distance > 1.0;
+      if (far && tilt > range.far_max_tilt_deg) continue;
+      for (double roll : {10.0, 130.0, 250.0}) {
+        SCOPED_TRACE("d=" + std::to_string(distance) + " tilt=" + std::to_string(tilt) +
+                     " roll=" + std::to_string(roll));
+        tracker.Reset();
+        const Rigid3 truth = TiltedView(distance, tilt, roll);
+        const TrackedFrame t = RenderAndTrack(&tracker, marker, truth, kLowNoiseVar, ++frames);
+        ASSERT_EQ(t.result.status, TrackStatus::kOk) << t.result.message;
+        ASSERT_EQ(t.result.hypotheses.size(), 1u);
+        const Rigid3& estimate = t.result.hypotheses.front();
+        const double position_fraction = far           ? kFarPositionFraction
+                                         : tilt == 0.0 ? kFrontalPositionFraction
+                                                       : kTiltedPositionFraction;
+        const double rotation_deg = far           ? kFarRotationDeg
+                                    : tilt == 0.0 ? kFrontalRotationDeg
+                                                  : kTiltedRotationDeg;
+        EXPECT_LE(PositionError(estimate, truth), position_fraction * distance);
+        EXPECT_LE(RotationErrorDeg(estimate, truth), rotation_deg);
+        // Sign rules (errata 1-2): the camera is on the printed side, the marker in front.
+        EXPECT_GT(CameraCenterInMarker(estimate).z(), 0.0);
+        EXPECT_GT(estimate.translation.z(), 0.0);
+        ASSERT_EQ(t.result.keypoints_px.size(), marker.keypoints.size());
+      }
+    }
+  }
+}
+
+TEST_P(CircleTrackerTest, NoDetectionWithoutTheMarker) {
+  const MarkerSpec marker = Load(GetParam().kind);
+  MarkerSpec blank = marker;
+  blank.layers.clear();  // the paper alone
+  CircleTracker tracker;
+  for (double noise_var : {0.0, 0.02, 0.3}) {
+    for (uint64_t seed : {1u, 2u, 3u}) {
+      tracker.Reset();
+      const TrackedFrame t = markerbench::RenderAndTrack(
+          &tracker, blank, marker, TiltedView(0.6, 20.0, 0.0), noise_var, seed);
+      EXPECT_EQ(t.result.status, TrackStatus::kNotDetected) << noise_var << " " << seed;
+      EXPECT_TRUE(t.result.hypotheses.empty());
+    }
+  }
+}
+
+// Half the marker outside the image: a clean failure, never a pose from the visible part.
+TEST_P(CircleTrackerTest, HalfVisibleMarkerFailsCleanly) {
+  const MarkerSpec marker = Load(GetParam().kind);
+  CircleTracker tracker;
+  for (double roll : {0.0, 90.0, 180.0, 270.0}) {
+    Rigid3 truth = TiltedView(0.5, 20.0, roll);
+    // Slide the marker so that the image border cuts through its first circle's centre.
+    truth.translation.x() += truth.translation.z() * 319.5 / 600.0;
+    const TrackedFrame t = RenderAndTrack(&tracker, marker, truth, kLowNoiseVar, 7);
+    EXPECT_NE(t.result.status, TrackStatus::kOk) << roll;
+    EXPECT_TRUE(t.result.hypotheses.empty());
+  }
+}
+
+// Poses are reported in the marker file's frame, wherever its disks sit.
+TEST_P(CircleTrackerTest, HonoursTheMarkerFrameOfTheFile) {
+  const MarkerSpec marker = InAnotherFrame(Load(GetParam().kind), 0.7, {0.03, -0.02});
+  CircleTracker tracker;
+  for (double tilt : {10.0, 45.0}) {
+    const Eigen::Vector2d c = marker.circles[0].center;
+    Rigid3 truth = TiltedView(0.7, tilt, 40.0);
+    truth.translation -= truth.rotation * Eigen::Vector3d(c.x(), c.y(), 0.0);
+    const TrackedFrame t = RenderAndTrack(&tracker, marker, truth, kLowNoiseVar, 9);
+    ASSERT_EQ(t.result.status, TrackStatus::kOk) << t.result.message;
+    EXPECT_LE(PositionError(t.result.hypotheses.front(), truth), kTiltedPositionFraction * 0.7);
+    EXPECT_LE(RotationErrorDeg(t.result.hypotheses.front(), truth), kTiltedRotationDeg);
+    for (size_t k = 0; k < marker.keypoints.size(); ++k) {
+      EXPECT_LE((t.result.keypoints_px[k] - t.frame.truth.keypoints_px[k]).norm(), 1.0) << k;
+    }
+  }
+}
+
+INSTANTIATE_TEST_SUITE_P(MarkersAtoD,
+                         CircleTrackerTest,
+                         ::testing::Values(Range{"circles_a", 3.0, 60.0},
+                                           Range{"circles_b", 2.0, 60.0},
+                                           Range{"circles_c", 2.0, 30.0},
+                                           Range{"circle_d", 1.5, 30.0}),
+                         [](const ::testing::TestParamInfo<Range>& info) {
+                           return std::string(info.param.kind);
+                         });
+
+// Every stage is exposed, and the analytic pose is already close (§5).
+TEST(CircleTracker, ReportsEveryStage) {
+  const MarkerSpec marker = Load("circles_a");
+  CircleTracker tracker;
+  const Rigid3 truth = TiltedView(0.6, 35.0, 20.0);
+  const TrackedFrame t = RenderAndTrack(&tracker, marker, truth, 0.02, 3);
+  ASSERT_EQ(t.result.status, TrackStatus::kOk);
+  const CircleDiagnostics& d = tracker.diagnostics();
+  ASSERT_EQ(d.conics_px.size(), 2u);
+  ASSERT_EQ(d.edges.size(), 2u);
+  EXPECT_GT(d.edges[0].size(), 40u);
+  ASSERT_TRUE(d.analytic_cam_from_marker && d.refined_cam_from_marker);
+  // l_inf = r3 in normalized coordinates (§0, eq. 11).
+  EXPECT_LE((d.l_inf_norm - truth.rotation.col(2)).norm(), 0.05);
+  EXPECT_LE(RotationErrorDeg(*d.analytic_cam_from_marker, truth), 3.0);
+  EXPECT_GE(d.iterations, 1);
+  EXPECT_LE(d.edge_rms_px, 0.5);
+  EXPECT_GT(d.noise_sigma, 0.05);
+}
+
+// Tracking mode: after one frame the next is searched around the prediction; Reset forgets.
+TEST(CircleTracker, TracksFromThePreviousPoseAndResets) {
+  const MarkerSpec marker = Load("circles_a");
+  CircleTracker tracker;
+  for (int frame = 0; frame < 5; ++frame) {
+    Rigid3 truth = TiltedView(0.6, 20.0 + 2.0 * frame, 30.0 + 3.0 * frame);
+    truth.translation.x() += 0.004 * frame;  // about 4 px per frame
+    const TrackedFrame t = RenderAndTrack(&tracker, marker, truth, 0.02, 20 + frame);
+    ASSERT_EQ(t.result.status, TrackStatus::kOk) << frame;
+    EXPECT_EQ(tracker.diagnostics().used_tracking_region, frame > 0) << frame;
+    EXPECT_LE(PositionError(t.result.hypotheses.front(), truth), kTiltedPositionFraction * 0.6);
+  }
+  // Lost: the next frame has no marker; then a frame far from the old pose is found again.
+  tracker.Reset();
+  const TrackedFrame t = RenderAndTrack(&tracker, marker, TiltedView(0.9, 10.0, 200.0), 0.02, 30);
+  EXPECT_EQ(t.result.status, TrackStatus::kOk);
+  EXPECT_FALSE(tracker.diagnostics().used_tracking_region);
+}
+
+TEST(CircleTracker, ColourMarkerOnAGreyImageIsNotDetected) {
+  const MarkerSpec marker = Load("circles_a");
+  FrameRequest request;
+  request.scene.marker = &marker;
+  request.scene.cam_from_marker = TiltedView(0.6, 10.0, 0.0);
+  const RenderedFrame frame = RenderFrame(request);  // grey
+  CircleTracker tracker;
+  const TrackResult r = tracker.Track({&frame.image, &request.scene.camera, &marker});
+  EXPECT_EQ(r.status, TrackStatus::kNotDetected);
+  EXPECT_NE(r.message.find("RGB"), std::string::npos) << r.message;
+}
+
+TEST(CircleTracker, OptionsFromYamlNameTheBadKey) {
+  const std::string path = WriteTestFile("circle_options.yaml",
+                                         "good: {cost: conics, huber_px: 2.0, k_normal: false}\n"
+                                         "bad_value: {huber_px: -1}\n"
+                                         "bad_cost: {cost: sampson}\n"
+                                         "unknown: {hubr_px: 1}\n");
+  const YamlMap root = YamlMap::LoadFile(path);
+  const CircleTrackerOptions good = CircleTrackerOptions::FromYaml(root.GetMap("good"));
+  EXPECT_EQ(good.refinement.cost, RefinementCost::kConics);
+  EXPECT_EQ(good.refinement.huber_px, 2.0);
+  EXPECT_FALSE(good.analytic.k_normal);
+  for (const char* key : {"bad_value", "bad_cost", "unknown"}) {
+    try {
+      CircleTrackerOptions::FromYaml(root.GetMap(key));
+      ADD_FAILURE() << key << " was accepted";
+    } catch (const ConfigError& e) {
+      const std::string message = e.what();
+      EXPECT_NE(message.find("circle_options.yaml"), std::string::npos) << message;
+      EXPECT_NE(message.find(key), std::string::npos) << message;
+    }
+  }
+  EXPECT_TRUE(MakeTracker("circle", nullptr)->CanTrack(Load("circle_d")));
+}
+
+}  // namespace
+}  // namespace markerbench
