@@ -463,7 +463,8 @@ std::optional<MarkerDetection> CircleDetector::Detect(
   }
 
   // Sub-pixel edges and the conic fit, in passes that each start from the previous fit; the
-  // PND refinement of the conic only in the last. A prediction needs one pass.
+  // PND refinement of the conic only in the last. A prediction needs one pass, and no PND
+  // refinement: the pose refinement (cost B) works on the edges themselves.
   const int passes = from_prediction ? 1 : options_.edge_passes;
   ConicFitOptions direct = options_.fit;
   direct.refine_pnd = false;
@@ -512,8 +513,8 @@ std::optional<MarkerDetection> CircleDetector::Detect(
         return fail("edges found on only " + std::to_string(kept) + " of " +
                     std::to_string(circle.edges.rays) + " rays of circle " + std::to_string(i));
       }
-      const std::optional<ConicFit> fit =
-          FitEllipse(circle.edges.points_px, pass + 1 == passes ? options_.fit : direct);
+      const std::optional<ConicFit> fit = FitEllipse(
+          circle.edges.points_px, pass + 1 == passes && !from_prediction ? options_.fit : direct);
       if (!fit) return fail("the edge points of a circle give no ellipse");
       hypothesis = fit->conic;
       circle.fit_rms_px = fit->rms_px;

@@ -123,7 +123,8 @@ TrackResult CircleTracker::Track(const Observation& observation) {
   if (options_.tracking && previous_cam_from_paper_) {
     // Predicted ellipses (and the marker's points) from the previous pose, grown by a margin.
     const Camera& camera = *observation.camera;
-    const Eigen::Matrix3d H = Homography(camera.K(), *previous_cam_from_paper_);
+    const Rigid3 previous = *previous_cam_from_paper_;
+    const Eigen::Matrix3d H = Homography(camera.K(), previous);
     cv::Rect2d box;
     std::vector<Eigen::Matrix3d> predicted;
     for (size_t i = 0; i < geometry->centers.size(); ++i) {
@@ -144,13 +145,13 @@ TrackResult CircleTracker::Track(const Observation& observation) {
       // The predicted ellipses first, then a search of the region, then the whole image.
       const std::vector<Eigen::Matrix3d>* const predictions[] = {&predicted, nullptr};
       for (const std::vector<Eigen::Matrix3d>* prediction : predictions) {
-        TrackResult result = TrackIn(observation, *geometry, clipped, prediction);
+        TrackResult result = TrackIn(observation, *geometry, clipped, prediction, &previous);
         diagnostics_.used_tracking_region = true;
         if (result.status == TrackStatus::kOk) return result;
       }
     }
   }
-  TrackResult result = TrackIn(observation, *geometry, whole, nullptr);
+  TrackResult result = TrackIn(observation, *geometry, whole, nullptr, nullptr);
   diagnostics_.used_tracking_region = false;
   return result;
 }
@@ -158,7 +159,8 @@ TrackResult CircleTracker::Track(const Observation& observation) {
 TrackResult CircleTracker::TrackIn(const Observation& observation,
                                    const CircleGeometry& geometry,
                                    const cv::Rect& region,
-                                   const std::vector<Eigen::Matrix3d>* predicted_conics_px) {
+                                   const std::vector<Eigen::Matrix3d>* predicted_conics_px,
+                                   const Rigid3* previous_cam_from_paper) {
   diagnostics_ = CircleDiagnostics{};
   previous_cam_from_paper_.reset();
   TrackResult result;
@@ -229,18 +231,26 @@ TrackResult CircleTracker::TrackIn(const Observation& observation,
   const Rigid3 paper_from_marker = geometry.marker_from_paper.Inverse();
   diagnostics_.analytic_cam_from_marker = analytic->pose.cam_from_paper * paper_from_marker;
 
-  // The refinement starts from whichever analytic solution explains the image best: when the
-  // ellipses are small or blurred, the chosen l_inf can land in the wrong basin.
+  // The refinement starts from whichever start explains the image best: in tracking mode the
+  // analytic pose or the previous one; otherwise every analytic candidate, since with small
+  // or blurred ellipses the chosen l_inf can land in the wrong basin.
   Rigid3 cam_from_paper = analytic->pose.cam_from_paper;
   if (options_.refine) {
+    std::vector<Rigid3> starts;
+    if (previous_cam_from_paper) {
+      starts.push_back(*previous_cam_from_paper);
+    } else {
+      for (const AnalyticSolution& candidate :
+           AnalyticCandidates(geometry, K, measurements, options_.analytic.depth)) {
+        starts.push_back(candidate.pose.cam_from_paper);
+      }
+    }
     double best_cost = RefinementCostAt(problem, cam_from_paper, options_.refinement);
-    for (const AnalyticSolution& candidate :
-         AnalyticCandidates(geometry, K, measurements, options_.analytic.depth)) {
-      const double cost =
-          RefinementCostAt(problem, candidate.pose.cam_from_paper, options_.refinement);
+    for (const Rigid3& start : starts) {
+      const double cost = RefinementCostAt(problem, start, options_.refinement);
       if (cost < best_cost) {
         best_cost = cost;
-        cam_from_paper = candidate.pose.cam_from_paper;
+        cam_from_paper = start;
       }
     }
     const RefinementResult refined = RefinePose(problem, cam_from_paper, options_.refinement);

@@ -25,7 +25,7 @@ struct CircleTrackerOptions {
   RefinementOptions refinement;
   bool refine = true;            // run the LM refinement (§6); off = analytic pose only
   bool tracking = true;          // search around the previous pose first (paper step 5)
-  double roi_margin = 0.5;       // tracking region: predicted box grown by this fraction
+  double roi_margin = 0.25;      // tracking region: predicted box grown by this fraction
   double max_edge_rms_px = 2.0;  // accept a pose only if its edge residual RMS is below
 
   bool IsValid(std::string* error) const;
@@ -64,7 +64,8 @@ class CircleTracker final : public Tracker {
   TrackResult TrackIn(const Observation& observation,
                       const CircleGeometry& geometry,
                       const cv::Rect& region,
-                      const std::vector<Eigen::Matrix3d>* predicted_conics_px);
+                      const std::vector<Eigen::Matrix3d>* predicted_conics_px,
+                      const Rigid3* previous_cam_from_paper);
 
   CircleTrackerOptions options_;
   std::optional<Rigid3> previous_cam_from_paper_;

@@ -124,8 +124,8 @@ CircleEdges FindCircleEdges(const cv::Mat& image,
   const Eigen::Matrix3d C = CanonicalConic(ellipse_px);
   const Ellipse e = EllipseFromConic(C);
   const double perimeter = M_PI * (e.semi_major + e.semi_minor);
-  const int n_rays =
-      std::clamp(static_cast<int>(perimeter / 3.0), options.min_rays, options.max_rays);
+  const int n_rays = std::clamp(
+      static_cast<int>(perimeter / options.ray_spacing_px), options.min_rays, options.max_rays);
   const double reach = options.reach_sigmas * sigma_start_px + 3.0;
   const double reach_out = std::min(reach, max_outward_px);
   const double reach_in = std::min(reach, max_inward_px);

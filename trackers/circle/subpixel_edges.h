@@ -16,9 +16,10 @@ namespace markerbench {
 
 struct EdgeSearchOptions {
   int min_rays = 24;            // rays on small ellipses
-  int max_rays = 96;            // rays on large ellipses (about one per 3 px of perimeter)
+  int max_rays = 96;            // rays on large ellipses
+  double ray_spacing_px = 4.0;  // one ray per this much perimeter, between min and max
   double sample_step_px = 1.0;  // spacing of the profile samples along a ray
-  double reach_sigmas = 3.0;    // a ray reaches reach_sigmas σ + 3 px past the edge, both ways
+  double reach_sigmas = 2.5;    // a ray reaches reach_sigmas σ + 3 px past the edge, both ways
   int iterations = 6;           // Gauss-Newton iterations (stops earlier once converged)
 };
 
