@@ -380,6 +380,7 @@ std::optional<MarkerDetection> CircleDetector::Detect(
       const std::vector<Candidate>& second = candidates[plans_[1].channel];
       const double separation = geometry_.centers[1].norm();
       double best_score = 0.0;
+      const Hole* best_dot = nullptr;
       for (size_t i = 0; i < first.size(); ++i) {
         for (size_t j = 0; j < second.size(); ++j) {
           if (plans_[0].channel == plans_[1].channel && i == j) continue;
@@ -391,6 +392,7 @@ std::optional<MarkerDetection> CircleDetector::Detect(
               (a.centroid - b.centroid).norm() / std::sqrt(a.area_px / M_PI) / (separation / r[0]);
           if (size_ratio < 0.4 || size_ratio > 2.5 || distance_ratio < 0.35 || distance_ratio > 2.5)
             continue;
+          const Hole* pair_dot = nullptr;
           if (kind_ == MarkerKind::kCirclesB) {
             // The feature dot lies in the second circle, and only there.
             const double dot_area = b.area_px * std::pow(dot_radius_m_ / r[1], 2);
@@ -399,16 +401,18 @@ std::optional<MarkerDetection> CircleDetector::Detect(
             if (!dot ||
                 FindHole(a, a.ellipse.center, a.ellipse.semi_major, 0.2 * dot_area, 4.0 * dot_area))
               continue;
-            if (geometry_.m1_circle < 0) detection.m1_px = dot->centroid + offset;
+            pair_dot = dot;
           }
           const double score = std::min(a.area_px, b.area_px);
           if (score > best_score) {
             best_score = score;
             initial = {a.conic, b.conic};
+            best_dot = pair_dot;
           }
         }
       }
       if (initial.empty()) return fail("no pair of ellipses matches the marker");
+      if (best_dot && geometry_.m1_circle < 0) detection.m1_px = best_dot->centroid + offset;
       break;
     }
     case CircleLayout::kConcentric: {
@@ -517,7 +521,6 @@ std::optional<MarkerDetection> CircleDetector::Detect(
           circle.edges.points_px, pass + 1 == passes && !from_prediction ? options_.fit : direct);
       if (!fit) return fail("the edge points of a circle give no ellipse");
       hypothesis = fit->conic;
-      circle.fit_rms_px = fit->rms_px;
       sigma = circle.edges.sigma_px;
     }
     // The edge contrast must stand out of the noise left after smoothing (a Gaussian of σ_s

@@ -41,7 +41,6 @@ struct CircleDetectorOptions {
 struct DetectedCircle {
   Eigen::Matrix3d conic_px = Eigen::Matrix3d::Zero();  // fitted to the edges, canonical
   CircleEdges edges;
-  double fit_rms_px = 0.0;
 };
 
 struct MarkerDetection {

@@ -217,7 +217,6 @@ CircleEdges FindCircleEdges(const cv::Mat& image,
   out.sigma_px = s.sigma;
   out.inside_level = s.inside;
   out.outside_level = s.outside;
-  out.rms_residual = typical;
   return out;
 }
 

@@ -28,8 +28,7 @@ struct CircleEdges {
   double sigma_px = 0.0;                   // fitted edge blur (optics + pre-smoothing)
   double inside_level = 0.0;               // fitted intensity levels (image units)
   double outside_level = 0.0;
-  double rms_residual = 0.0;  // of the profile fit (image units): the noise level
-  int rays = 0;               // rays tried; points_px.size() kept
+  int rays = 0;  // rays tried; points_px.size() kept
 };
 
 // `image` is one 8-bit channel (the pre-smoothed ink channel). `ellipse_px` the hypothesis;
