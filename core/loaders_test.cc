@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include "core/camera_yaml.h"
+#include "core/file_bytes.h"
 #include "core/marker_yaml.h"
 #include "core/test_files.h"
 #include "core/yaml_reader.h"
@@ -147,10 +148,25 @@ TEST(MarkerYaml, OutOfRange) {
 }
 
 TEST(MarkerYaml, BrokenGeometry) {
-  EXPECT_THAT(MarkerError(Replace(kGoodCirclesA, "[0.08, 0.0]", "[0.08, 0.01]")),
-              HasSubstr("key 'disks': expected a centre on the +x axis"));
   EXPECT_THAT(MarkerError(Replace(kGoodCirclesA, "[0.08, 0.0]", "[0.05, 0.0]")),
               HasSubstr("two separate disks"));
+  const std::string circles_c = ReadFileBytes("scenarios/markers/circles_c.yaml");
+  EXPECT_THAT(
+      MarkerError(Replace(
+          circles_c, "{center: [0.0, 0.0], radius: 0.03", "{center: [0.001, 0.0], radius: 0.03")),
+      HasSubstr("key 'disks': expected an inner circle concentric"));
+}
+
+// Markers (a)-(d) may sit anywhere in their file's frame: m0 and m1 follow the disks.
+TEST(MarkerYaml, CircleMarkersKeepTheFileFrame) {
+  const MarkerSpec spec = LoadMarkerYaml(WriteTestFile(
+      "moved.yaml",
+      Replace(
+          Replace(kGoodCirclesA, "[0.0, 0.0]", "[0.02, 0.01]"), "[0.08, 0.0]", "[0.02, 0.09]")));
+  ASSERT_EQ(spec.keypoints.size(), 2u);
+  EXPECT_EQ(spec.keypoints[0], Eigen::Vector2d(0.02, 0.01));
+  EXPECT_EQ(spec.keypoints[1], Eigen::Vector2d(0.02, 0.09));
+  EXPECT_EQ(spec.circles[1].center, Eigen::Vector2d(0.02, 0.09));
 }
 
 TEST(MarkerYaml, UnknownKindNamesTheKinds) {

@@ -51,7 +51,9 @@ struct MarkerSpec {
   // What is printed on the background, bottom layer first.
   std::vector<PaintedShape> layers;
   // Keypoints in the marker frame (z = 0):
-  // - circle markers: m0 (origin), m1 (on +x), and m2 for (e) (second mouth tip) and (f)
+  // - circle markers: m0 (the first circle's centre; the origin for (e) and (f)), m1 (its
+  //   partner: circle 1's centre for (a), the feature dot for (b)-(d); on +x for (e) and (f)),
+  //   and m2 for (e) (second mouth tip) and (f)
   //   (end of the second radius);
   // - square markers: corners of the black square, top-left, top-right, bottom-right,
   //   bottom-left as seen from the front: (-s,+s), (+s,+s), (+s,-s), (-s,-s), s = size_m/2;

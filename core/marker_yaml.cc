@@ -52,21 +52,25 @@ void RequireOnXAxis(const YamlMap& root, const std::string& key, const Eigen::Ve
   if (!OnPositiveXAxis(p)) root.Fail(key, "a centre on the +x axis [x > 0, 0] (m1)");
 }
 
+// Markers (a)-(d) may sit anywhere in the file's frame: m0 is the first circle's centre and
+// m1 its partner point, and poses are reported in that frame. (e) and (f) use the paper's
+// frame (m0 at the origin, m1 on +x).
 void LoadCircleMarker(const YamlMap& root, MarkerSpec* spec) {
   const MarkerKind kind = spec->kind;
   const bool two_circles = kind == MarkerKind::kCirclesA || kind == MarkerKind::kCirclesB ||
                            kind == MarkerKind::kCirclesC;
   spec->circles = ReadDisks(root, two_circles ? 2 : 1);
   const Disk& c0 = spec->circles[0];
-  RequireOrigin(root, "disks", c0.center);
-  spec->keypoints.push_back(Eigen::Vector2d::Zero());  // m0
+  if (kind == MarkerKind::kCircleE || kind == MarkerKind::kCircleF) {
+    RequireOrigin(root, "disks", c0.center);
+  }
+  spec->keypoints.push_back(c0.center);  // m0
 
   switch (kind) {
     case MarkerKind::kCirclesA:
     case MarkerKind::kCirclesB: {
       const Disk& c1 = spec->circles[1];
-      RequireOnXAxis(root, "disks", c1.center);
-      if (c1.center.norm() <= c0.radius_m + c1.radius_m) {
+      if ((c1.center - c0.center).norm() <= c0.radius_m + c1.radius_m) {
         root.Fail("disks", "two separate disks (centre distance > sum of radii)");
       }
       PaintDisk(spec, c0);
@@ -77,7 +81,6 @@ void LoadCircleMarker(const YamlMap& root, MarkerSpec* spec) {
         break;
       }
       const Disk dot = ReadDiskKey(root, "feature_dot");
-      RequireOnXAxis(root, "feature_dot", dot.center);
       if ((dot.center - c1.center).norm() + dot.radius_m >= c1.radius_m) {
         root.Fail("feature_dot", "a dot inside the second disk");
       }
@@ -87,15 +90,16 @@ void LoadCircleMarker(const YamlMap& root, MarkerSpec* spec) {
     }
     case MarkerKind::kCirclesC: {
       const Disk& inner = spec->circles[1];
-      RequireOrigin(root, "disks", inner.center);
+      if ((inner.center - c0.center).norm() > kGeometryTol) {
+        root.Fail("disks", "an inner circle concentric with the outer one");
+      }
       if (inner.radius_m >= c0.radius_m) {
         root.Fail("disks", "the outer circle first, then a smaller concentric inner circle");
       }
       PaintDisk(spec, c0);
       PaintDisk(spec, inner);
       const Disk dot = ReadDiskKey(root, "feature_dot");
-      RequireOnXAxis(root, "feature_dot", dot.center);
-      const double r = dot.center.norm();
+      const double r = (dot.center - c0.center).norm();
       if (r - dot.radius_m <= inner.radius_m || r + dot.radius_m >= c0.radius_m) {
         root.Fail("feature_dot", "a dot between the inner and outer circles");
       }
@@ -106,13 +110,14 @@ void LoadCircleMarker(const YamlMap& root, MarkerSpec* spec) {
     case MarkerKind::kCircleD: {
       PaintDisk(spec, c0);
       const Disk center_dot = ReadDiskKey(root, "center_dot");
-      RequireOrigin(root, "center_dot", center_dot.center);
+      if ((center_dot.center - c0.center).norm() > kGeometryTol) {
+        root.Fail("center_dot", "a dot at the disk's centre (m0)");
+      }
       if (center_dot.radius_m >= c0.radius_m)
         root.Fail("center_dot", "a dot smaller than the disk");
       PaintDisk(spec, center_dot);
       const Disk dot = ReadDiskKey(root, "feature_dot");
-      RequireOnXAxis(root, "feature_dot", dot.center);
-      if (dot.center.norm() - dot.radius_m <= c0.radius_m) {
+      if ((dot.center - c0.center).norm() - dot.radius_m <= c0.radius_m) {
         root.Fail("feature_dot", "a dot outside the disk");
       }
       PaintDisk(spec, dot);

@@ -142,7 +142,8 @@ TEST_P(CircleTrackerTest, HalfVisibleMarkerFailsCleanly) {
   }
 }
 
-// Poses are reported in the marker file's frame, wherever its disks sit.
+// Poses are reported in the marker file's frame, wherever its disks sit (the loader accepts
+// markers a-d anywhere in the plane; here every layer is rotated by 0.7 rad and moved).
 TEST_P(CircleTrackerTest, HonoursTheMarkerFrameOfTheFile) {
   const MarkerSpec marker = InAnotherFrame(Load(GetParam().kind), 0.7, {0.03, -0.02});
   CircleTracker tracker;
@@ -158,6 +159,24 @@ TEST_P(CircleTrackerTest, HonoursTheMarkerFrameOfTheFile) {
       EXPECT_LE((t.result.keypoints_px[k] - t.frame.truth.keypoints_px[k]).norm(), 1.0) << k;
     }
   }
+}
+
+// The same through a marker file whose disks are off the origin and whose m0 -> m1 runs
+// along +y.
+TEST(CircleTracker, HonoursAMarkerFileOffTheOrigin) {
+  const MarkerSpec marker = LoadMarkerYaml(
+      WriteTestFile("circles_a_moved.yaml",
+                    "kind: circles_a\n"
+                    "disks:\n"
+                    "  - {center: [0.02, 0.01], radius: 0.03, color: [1.0, 0.0, 0.0]}\n"
+                    "  - {center: [0.02, 0.09], radius: 0.03, color: [0.0, 0.0, 1.0]}\n"));
+  CircleTracker tracker;
+  const Rigid3 truth = TiltedView(0.6, 35.0, 15.0);
+  const TrackedFrame t = RenderAndTrack(&tracker, marker, truth, kLowNoiseVar, 11);
+  ASSERT_EQ(t.result.status, TrackStatus::kOk) << t.result.message;
+  EXPECT_LE(PositionError(t.result.hypotheses.front(), truth), kTiltedPositionFraction * 0.6);
+  EXPECT_LE(RotationErrorDeg(t.result.hypotheses.front(), truth), kTiltedRotationDeg);
+  EXPECT_GT(CameraCenterInMarker(t.result.hypotheses.front()).z(), 0.0);
 }
 
 INSTANTIATE_TEST_SUITE_P(MarkersAtoD,
