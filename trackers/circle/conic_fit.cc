@@ -5,6 +5,7 @@
 #include <Eigen/Eigenvalues>
 #include <Eigen/LU>
 
+#include "trackers/circle/ceres_solver_options.h"
 #include "trackers/circle/conic.h"
 
 namespace markerbench {
@@ -120,13 +121,8 @@ std::optional<ConicFit> FitEllipse(const std::vector<Eigen::Vector2d>& points_px
     cost->SetNumResiduals(static_cast<int>(frame.points.size()));
     problem.AddResidualBlock(cost, nullptr, theta);
     problem.SetManifold(theta, new ceres::SphereManifold<6>());
-    ceres::Solver::Options solver;
-    solver.linear_solver_type = ceres::DENSE_QR;
-    solver.max_num_iterations = options.max_iterations;
-    solver.num_threads = 1;
-    solver.logging_type = ceres::SILENT;
     ceres::Solver::Summary summary;
-    ceres::Solve(solver, &problem, &summary);
+    ceres::Solve(OneThreadLevenbergMarquardt(options.max_iterations), &problem, &summary);
     fit.iterations = static_cast<int>(summary.iterations.size()) - 1;
     C = ConicOf(theta);
   }

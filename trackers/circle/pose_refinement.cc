@@ -6,6 +6,7 @@
 #include <cmath>
 #include <sstream>
 
+#include "trackers/circle/ceres_solver_options.h"
 #include "trackers/circle/conic.h"
 
 namespace markerbench {
@@ -203,13 +204,8 @@ RefinementResult RefinePose(const RefinementProblem& problem,
   ceres::Problem ceres_problem;
   AddResiduals(problem, options, p.angle_axis, p.translation, &ceres_problem);
 
-  ceres::Solver::Options solver;
-  solver.linear_solver_type = ceres::DENSE_QR;
-  solver.max_num_iterations = options.max_iterations;
-  solver.num_threads = 1;
-  solver.logging_type = ceres::SILENT;
   ceres::Solver::Summary summary;
-  ceres::Solve(solver, &ceres_problem, &summary);
+  ceres::Solve(OneThreadLevenbergMarquardt(options.max_iterations), &ceres_problem, &summary);
 
   RefinementResult result;
   ceres::AngleAxisToRotationMatrix(
