@@ -70,6 +70,15 @@ class YamlMap {
   mutable std::set<std::string> read_keys_;
 };
 
+// Ends reading an options map: unknown keys are errors, and so is the complaint of
+// `options.IsValid`, which names its key first ("key=value must ...") and is located there.
+template <typename Options>
+void FinishOptions(const YamlMap& map, const Options& options) {
+  map.RejectUnknownKeys();
+  std::string error;
+  if (!options.IsValid(&error)) map.Fail(error.substr(0, error.find('=')), error);
+}
+
 // Resolves a path written inside `yaml_file` relative to that file's folder.
 std::string ResolveRelativeTo(const std::string& yaml_file, const std::string& path);
 

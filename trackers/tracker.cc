@@ -23,6 +23,16 @@ const char* ToString(TrackStatus status) {
   return "error";
 }
 
+TrackResult CannotTrack(const std::string& tracker,
+                        const MarkerSpec& marker,
+                        const std::string& why) {
+  TrackResult result;
+  result.status = TrackStatus::kError;
+  result.message =
+      tracker + " cannot track marker '" + marker.name + "'" + (why.empty() ? "" : ": " + why);
+  return result;
+}
+
 std::optional<TrackStatus> TrackStatusFromString(const std::string& text) {
   for (const auto& [s, name] : kStatusNames) {
     if (text == name) return s;

@@ -37,6 +37,12 @@ struct TrackResult {
   std::string message;  // why it failed, for error rows
 };
 
+// The `error` result of a tracker handed a marker it cannot track: "<tracker> cannot track
+// marker '<name>'", then ": <why>" when given.
+TrackResult CannotTrack(const std::string& tracker,
+                        const MarkerSpec& marker,
+                        const std::string& why = "");
+
 class Tracker {
  public:
   virtual ~Tracker() = default;

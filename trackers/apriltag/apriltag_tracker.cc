@@ -50,14 +50,11 @@ class AprilTagTracker final : public Tracker {
   }
 
   TrackResult Track(const Observation& obs) override {
-    TrackResult result;
     const MarkerSpec& marker = *obs.marker;
     if (!CanTrack(marker)) {
-      result.status = TrackStatus::kError;
-      result.message = "the apriltag tracker (family " + options_.family +
-                       ") cannot track marker '" + marker.name + "'";
-      return result;
+      return CannotTrack("the apriltag tracker (family " + options_.family + ")", marker);
     }
+    TrackResult result;
     GreyImage grey(*obs.image);
     image_u8_t image{grey.width(), grey.height(), grey.width(), grey.data()};
     const std::unique_ptr<zarray_t, DetectionsDeleter> detections(
@@ -172,9 +169,7 @@ AprilTagOptions AprilTagOptions::FromYaml(const YamlMap& map) {
   o.decode_sharpening = map.GetOr<double>("decode_sharpening", o.decode_sharpening);
   o.nthreads = map.GetOr<int>("nthreads", o.nthreads);
   o.max_hamming = map.GetOr<int>("max_hamming", o.max_hamming);
-  map.RejectUnknownKeys();
-  std::string error;
-  if (!o.IsValid(&error)) map.Fail(error.substr(0, error.find('=')), error);
+  FinishOptions(map, o);
   return o;
 }
 

@@ -59,14 +59,11 @@ class ArucoTracker final : public Tracker {
   }
 
   TrackResult Track(const Observation& obs) override {
-    TrackResult result;
     const MarkerSpec& marker = *obs.marker;
     if (!CanTrack(marker)) {
-      result.status = TrackStatus::kError;
-      result.message = "the aruco tracker (" + options_.dictionary + ") cannot track marker '" +
-                       marker.name + "'";
-      return result;
+      return CannotTrack("the aruco tracker (" + options_.dictionary + ")", marker);
     }
+    TrackResult result;
     GreyImage grey(*obs.image);
     const cv::Mat image(grey.height(), grey.width(), CV_8UC1, grey.data());
     std::vector<std::vector<cv::Point2f>> corners;
@@ -177,9 +174,7 @@ ArucoOptions ArucoOptions::FromYaml(const YamlMap& map) {
   o.corner_refinement_min_accuracy =
       map.GetOr<double>("corner_refinement_min_accuracy", o.corner_refinement_min_accuracy);
   o.error_correction_rate = map.GetOr<double>("error_correction_rate", o.error_correction_rate);
-  map.RejectUnknownKeys();
-  std::string error;
-  if (!o.IsValid(&error)) map.Fail(error.substr(0, error.find('=')), error);
+  FinishOptions(map, o);
   return o;
 }
 

@@ -77,9 +77,7 @@ CircleTrackerOptions CircleTrackerOptions::FromYaml(const YamlMap& map) {
   o.detector.min_contrast = map.GetOr<double>("min_contrast", o.detector.min_contrast);
   o.detector.edge_passes = map.GetOr<int>("edge_passes", o.detector.edge_passes);
   o.detector.edges.max_rays = map.GetOr<int>("max_rays", o.detector.edges.max_rays);
-  map.RejectUnknownKeys();
-  std::string error;
-  if (!o.IsValid(&error)) map.Fail(error.substr(0, error.find('=')), error);
+  FinishOptions(map, o);
   return o;
 }
 
@@ -112,12 +110,7 @@ TrackResult CircleTracker::Track(const Observation& observation) {
   const MarkerSpec& marker = *observation.marker;
   std::string error;
   const std::optional<CircleGeometry> geometry = CircleGeometryOf(marker, &error);
-  if (!geometry) {
-    TrackResult result;
-    result.status = TrackStatus::kError;
-    result.message = "the circle tracker cannot track marker '" + marker.name + "': " + error;
-    return result;
-  }
+  if (!geometry) return CannotTrack("the circle tracker", marker, error);
   const Image8& image = *observation.image;
   const cv::Rect whole(0, 0, image.width, image.height);
   if (options_.tracking && previous_cam_from_paper_) {
