@@ -7,6 +7,7 @@
 #include "core/marker_yaml.h"
 #include "core/test_files.h"
 #include "core/yaml_reader.h"
+#include "trackers/artkplus/id_code.h"
 
 namespace markerbench {
 namespace {
@@ -215,6 +216,45 @@ TEST(MarkerYaml, BitGridValidatesData) {
   EXPECT_FALSE(grid.Ink(2, 3));
   EXPECT_NEAR(spec.InkBounds().sizes().x(), 0.1, 1e-12);
   EXPECT_THAT(MarkerError(Replace(good, "'.#'", "'.x'")), HasSubstr("key 'data'"));
+}
+
+TEST(MarkerYaml, ArtkPlusGridHoldsTheCodewordInsideItsBorder) {
+  const std::string good =
+      "kind: artkplus\nmode: bch\nid: 100\nborder_fraction: 0.25\nsize_m: 0.12\n";
+  const MarkerSpec spec = LoadMarkerYaml(WriteTestFile("artk.yaml", good));
+  EXPECT_EQ(spec.kind, MarkerKind::kArtkPlus);
+  EXPECT_EQ(spec.family, "bch");
+  EXPECT_EQ(spec.id, 100);
+  EXPECT_EQ(spec.border_fraction, 0.25);
+  const auto& grid = std::get<GridShape>(spec.layers[0].shape);
+  ASSERT_EQ(grid.rows, 14);  // 1 quiet + 3 border + 6 data + 3 border + 1 quiet
+  EXPECT_NEAR(grid.cell_m, 0.01, 1e-15);
+  EXPECT_FALSE(grid.Ink(0, 5));  // quiet zone
+  EXPECT_TRUE(grid.Ink(3, 5));   // border
+  const uint64_t word = ArtkPlusEncode(ArtkPlusIdMode::kBch, 100);
+  for (int r = 0; r < 6; ++r) {
+    for (int c = 0; c < 6; ++c) {
+      const bool white = (word >> (35 - (6 * r + c)) & 1) != 0;
+      EXPECT_EQ(grid.Ink(4 + r, 4 + c), !white) << "cell " << r << ", " << c;
+    }
+  }
+  EXPECT_NEAR(spec.InkBounds().sizes().x(), 0.12, 1e-12);
+  const MarkerSpec thin = LoadMarkerYaml(
+      WriteTestFile("thin.yaml", Replace(Replace(good, "0.25", "0.125"), "bch", "simple")));
+  EXPECT_EQ(std::get<GridShape>(thin.layers[0].shape).rows, 10);
+  EXPECT_NEAR(thin.InkBounds().sizes().x(), 0.12, 1e-12);
+}
+
+TEST(MarkerYaml, ArtkPlusErrorsNameTheKey) {
+  const std::string good =
+      "kind: artkplus\nmode: simple\nid: 511\nborder_fraction: 0.25\nsize_m: 0.1\n";
+  EXPECT_THAT(MarkerError(Replace(good, "511", "512")),
+              HasSubstr("key 'id': expected an id in [0, 511] for mode simple"));
+  EXPECT_THAT(MarkerError(Replace(good, "simple", "bhc")),
+              HasSubstr("key 'mode': expected an id mode: bch or simple"));
+  EXPECT_THAT(MarkerError(Replace(good, "0.25", "0.2")),
+              HasSubstr("key 'border_fraction': expected a border fraction of 0.25 or 0.125"));
+  EXPECT_THAT(MarkerError(Replace(good, "mode: simple\n", "")), HasSubstr("key 'mode'"));
 }
 
 TEST(MarkerYaml, DotRingsValidatesPattern) {

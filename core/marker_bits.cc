@@ -16,6 +16,8 @@
 #include <stdexcept>
 #include <utility>
 
+#include "trackers/artkplus/id_code.h"
+
 namespace markerbench {
 namespace {
 
@@ -106,6 +108,31 @@ GridShape AprilTagGrid(const std::string& family, int id, double size_m) {
                                                                  image_u8_destroy);
   return GridFromBitmap(fam->total_width, size_m / fam->width_at_border, [&](int r, int c) {
     return image->buf[r * image->stride + c] == 0;
+  });
+}
+
+GridShape ArtkPlusGrid(const std::string& mode, int id, double border_fraction, double size_m) {
+  const std::optional<ArtkPlusIdMode> id_mode = ArtkPlusIdModeFromString(mode);
+  if (!id_mode) throw std::invalid_argument("an id mode: bch or simple");
+  const int ids = ArtkPlusIdCount(*id_mode);
+  if (id < 0 || id >= ids) {
+    throw std::invalid_argument("an id in [0, " + std::to_string(ids - 1) + "] for mode " + mode);
+  }
+  int border = 0;
+  if (border_fraction == 0.25) {
+    border = 3;
+  } else if (border_fraction == 0.125) {
+    border = 1;
+  } else {
+    throw std::invalid_argument("a border fraction of 0.25 or 0.125");
+  }
+  const int inked = 6 + 2 * border;
+  const uint64_t word = ArtkPlusEncode(*id_mode, id);
+  return GridFromBitmap(inked + 2, size_m / inked, [&](int r, int c) {
+    const int ri = r - 1 - border, ci = c - 1 - border;  // data cell, past quiet zone and border
+    if (r == 0 || c == 0 || r == inked + 1 || c == inked + 1) return false;
+    if (ri < 0 || ci < 0 || ri >= 6 || ci >= 6) return true;
+    return (word >> (35 - (6 * ri + ci)) & 1) == 0;  // a set bit is white
   });
 }
 

@@ -22,6 +22,12 @@ std::vector<std::string> AprilTagFamilies();
 using AprilTagFamilyPtr = std::unique_ptr<void, std::function<void(void*)>>;
 AprilTagFamilyPtr CreateAprilTagFamily(const std::string& family);
 
+// An ARToolKitPlus-style marker (baselines.md): the 6x6 word of `id` in `mode` ("bch" or
+// "simple"; a set bit is white) inside a black border of border_fraction * size_m (0.25:
+// 3 cells, 0.125: 1 cell) and a 1-cell white quiet zone. Throws std::invalid_argument starting
+// "an id" for an id out of range, else naming the valid modes or border fractions.
+GridShape ArtkPlusGrid(const std::string& mode, int id, double border_fraction, double size_m);
+
 // OpenCV 4.6 cv::aruco::drawMarker with a 1-cell border: (bits + 2)² cells spanning size_m.
 GridShape ArucoGrid(const std::string& dictionary, int id, double size_m);
 std::vector<std::string> ArucoDictionaries();

@@ -6,7 +6,7 @@
 namespace markerbench {
 namespace {
 
-constexpr std::array<std::pair<MarkerKind, const char*>, 10> kKindNames = {{
+constexpr std::array<std::pair<MarkerKind, const char*>, 11> kKindNames = {{
     {MarkerKind::kCirclesA, "circles_a"},
     {MarkerKind::kCirclesB, "circles_b"},
     {MarkerKind::kCirclesC, "circles_c"},
@@ -16,6 +16,7 @@ constexpr std::array<std::pair<MarkerKind, const char*>, 10> kKindNames = {{
     {MarkerKind::kAprilTag, "apriltag"},
     {MarkerKind::kAruco, "aruco"},
     {MarkerKind::kBitGrid, "bit_grid"},
+    {MarkerKind::kArtkPlus, "artkplus"},
     {MarkerKind::kDotRings, "dot_rings"},
 }};
 
@@ -66,7 +67,7 @@ bool IsCircleKind(MarkerKind kind) {
 
 bool IsSquareKind(MarkerKind kind) {
   return kind == MarkerKind::kAprilTag || kind == MarkerKind::kAruco ||
-         kind == MarkerKind::kBitGrid;
+         kind == MarkerKind::kBitGrid || kind == MarkerKind::kArtkPlus;
 }
 
 Eigen::AlignedBox2d MarkerSpec::InkBounds() const {

@@ -21,7 +21,8 @@ enum class MarkerKind {
   kCircleF,   // Fig. 3(f): a disk with a wedge whose radii meet at the centre
   kAprilTag,  // libapriltag family bitmap
   kAruco,     // OpenCV 4.6 aruco dictionary bitmap
-  kBitGrid,   // generic bordered bit-grid square (building block for ARToolKitPlus style)
+  kBitGrid,   // generic bordered bit-grid square
+  kArtkPlus,  // ARToolKitPlus-style BCH-id or simple-id square (trackers/artkplus/id_code.h)
   kDotRings,  // generic dots on concentric rings (building block for RUNETag style)
 };
 
@@ -43,10 +44,13 @@ struct MarkerSpec {
 
   // Circle markers: the circles whose edges carry the pose; circles[0] is centred at m0.
   std::vector<Disk> circles;
-  // Square markers: family or dictionary, id, and the edge of the black square.
+  // Square markers: family, dictionary or artkplus id mode ("bch", "simple"), id, and the
+  // edge of the black square.
   std::string family;
   int id = -1;
   double size_m = 0.0;
+  // artkplus: width of the black border as a fraction of size_m (0.25 or 0.125).
+  double border_fraction = 0.0;
 
   // What is printed on the background, bottom layer first.
   std::vector<PaintedShape> layers;

@@ -213,6 +213,19 @@ void LoadSquareMarker(const YamlMap& root, MarkerSpec* spec) {
   GridShape grid;
   if (spec->kind == MarkerKind::kBitGrid) {
     grid = BorderedGrid(root, spec->size_m);
+  } else if (spec->kind == MarkerKind::kArtkPlus) {
+    spec->family = root.Get<std::string>("mode");
+    spec->id = root.Get<int>("id");
+    spec->border_fraction = root.Get<double>("border_fraction");
+    try {
+      grid = ArtkPlusGrid(spec->family, spec->id, spec->border_fraction, spec->size_m);
+    } catch (const std::invalid_argument& e) {
+      const std::string what = e.what();
+      root.Fail(what.rfind("an id mode", 0) == 0 ? "mode"
+                : what.rfind("an id", 0) == 0    ? "id"
+                                                 : "border_fraction",
+                what);
+    }
   } else {
     const char* family_key = spec->kind == MarkerKind::kAprilTag ? "family" : "dictionary";
     spec->family = root.Get<std::string>(family_key);
@@ -274,7 +287,7 @@ MarkerSpec LoadMarkerYaml(const std::string& path) {
   if (!kind) {
     root.Fail("kind",
               "one of circles_a, circles_b, circles_c, circle_d, circle_e, circle_f, apriltag, "
-              "aruco, bit_grid, dot_rings");
+              "aruco, bit_grid, artkplus, dot_rings");
   }
   spec.kind = *kind;
   spec.background = root.Has("background") ? root.GetColor("background") : Rgb::Ones();
