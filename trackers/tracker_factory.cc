@@ -2,6 +2,7 @@
 
 #include "core/yaml_reader.h"
 #include "trackers/apriltag/apriltag_tracker.h"
+#include "trackers/artkplus/artkplus_tracker.h"
 #include "trackers/aruco/aruco_tracker.h"
 #include "trackers/circle/circle_tracker.h"
 
@@ -16,13 +17,14 @@ Options ReadOptions(const YamlMap* map) {
 
 }  // namespace
 
-std::vector<std::string> TrackerNames() { return {"apriltag", "apriltag-ippe", "aruco", "circle"}; }
+std::vector<std::string> TrackerNames() { return {"apriltag", "apriltag-ippe", "artkplus", "aruco", "circle"}; }
 
 std::unique_ptr<Tracker> MakeTracker(const std::string& name, const YamlMap* options) {
   if (name == "apriltag" || name == "apriltag-ippe") {
     return MakeAprilTagTracker(ReadOptions<AprilTagOptions>(options),
                                name == "apriltag" ? AprilTagPose::kNative : AprilTagPose::kIppe);
   }
+  if (name == "artkplus") return MakeArtkPlusTracker(ReadOptions<ArtkPlusOptions>(options));
   if (name == "aruco") return MakeArucoTracker(ReadOptions<ArucoOptions>(options));
   if (name == "circle") return MakeCircleTracker(ReadOptions<CircleTrackerOptions>(options));
   std::string names;

@@ -1,0 +1,195 @@
+#include "trackers/artkplus/artkplus_tracker.h"
+
+#include <array>
+#include <cmath>
+#include <sstream>
+#include <vector>
+
+#include "core/number_text.h"
+#include "core/random.h"
+#include "core/yaml_reader.h"
+#include "trackers/artkplus/contour_trace.h"
+#include "trackers/artkplus/pattern_reader.h"
+#include "trackers/grey_image.h"
+
+namespace markerbench {
+namespace {
+
+struct Detection {
+  std::array<Eigen::Vector2d, 4> corners_px;  // our order: top-left, top-right, ...
+  PatternRead pattern;
+};
+
+class ArtkPlusTracker final : public Tracker {
+ public:
+  explicit ArtkPlusTracker(const ArtkPlusOptions& options) : options_(options) { Reset(); }
+
+  bool CanTrack(const MarkerSpec& marker) const override {
+    return marker.kind == MarkerKind::kArtkPlus;
+  }
+
+  void Reset() override {
+    threshold_ = options_.threshold;
+    retry_rng_ = Rng(static_cast<uint64_t>(options_.auto_threshold_seed));
+  }
+
+  TrackResult Track(const Observation& obs) override {
+    const MarkerSpec& marker = *obs.marker;
+    if (!CanTrack(marker)) return CannotTrack("the artkplus tracker", marker);
+    const std::optional<ArtkPlusIdMode> mode = ArtkPlusIdModeFromString(marker.family);
+    if (!mode) return CannotTrack("the artkplus tracker", marker, "unknown id mode");
+    GreyImage grey(*obs.image);
+
+    std::vector<Detection> detections = Detect(grey, threshold_, *mode, marker, *obs.camera);
+    const bool automatic = options_.threshold_mode == ArtkPlusThreshold::kAuto;
+    for (int retry = 0; automatic && detections.empty() && retry < options_.auto_threshold_retries;
+         ++retry) {
+      const int threshold = 10 + static_cast<int>(retry_rng_.NextU64() % 230);
+      detections = Detect(grey, threshold, *mode, marker, *obs.camera);
+    }
+
+    TrackResult result;
+    const Detection* found = nullptr;
+    for (const Detection& d : detections) {
+      if (d.pattern.id == marker.id &&
+          (!found || d.pattern.confidence > found->pattern.confidence)) {
+        found = &d;
+      }
+    }
+    if (!found) {
+      result.status = detections.empty() ? TrackStatus::kNotDetected : TrackStatus::kWrongId;
+      return result;
+    }
+    if (automatic) {
+      threshold_ = static_cast<int>(
+          std::lround(0.5 * (found->pattern.min_level + found->pattern.max_level)));
+    }
+    result.keypoints_px.assign(found->corners_px.begin(), found->corners_px.end());
+    result.hypotheses = Pose(found->corners_px, marker, *obs.camera);
+    result.status = result.hypotheses.empty() ? TrackStatus::kPoseFailed : TrackStatus::kOk;
+    return result;
+  }
+
+  std::vector<std::pair<std::string, std::string>> Parameters() const override {
+    const ArtkPlusOptions& o = options_;
+    return {{"threshold_mode", o.threshold_mode == ArtkPlusThreshold::kAuto ? "auto" : "fixed"},
+            {"threshold", NumberText(o.threshold)},
+            {"auto_threshold_retries", NumberText(o.auto_threshold_retries)},
+            {"auto_threshold_seed", NumberText(o.auto_threshold_seed)},
+            {"min_area_px", NumberText(o.regions.min_area_px)},
+            {"max_area_px", NumberText(o.regions.max_area_px)},
+            {"side_trim", NumberText(o.quad.side_trim)},
+            {"subpixel_edges", o.quad.subpixel_edges ? "true" : "false"},
+            {"min_confidence", NumberText(o.min_confidence)},
+            {"pose", o.pose == ArtkPlusPose::kRobustPlanar ? "rpp" : "classic"}};
+  }
+
+ private:
+  std::vector<Detection> Detect(GreyImage& grey,
+                                int threshold,
+                                ArtkPlusIdMode mode,
+                                const MarkerSpec& marker,
+                                const Camera& camera) const {
+    DarkRegionOptions region_options = options_.regions;
+    region_options.threshold = threshold;
+    const DarkRegions regions =
+        FindDarkRegions(grey.data(), grey.width(), grey.height(), region_options);
+    const int border_cells = marker.border_fraction == 0.125 ? 1 : 3;
+    std::vector<Detection> detections;
+    for (const DarkRegion& region : regions.regions) {
+      const std::vector<Eigen::Vector2i> contour = TraceOuterContour(regions, region);
+      std::optional<std::array<Eigen::Vector2d, 4>> corners =
+          FitQuad(contour, region, grey.data(), threshold, regions, camera, options_.quad);
+      if (!corners) continue;
+      const std::optional<PatternRead> pattern = ReadPattern(
+          grey.data(), grey.width(), grey.height(), *corners, border_cells, mode, camera);
+      if (!pattern || pattern->confidence < options_.min_confidence) continue;
+      if (options_.quad.subpixel_edges) {
+        // Refit on the crossings of the level halfway between this marker's ink and paper.
+        const double edge_level = 0.5 * (pattern->min_level + pattern->max_level);
+        corners = FitQuad(contour, region, grey.data(), edge_level, regions, camera, options_.quad);
+        if (!corners) continue;
+      }
+      Detection detection{{}, *pattern};
+      for (int k = 0; k < 4; ++k) {
+        detection.corners_px[k] = (*corners)[(pattern->top_left + k) % 4];
+      }
+      detections.push_back(detection);
+    }
+    return detections;
+  }
+
+  std::vector<Rigid3> Pose(const std::array<Eigen::Vector2d, 4>& corners_px,
+                           const MarkerSpec& marker,
+                           const Camera& camera) const {
+    std::array<Eigen::Vector2d, 4> rays;
+    for (size_t k = 0; k < 4; ++k) rays[k] = camera.CamFromImg(corners_px[k]).hnormalized();
+    if (options_.pose == ArtkPlusPose::kClassic) {
+      const std::optional<Rigid3> pose = ClassicSquarePose(rays, marker.size_m, options_.classic);
+      return pose ? std::vector<Rigid3>{*pose} : std::vector<Rigid3>{};
+    }
+    std::vector<Rigid3> hypotheses;
+    for (const PlanarPoseHypothesis& h :
+         RobustPlanarPose({marker.keypoints.begin(), marker.keypoints.end()},
+                          {rays.begin(), rays.end()},
+                          options_.robust_planar)) {
+      hypotheses.push_back(h.cam_from_marker);
+    }
+    return hypotheses;
+  }
+
+  ArtkPlusOptions options_;
+  int threshold_ = 100;
+  Rng retry_rng_{1};
+};
+
+}  // namespace
+
+bool ArtkPlusOptions::IsValid(std::string* error) const {
+  std::ostringstream msg;
+  if (threshold < 1 || threshold > 255) {
+    msg << "threshold=" << threshold << " must be in [1, 255]";
+  } else if (auto_threshold_retries < 0 || auto_threshold_seed < 0) {
+    msg << "auto_threshold_retries=" << auto_threshold_retries
+        << " and auto_threshold_seed=" << auto_threshold_seed << " must be >= 0";
+  } else if (regions.min_area_px < 1 || regions.max_area_px < regions.min_area_px) {
+    msg << "min_area_px=" << regions.min_area_px << " must be >= 1 and <= max_area_px";
+  } else if (!(quad.side_trim >= 0.0 && quad.side_trim < 0.5)) {
+    msg << "side_trim=" << quad.side_trim << " must be in [0, 0.5)";
+  } else if (!(min_confidence >= 0.0 && min_confidence <= 1.0)) {
+    msg << "min_confidence=" << min_confidence << " must be in [0, 1]";
+  } else {
+    return true;
+  }
+  if (error) *error = msg.str();
+  return false;
+}
+
+ArtkPlusOptions ArtkPlusOptions::FromYaml(const YamlMap& map) {
+  ArtkPlusOptions o;
+  const std::string threshold_mode = map.GetOr<std::string>("threshold_mode", "auto");
+  if (threshold_mode != "auto" && threshold_mode != "fixed") {
+    map.Fail("threshold_mode", "auto or fixed");
+  }
+  o.threshold_mode =
+      threshold_mode == "auto" ? ArtkPlusThreshold::kAuto : ArtkPlusThreshold::kFixed;
+  o.threshold = map.GetOr<int>("threshold", o.threshold);
+  o.auto_threshold_retries = map.GetOr<int>("auto_threshold_retries", o.auto_threshold_retries);
+  o.auto_threshold_seed = map.GetOr<int>("auto_threshold_seed", o.auto_threshold_seed);
+  o.regions.min_area_px = map.GetOr<int>("min_area_px", o.regions.min_area_px);
+  o.regions.max_area_px = map.GetOr<int>("max_area_px", o.regions.max_area_px);
+  o.quad.side_trim = map.GetOr<double>("side_trim", o.quad.side_trim);
+  o.quad.subpixel_edges = map.GetOr<bool>("subpixel_edges", o.quad.subpixel_edges);
+  o.min_confidence = map.GetOr<double>("min_confidence", o.min_confidence);
+  const std::string pose = map.GetOr<std::string>("pose", "rpp");
+  if (pose != "rpp" && pose != "classic") map.Fail("pose", "rpp or classic");
+  o.pose = pose == "rpp" ? ArtkPlusPose::kRobustPlanar : ArtkPlusPose::kClassic;
+  FinishOptions(map, o);
+  return o;
+}
+
+std::unique_ptr<Tracker> MakeArtkPlusTracker(const ArtkPlusOptions& options) {
+  return std::make_unique<ArtkPlusTracker>(options);
+}
+
+}  // namespace markerbench

@@ -1,0 +1,86 @@
+#include "trackers/artkplus/pattern_reader.h"
+
+#include <Eigen/Geometry>
+#include <algorithm>
+#include <cmath>
+
+#include "trackers/artkplus/homography.h"
+
+namespace markerbench {
+namespace {
+
+double Bilinear(const uint8_t* grey, int width, int height, const Eigen::Vector2d& p) {
+  const double x = std::clamp(p.x(), 0.0, width - 1.001);
+  const double y = std::clamp(p.y(), 0.0, height - 1.001);
+  const int x0 = static_cast<int>(x), y0 = static_cast<int>(y);
+  const double fx = x - x0, fy = y - y0;
+  const uint8_t* row = grey + static_cast<size_t>(y0) * width + x0;
+  return (1 - fy) * ((1 - fx) * row[0] + fx * row[1]) +
+         fy * ((1 - fx) * row[width] + fx * row[width + 1]);
+}
+
+}  // namespace
+
+std::optional<PatternRead> ReadPattern(const uint8_t* grey,
+                                       int width,
+                                       int height,
+                                       const std::array<Eigen::Vector2d, 4>& corners_px,
+                                       int border_cells,
+                                       ArtkPlusIdMode mode,
+                                       const Camera& camera) {
+  const bool distorted = camera.HasDistortion();
+  const Eigen::Matrix3d K = camera.K();
+  std::array<Eigen::Vector2d, 4> ideal;
+  for (size_t i = 0; i < 4; ++i) {
+    ideal[i] = distorted ? (K * camera.CamFromImg(corners_px[i])).hnormalized() : corners_px[i];
+  }
+  const Eigen::Matrix3d H =
+      HomographyDlt({{0, 0}, {1, 0}, {1, 1}, {0, 1}}, {ideal.begin(), ideal.end()});
+  const Eigen::Matrix3d K_inv = K.inverse();
+  const double cells = 6 + 2 * border_cells;
+  // Each cell is the mean of 3x3 samples over its central half.
+  std::array<double, kArtkPlusWordBits> level{};
+  for (int r = 0; r < 6; ++r) {
+    for (int c = 0; c < 6; ++c) {
+      double sum = 0.0;
+      for (int i = -1; i <= 1; ++i) {
+        for (int j = -1; j <= 1; ++j) {
+          const Eigen::Vector2d unit((border_cells + c + 0.5 + 0.25 * j) / cells,
+                                     (border_cells + r + 0.5 + 0.25 * i) / cells);
+          const Eigen::Vector2d p = (H * unit.homogeneous()).hnormalized();
+          sum += Bilinear(
+              grey, width, height, distorted ? camera.ImgFromCam(K_inv * p.homogeneous()) : p);
+        }
+      }
+      level[static_cast<size_t>(6 * r + c)] = sum / 9.0;
+    }
+  }
+  const auto [lo, hi] = std::minmax_element(level.begin(), level.end());
+  const double mid = 0.5 * (*lo + *hi);
+  uint64_t word = 0;
+  for (size_t k = 0; k < level.size(); ++k) {
+    if (level[k] > mid) word |= 1ULL << (35 - k);  // a set bit is white
+  }
+  // Reading with corner j as top-left gives the word read with corner j+1 turned a quarter
+  // turn clockwise; so turning the word read from corner 0 k times reads it from corner -k.
+  std::optional<PatternRead> best;
+  bool tie = false;
+  for (int k = 0; k < 4; ++k, word = ArtkPlusQuarterTurn(word)) {
+    const std::optional<DecodedId> decoded = ArtkPlusDecode(mode, word);
+    if (!decoded) continue;
+    if (best && decoded->corrected_bits == best->corrected_bits) tie = true;
+    if (best && decoded->corrected_bits >= best->corrected_bits) continue;
+    tie = false;
+    best = PatternRead{
+        decoded->id,
+        decoded->corrected_bits,
+        1.0 - static_cast<double>(decoded->corrected_bits) / ArtkPlusMinimumDistance(mode),
+        (4 - k) % 4,
+        *lo,
+        *hi};
+  }
+  if (tie) return std::nullopt;
+  return best;
+}
+
+}  // namespace markerbench
