@@ -1,6 +1,7 @@
 #include "trackers/artkplus/artkplus_tracker.h"
 
 #include <gtest/gtest.h>
+#include <yaml-cpp/yaml.h>
 
 #include "core/test_files.h"
 #include "core/yaml_reader.h"
@@ -17,6 +18,8 @@ constexpr double kCornerTolPx = 0.2;
 // fronto-parallel views (the planar ambiguity), less elsewhere.
 constexpr double kPositionTolFraction = 0.02;
 constexpr double kRotationTolDeg = 3.0;
+
+YamlMap OptionsYaml(const std::string& text) { return YamlMap(YAML::Load(text), "opts.yaml", ""); }
 
 class ArtkPlusTrackerTest : public ::testing::Test {
  protected:
@@ -48,6 +51,107 @@ TEST_F(ArtkPlusTrackerTest, CornersAndPoseOverDistanceAndTiltInCleanImages) {
       EXPECT_LE(RotationErrorDeg(best, truth), kRotationTolDeg);
     }
   }
+}
+
+TEST_F(ArtkPlusTrackerTest, FrameAndCornerOrderAgreeUnderQuarterTurns) {
+  auto tracker = MakeTracker("artkplus", nullptr);
+  for (double roll : {0.0, 90.0, 180.0, 270.0}) {
+    SCOPED_TRACE("roll=" + std::to_string(roll));
+    tracker->Reset();
+    const Rigid3 truth = TiltedView(0.6, 25.0, roll + 8.0);
+    const TrackedFrame t = RenderAndTrack(tracker.get(), marker_, marker_, truth, 0.0, 3);
+    ASSERT_EQ(t.result.status, TrackStatus::kOk);
+    EXPECT_LE(MaxCornerErrorPx(t), kCornerTolPx);  // corner k is the truth's corner k
+    const Rigid3& est = t.result.hypotheses.front();
+    EXPECT_GT(CameraCenterInMarker(est).z(), 0.0);
+    EXPECT_GT(est.rotation.col(0).dot(truth.rotation.col(0)), 0.999);
+    EXPECT_GT(est.rotation.col(1).dot(truth.rotation.col(1)), 0.999);
+  }
+}
+
+TEST_F(ArtkPlusTrackerTest, SimpleIdModeThinBorderAndClassicPose) {
+  const MarkerSpec simple = LoadMarkerYaml(WriteTestFile(
+      "artk_simple.yaml",
+      "kind: artkplus\nmode: simple\nid: 300\nborder_fraction: 0.125\nsize_m: 0.08\n"));
+  for (const char* pose : {"rpp", "classic"}) {
+    SCOPED_TRACE(pose);
+    const YamlMap options = OptionsYaml(std::string("pose: ") + pose + "\n");
+    auto tracker = MakeTracker("artkplus", &options);
+    for (double tilt : {0.0, 45.0}) {
+      tracker->Reset();
+      const Rigid3 truth = TiltedView(0.5, tilt, 33.0);
+      const TrackedFrame t = RenderAndTrack(tracker.get(), simple, simple, truth, 0.0, 4);
+      ASSERT_EQ(t.result.status, TrackStatus::kOk) << tilt;
+      EXPECT_LE(MaxCornerErrorPx(t), kCornerTolPx);
+      const Rigid3& best = t.result.hypotheses.front();
+      EXPECT_LE(PositionError(best, truth), kPositionTolFraction * 0.5) << tilt;
+      EXPECT_LE(RotationErrorDeg(best, truth), kRotationTolDeg) << tilt;
+    }
+  }
+}
+
+TEST_F(ArtkPlusTrackerTest, WrongIdIsReported) {
+  auto tracker = MakeTracker("artkplus", nullptr);
+  const MarkerSpec other = LoadMarkerYaml(WriteTestFile(
+      "artk_77.yaml", "kind: artkplus\nmode: bch\nid: 77\nborder_fraction: 0.25\nsize_m: 0.1\n"));
+  EXPECT_EQ(
+      RenderAndTrack(tracker.get(), other, marker_, TiltedView(0.5, 10, 0), 0.0, 5).result.status,
+      TrackStatus::kWrongId);
+}
+
+// Issue 6: an empty image gives no detection; noise alone at σ² = 0.3 gives no false id.
+TEST_F(ArtkPlusTrackerTest, NothingIsFoundInEmptyOrNoiseOnlyImages) {
+  auto tracker = MakeTracker("artkplus", nullptr);
+  MarkerSpec blank = marker_;
+  blank.layers.clear();
+  EXPECT_EQ(
+      RenderAndTrack(tracker.get(), blank, marker_, TiltedView(0.5, 10, 0), 0.0, 6).result.status,
+      TrackStatus::kNotDetected);
+  for (uint64_t seed = 0; seed < 10; ++seed) {
+    tracker->Reset();
+    EXPECT_EQ(RenderAndTrack(tracker.get(), blank, marker_, TiltedView(0.5, 10, 0), 0.3, seed)
+                  .result.status,
+              TrackStatus::kNotDetected)
+        << "seed " << seed;
+  }
+}
+
+// On dim paper (all grey levels below 100) the fixed threshold labels the whole image dark;
+// auto mode's seeded random retries find a working threshold, the same one after Reset.
+TEST_F(ArtkPlusTrackerTest, AutoThresholdRetriesRecoverADimImageDeterministically) {
+  FrameRequest request;
+  request.scene.marker = &marker_;
+  request.scene.cam_from_marker = TiltedView(0.5, 20.0, 10.0);
+  request.degradations.gain = 0.3;
+  const RenderedFrame frame = RenderFrame(request);
+  const Observation observation{&frame.image, &request.scene.camera, &marker_};
+  const YamlMap fixed = OptionsYaml("threshold_mode: fixed\n");
+  EXPECT_EQ(MakeTracker("artkplus", &fixed)->Track(observation).status, TrackStatus::kNotDetected);
+  const YamlMap retries = OptionsYaml("auto_threshold_retries: 8\n");
+  auto tracker = MakeTracker("artkplus", &retries);
+  const TrackResult first = tracker->Track(observation);
+  ASSERT_EQ(first.status, TrackStatus::kOk);
+  tracker->Reset();
+  const TrackResult again = tracker->Track(observation);
+  ASSERT_EQ(again.status, TrackStatus::kOk);
+  for (size_t k = 0; k < 4; ++k) EXPECT_EQ(first.keypoints_px[k], again.keypoints_px[k]);
+}
+
+TEST(ArtkPlusOptions, ErrorsNameTheKey) {
+  const auto error = [](const std::string& yaml) {
+    try {
+      ArtkPlusOptions::FromYaml(OptionsYaml(yaml));
+    } catch (const ConfigError& e) {
+      return std::string(e.what());
+    }
+    return std::string();
+  };
+  EXPECT_NE(error("threshold: 300\n").find("'threshold'"), std::string::npos);
+  EXPECT_NE(error("pose: ippe\n").find("'pose': expected rpp or classic"), std::string::npos);
+  EXPECT_NE(error("threshold_mode: otsu\n").find("'threshold_mode'"), std::string::npos);
+  EXPECT_NE(error("side_trim: 0.7\n").find("'side_trim'"), std::string::npos);
+  EXPECT_NE(error("treshold: 90\n").find("treshold"), std::string::npos);
+  EXPECT_EQ(error("threshold: 90\nsubpixel_edges: false\n"), "");
 }
 
 }  // namespace

@@ -9,6 +9,12 @@
 namespace markerbench {
 namespace {
 
+Eigen::Matrix3d Skew(const Eigen::Vector3d& v) {
+  Eigen::Matrix3d S;
+  S << 0, -v.z(), v.y(), v.z(), 0, -v.x(), -v.y(), v.x(), 0;
+  return S;
+}
+
 // The closest rotation to M (Frobenius), via SVD.
 Eigen::Matrix3d NearestRotation(const Eigen::Matrix3d& M) {
   const Eigen::JacobiSVD<Eigen::Matrix3d> svd(M, Eigen::ComputeFullU | Eigen::ComputeFullV);
@@ -70,7 +76,47 @@ class OrthogonalIteration {
       ++iterations;
       if (!(std::abs(previous - error) > options.relative_tolerance * previous)) break;
     }
-    return {Rigid3(R, t), error, iterations};
+    return Polish({Rigid3(R, t), error, iterations}, options);
+  }
+
+  // Gauss-Newton with Levenberg damping on E over (R exp([w]x), t), from an OI iterate:
+  // r_i = (I - F_i)(R p_i + t), dr_i/dt = I - F_i, dr_i/dw = -(I - F_i) R [p_i]x.
+  PlanarPoseHypothesis Polish(PlanarPoseHypothesis h,
+                              const RobustPlanarPoseOptions& options) const {
+    Rigid3& pose = h.cam_from_marker;
+    double lambda = 1e-6;
+    for (int step = 0; step < options.max_polish_steps; ++step) {
+      Eigen::Matrix<double, 6, 6> JtJ = Eigen::Matrix<double, 6, 6>::Zero();
+      Eigen::Matrix<double, 6, 1> Jtr = Eigen::Matrix<double, 6, 1>::Zero();
+      for (size_t i = 0; i < n_; ++i) {
+        const Eigen::Matrix3d P = Eigen::Matrix3d::Identity() - F_[i];
+        Eigen::Matrix<double, 3, 6> J;
+        J.leftCols<3>() = -P * pose.rotation * Skew(p_[i]);
+        J.rightCols<3>() = P;
+        const Eigen::Vector3d r = P * (pose * p_[i]);
+        JtJ += J.transpose() * J;
+        Jtr += J.transpose() * r;
+      }
+      Eigen::Matrix<double, 6, 6> A = JtJ;
+      A.diagonal() *= 1.0 + lambda;
+      const Eigen::Matrix<double, 6, 1> delta = -A.ldlt().solve(Jtr);
+      const Eigen::Vector3d w = delta.head<3>();
+      const Eigen::Matrix3d dR =
+          w.norm() > 0.0 ? Eigen::AngleAxisd(w.norm(), w.normalized()).toRotationMatrix()
+                         : Eigen::Matrix3d::Identity();
+      const Rigid3 candidate(pose.rotation * dR, pose.translation + delta.tail<3>());
+      const double error = ObjectSpaceError(candidate.rotation, candidate.translation);
+      if (error < h.object_space_error) {
+        const double previous = h.object_space_error;
+        pose = candidate;
+        h.object_space_error = error;
+        lambda *= 0.1;
+        if (!(previous - error > options.relative_tolerance * previous)) break;
+      } else {
+        lambda *= 10.0;
+      }
+    }
+    return h;
   }
 
   Eigen::Vector3d CentroidInCamera(const Rigid3& cam_from_marker) const {
