@@ -80,7 +80,7 @@ TEST(Scenario, ExampleValueMustBeASweepValue) {
 TEST(Scenario, UnknownTrackerListsTheAvailableOnes) {
   EXPECT_THAT(ErrorOf(Replace(GoodScenario(), "name: apriltag,", "name: nosuch,")),
               HasSubstr("key 'trackers[0].name': expected one of the available trackers: "
-                        "apriltag, apriltag-ippe, aruco"));
+                        "apriltag, apriltag-ippe, artkplus, aruco"));
 }
 
 TEST(Scenario, TrackerOptionsAreCheckedWithTheirKey) {

@@ -203,7 +203,7 @@ TEST_F(SweepCliTest, BadInputIsRejectedBeforeAnythingIsWritten) {
        "bad.yaml:13: key 'sweep.values': expected a non-empty list"},
       {replaced("{name: aruco}", "{name: aruko}"),
        "bad.yaml:10: key 'trackers[2].name': expected one of the available trackers: apriltag, "
-       "apriltag-ippe, aruco"},
+       "apriltag-ippe, artkplus, aruco"},
       {replaced("/scenarios/markers/aruco.yaml", "/scenarios/markers/nosuch.yaml"),
        "nosuch.yaml: cannot open the file"},
       {replaced("/scenarios/cameras/default.yaml", "/scenarios/cameras/nosuch.yaml"),

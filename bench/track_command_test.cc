@@ -73,22 +73,18 @@ TEST(TrackCommand, TracksEveryFrameOfAVideo) {
   }
 }
 
-// The circle tracker on a video of a moving circles_a marker (the command does not reset the
-// tracker within a video, so frames after the first run in tracking mode): every frame
-// tracked, and the camera centres right to 1 % of the distance despite MJPEG's chroma
-// subsampling of the red and blue disks.
-TEST(TrackCommand, TracksACircleMarkerThroughAVideo) {
-  constexpr double kDistance_m = 0.6;
-  constexpr double kCenterTolerance_m = 0.01 * kDistance_m;
-  std::vector<Rigid3> poses;
-  for (int i = 0; i < 5; ++i)
-    poses.push_back(TiltedView(kDistance_m, 25.0 + 2.0 * i, 10.0 + 4.0 * i));
+// Runs `tracker` through a video of `marker_path` seen from `poses` (the command does not
+// reset the tracker within a video) and checks every frame's camera centre.
+void ExpectCentresThroughVideo(const std::string& tracker,
+                               const std::string& marker_path,
+                               const std::vector<Rigid3>& poses,
+                               double center_tolerance_m) {
   TrackCommandOptions options;
-  options.tracker = "circle";
-  options.marker_path = "scenarios/markers/circles_a.yaml";
+  options.tracker = tracker;
+  options.marker_path = marker_path;
   options.camera_path = "scenarios/cameras/default.yaml";
-  options.out_csv = WriteTestFile("circle_track.csv", "");
-  options.inputs = {WriteVideo(options.marker_path, "circles.avi", poses)};
+  options.out_csv = WriteTestFile(tracker + "_track.csv", "");
+  options.inputs = {WriteVideo(options.marker_path, tracker + ".avi", poses)};
   RunTrackCommand(options);
   const std::vector<std::string> rows = ReadLines(options.out_csv);
   ASSERT_EQ(rows.size(), poses.size() + 1);
@@ -100,8 +96,31 @@ TEST(TrackCommand, TracksACircleMarkerThroughAVideo) {
     ASSERT_EQ(row[2], "ok") << rows[i + 1];
     const Eigen::Vector3d center(
         std::stod(row[cam_x]), std::stod(row[cam_x + 1]), std::stod(row[cam_x + 2]));
-    EXPECT_LE((center - CameraCenterInMarker(poses[i])).norm(), kCenterTolerance_m) << i;
+    EXPECT_LE((center - CameraCenterInMarker(poses[i])).norm(), center_tolerance_m) << i;
   }
+}
+
+constexpr double kVideoDistanceM = 0.6;
+constexpr double kVideoCenterTolM = 0.01 * kVideoDistanceM;  // 1 % of the distance
+
+std::vector<Rigid3> MovingView(double distance_m) {
+  std::vector<Rigid3> poses;
+  for (int i = 0; i < 5; ++i)
+    poses.push_back(TiltedView(distance_m, 25.0 + 2.0 * i, 10.0 + 4.0 * i));
+  return poses;
+}
+
+// circles_a: frames after the first run in tracking mode; the camera centres are right to
+// 1 % of the distance despite MJPEG's chroma subsampling of the red and blue disks.
+TEST(TrackCommand, TracksACircleMarkerThroughAVideo) {
+  ExpectCentresThroughVideo(
+      "circle", "scenarios/markers/circles_a.yaml", MovingView(kVideoDistanceM), kVideoCenterTolM);
+}
+
+// artkplus keeps its auto threshold from frame to frame within a video.
+TEST(TrackCommand, TracksAnArtkPlusMarkerThroughAVideo) {
+  ExpectCentresThroughVideo(
+      "artkplus", "scenarios/markers/artkplus.yaml", MovingView(kVideoDistanceM), kVideoCenterTolM);
 }
 
 }  // namespace

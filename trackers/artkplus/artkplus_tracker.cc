@@ -80,6 +80,7 @@ class ArtkPlusTracker final : public Tracker {
             {"max_area_px", NumberText(o.regions.max_area_px)},
             {"side_trim", NumberText(o.quad.side_trim)},
             {"subpixel_edges", o.quad.subpixel_edges ? "true" : "false"},
+            {"pattern_samples", NumberText(o.pattern_samples)},
             {"min_confidence", NumberText(o.min_confidence)},
             {"pose", o.pose == ArtkPlusPose::kRobustPlanar ? "rpp" : "classic"}};
   }
@@ -101,8 +102,14 @@ class ArtkPlusTracker final : public Tracker {
       std::optional<std::array<Eigen::Vector2d, 4>> corners =
           FitQuad(contour, region, grey.data(), threshold, regions, camera, options_.quad);
       if (!corners) continue;
-      const std::optional<PatternRead> pattern = ReadPattern(
-          grey.data(), grey.width(), grey.height(), *corners, border_cells, mode, camera);
+      const std::optional<PatternRead> pattern = ReadPattern(grey.data(),
+                                                             grey.width(),
+                                                             grey.height(),
+                                                             *corners,
+                                                             border_cells,
+                                                             options_.pattern_samples,
+                                                             mode,
+                                                             camera);
       if (!pattern || pattern->confidence < options_.min_confidence) continue;
       if (options_.quad.subpixel_edges) {
         // Refit on the crossings of the level halfway between this marker's ink and paper.
@@ -156,6 +163,8 @@ bool ArtkPlusOptions::IsValid(std::string* error) const {
     msg << "min_area_px=" << regions.min_area_px << " must be >= 1 and <= max_area_px";
   } else if (!(quad.side_trim >= 0.0 && quad.side_trim < 0.5)) {
     msg << "side_trim=" << quad.side_trim << " must be in [0, 0.5)";
+  } else if (pattern_samples < 1 || pattern_samples > 8) {
+    msg << "pattern_samples=" << pattern_samples << " must be in [1, 8]";
   } else if (!(min_confidence >= 0.0 && min_confidence <= 1.0)) {
     msg << "min_confidence=" << min_confidence << " must be in [0, 1]";
   } else {
@@ -180,6 +189,7 @@ ArtkPlusOptions ArtkPlusOptions::FromYaml(const YamlMap& map) {
   o.regions.max_area_px = map.GetOr<int>("max_area_px", o.regions.max_area_px);
   o.quad.side_trim = map.GetOr<double>("side_trim", o.quad.side_trim);
   o.quad.subpixel_edges = map.GetOr<bool>("subpixel_edges", o.quad.subpixel_edges);
+  o.pattern_samples = map.GetOr<int>("pattern_samples", o.pattern_samples);
   o.min_confidence = map.GetOr<double>("min_confidence", o.min_confidence);
   const std::string pose = map.GetOr<std::string>("pose", "rpp");
   if (pose != "rpp" && pose != "classic") map.Fail("pose", "rpp or classic");

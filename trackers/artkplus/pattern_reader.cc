@@ -19,6 +19,12 @@ double Bilinear(const uint8_t* grey, int width, int height, const Eigen::Vector2
          fy * ((1 - fx) * row[width] + fx * row[width + 1]);
 }
 
+double Nearest(const uint8_t* grey, int width, int height, const Eigen::Vector2d& p) {
+  const int x = std::clamp(static_cast<int>(std::lround(p.x())), 0, width - 1);
+  const int y = std::clamp(static_cast<int>(std::lround(p.y())), 0, height - 1);
+  return grey[static_cast<size_t>(y) * width + x];
+}
+
 }  // namespace
 
 std::optional<PatternRead> ReadPattern(const uint8_t* grey,
@@ -26,6 +32,7 @@ std::optional<PatternRead> ReadPattern(const uint8_t* grey,
                                        int height,
                                        const std::array<Eigen::Vector2d, 4>& corners_px,
                                        int border_cells,
+                                       int samples_per_side,
                                        ArtkPlusIdMode mode,
                                        const Camera& camera) {
   const bool distorted = camera.HasDistortion();
@@ -38,21 +45,24 @@ std::optional<PatternRead> ReadPattern(const uint8_t* grey,
       HomographyDlt({{0, 0}, {1, 0}, {1, 1}, {0, 1}}, {ideal.begin(), ideal.end()});
   const Eigen::Matrix3d K_inv = K.inverse();
   const double cells = 6 + 2 * border_cells;
-  // Each cell is the mean of 3x3 samples over its central half.
+  const auto to_px = [&](const Eigen::Vector2d& unit) -> Eigen::Vector2d {
+    const Eigen::Vector2d p = (H * unit.homogeneous()).hnormalized();
+    return distorted ? camera.ImgFromCam(K_inv * p.homogeneous()) : p;
+  };
+  const int n = samples_per_side;
   std::array<double, kArtkPlusWordBits> level{};
   for (int r = 0; r < 6; ++r) {
     for (int c = 0; c < 6; ++c) {
       double sum = 0.0;
-      for (int i = -1; i <= 1; ++i) {
-        for (int j = -1; j <= 1; ++j) {
-          const Eigen::Vector2d unit((border_cells + c + 0.5 + 0.25 * j) / cells,
-                                     (border_cells + r + 0.5 + 0.25 * i) / cells);
-          const Eigen::Vector2d p = (H * unit.homogeneous()).hnormalized();
-          sum += Bilinear(
-              grey, width, height, distorted ? camera.ImgFromCam(K_inv * p.homogeneous()) : p);
+      for (int i = 0; i < n; ++i) {
+        for (int j = 0; j < n; ++j) {
+          const double du = 0.75 * ((j + 0.5) / n - 0.5), dv = 0.75 * ((i + 0.5) / n - 0.5);
+          const Eigen::Vector2d p =
+              to_px({(border_cells + c + 0.5 + du) / cells, (border_cells + r + 0.5 + dv) / cells});
+          sum += n == 1 ? Nearest(grey, width, height, p) : Bilinear(grey, width, height, p);
         }
       }
-      level[static_cast<size_t>(6 * r + c)] = sum / 9.0;
+      level[static_cast<size_t>(6 * r + c)] = sum / (n * n);
     }
   }
   const auto [lo, hi] = std::minmax_element(level.begin(), level.end());

@@ -25,13 +25,16 @@ struct PatternRead {
 };
 
 // corners_px: distorted pixels, clockwise on screen. border_cells: black border width in
-// cells (3 for border_fraction 0.25, 1 for 0.125). nullopt when no orientation decodes, or
-// when two do equally well (an ambiguous orientation).
+// cells (3 for border_fraction 0.25, 1 for 0.125). samples_per_side: 1 reads the nearest
+// pixel to each cell centre (as the original's id markers, whose noise breakdown this
+// reproduces); n > 1 averages n x n bilinear samples over the cell's central 3/4. nullopt
+// when no orientation decodes, or when two do equally well (an ambiguous orientation).
 std::optional<PatternRead> ReadPattern(const uint8_t* grey,
                                        int width,
                                        int height,
                                        const std::array<Eigen::Vector2d, 4>& corners_px,
                                        int border_cells,
+                                       int samples_per_side,
                                        ArtkPlusIdMode mode,
                                        const Camera& camera);
 

@@ -1,0 +1,37 @@
+// artkplus per-frame time on one thread (results/speed.md): Robust Planar Pose (the
+// default) and the classic arGetTransMat search. Run from the project root.
+#include <benchmark/benchmark.h>
+#include <yaml-cpp/yaml.h>
+
+#include "core/marker_yaml.h"
+#include "core/yaml_reader.h"
+#include "trackers/benchmark_frames.h"
+#include "trackers/tracker_factory.h"
+
+namespace markerbench {
+namespace {
+
+void TrackFrames(benchmark::State& state, const char* options_yaml) {
+  const MarkerSpec marker = LoadMarkerYaml("scenarios/markers/artkplus.yaml");
+  const std::vector<Image8> frames = BenchmarkFrames(marker, 16);
+  const Camera camera;
+  const YamlMap options(YAML::Load(options_yaml), "benchmark options", "");
+  auto tracker = MakeTracker("artkplus", &options);
+  size_t i = 0, ok = 0;
+  for (auto _ : state) {
+    tracker->Reset();  // independent frames, as in the sweeps
+    const TrackResult r = tracker->Track({&frames[i++ % frames.size()], &camera, &marker});
+    ok += r.status == TrackStatus::kOk;
+  }
+  state.counters["ok_fraction"] = static_cast<double>(ok) / static_cast<double>(i);
+}
+
+void BM_ArtkPlusRobustPlanarPose(benchmark::State& state) { TrackFrames(state, "pose: rpp"); }
+void BM_ArtkPlusClassicPose(benchmark::State& state) { TrackFrames(state, "pose: classic"); }
+BENCHMARK(BM_ArtkPlusRobustPlanarPose)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_ArtkPlusClassicPose)->Unit(benchmark::kMillisecond);
+
+}  // namespace
+}  // namespace markerbench
+
+BENCHMARK_MAIN();
