@@ -17,7 +17,9 @@ Options ReadOptions(const YamlMap* map) {
 
 }  // namespace
 
-std::vector<std::string> TrackerNames() { return {"apriltag", "apriltag-ippe", "artkplus", "aruco", "circle"}; }
+std::vector<std::string> TrackerNames() {
+  return {"apriltag", "apriltag-ippe", "artkplus", "aruco", "circle"};
+}
 
 std::unique_ptr<Tracker> MakeTracker(const std::string& name, const YamlMap* options) {
   if (name == "apriltag" || name == "apriltag-ippe") {

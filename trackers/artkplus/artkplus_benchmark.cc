@@ -3,6 +3,8 @@
 #include <benchmark/benchmark.h>
 #include <yaml-cpp/yaml.h>
 
+#include <opencv2/core/utility.hpp>
+
 #include "core/marker_yaml.h"
 #include "core/yaml_reader.h"
 #include "trackers/benchmark_frames.h"
@@ -12,6 +14,7 @@ namespace markerbench {
 namespace {
 
 void TrackFrames(benchmark::State& state, const char* options_yaml) {
+  cv::setNumThreads(1);  // connectedComponentsWithStats would otherwise run in parallel
   const MarkerSpec marker = LoadMarkerYaml("scenarios/markers/artkplus.yaml");
   const std::vector<Image8> frames = BenchmarkFrames(marker, 16);
   const Camera camera;
