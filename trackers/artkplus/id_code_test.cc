@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <bitset>
+#include <iostream>
 #include <random>
 #include <vector>
 

@@ -131,12 +131,10 @@ class OrthogonalIteration {
   Eigen::Matrix3d t_factor_;
 };
 
-// R from H ~ [r1 r2 t] (Zhang 2000), with the marker in front of the camera.
+// R from H ~ [r1 r2 t] (Zhang 2000). HomographyDlt scales H(2, 2) = t_z to 1, which puts
+// the marker in front of the camera.
 Eigen::Matrix3d RotationFromHomography(const Eigen::Matrix3d& H) {
-  Eigen::Vector3d r1 = H.col(0), r2 = H.col(1);
-  const double sign = H(2, 2) < 0 ? -1.0 : 1.0;
-  r1 *= sign;
-  r2 *= sign;
+  const Eigen::Vector3d r1 = H.col(0), r2 = H.col(1);
   Eigen::Matrix3d M;
   M << r1.normalized(), r2.normalized(), r1.normalized().cross(r2.normalized());
   return NearestRotation(M);
