@@ -2,12 +2,15 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include <bitset>
+
 #include "core/camera_yaml.h"
 #include "core/file_bytes.h"
 #include "core/marker_yaml.h"
 #include "core/test_files.h"
 #include "core/yaml_reader.h"
 #include "trackers/artkplus/id_code.h"
+#include "trackers/runetag/cyclic_code.h"
 
 namespace markerbench {
 namespace {
@@ -255,6 +258,26 @@ TEST(MarkerYaml, ArtkPlusErrorsNameTheKey) {
   EXPECT_THAT(MarkerError(Replace(good, "0.25", "0.2")),
               HasSubstr("key 'border_fraction': expected a border fraction of 0.25 or 0.125"));
   EXPECT_THAT(MarkerError(Replace(good, "mode: simple\n", "")), HasSubstr("key 'mode'"));
+}
+
+TEST(MarkerYaml, RuneTagDotsFollowTheCodeword) {
+  const MarkerSpec spec =
+      LoadMarkerYaml(WriteTestFile("rune.yaml", "kind: runetag\nid: 3\nradius_m: 0.05\n"));
+  EXPECT_EQ(spec.kind, MarkerKind::kRuneTag);
+  EXPECT_EQ(spec.size_m, 0.1);
+  size_t dots = 0;
+  for (uint8_t symbol : RuneCodeword(3)) dots += std::bitset<3>(symbol).count();
+  ASSERT_EQ(spec.keypoints.size(), dots);
+  ASSERT_EQ(spec.layers.size(), dots);
+  // Sector 0 lies on +x; its first dot is on the innermost ring present.
+  const uint8_t s0 = RuneCodeword(3)[0];
+  const double first_ring = (s0 & 4) ? 4.0 / 6.0 : (s0 & 2) ? 5.0 / 6.0 : 1.0;
+  EXPECT_NEAR(spec.keypoints[0].x(), first_ring * 0.05, 1e-12);
+  EXPECT_NEAR(spec.keypoints[0].y(), 0.0, 1e-12);
+  EXPECT_NEAR(std::get<DiskShape>(spec.layers[0].shape).radius, first_ring * 0.05 / 17.8, 1e-12);
+  EXPECT_THAT(MarkerError("kind: runetag\nid: 128\nradius_m: 0.05\n"),
+              HasSubstr("key 'id': expected an id in [0, 127]"));
+  EXPECT_THAT(MarkerError("kind: runetag\nid: 1\n"), HasSubstr("key 'radius_m'"));
 }
 
 TEST(MarkerYaml, DotRingsValidatesPattern) {

@@ -6,7 +6,7 @@
 namespace markerbench {
 namespace {
 
-constexpr std::array<std::pair<MarkerKind, const char*>, 11> kKindNames = {{
+constexpr std::array<std::pair<MarkerKind, const char*>, 12> kKindNames = {{
     {MarkerKind::kCirclesA, "circles_a"},
     {MarkerKind::kCirclesB, "circles_b"},
     {MarkerKind::kCirclesC, "circles_c"},
@@ -18,6 +18,7 @@ constexpr std::array<std::pair<MarkerKind, const char*>, 11> kKindNames = {{
     {MarkerKind::kBitGrid, "bit_grid"},
     {MarkerKind::kArtkPlus, "artkplus"},
     {MarkerKind::kDotRings, "dot_rings"},
+    {MarkerKind::kRuneTag, "runetag"},
 }};
 
 bool IsGrey(const Rgb& c) { return c.maxCoeff() - c.minCoeff() < 1e-12; }

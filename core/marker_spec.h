@@ -24,6 +24,7 @@ enum class MarkerKind {
   kBitGrid,   // generic bordered bit-grid square
   kArtkPlus,  // ARToolKitPlus-style BCH-id or simple-id square (trackers/artkplus/id_code.h)
   kDotRings,  // generic dots on concentric rings (building block for RUNETag style)
+  kRuneTag,   // RUNETag-style: 43 sectors x 3 rings coded by trackers/runetag/cyclic_code.h
 };
 
 const char* ToString(MarkerKind kind);
@@ -45,7 +46,7 @@ struct MarkerSpec {
   // Circle markers: the circles whose edges carry the pose; circles[0] is centred at m0.
   std::vector<Disk> circles;
   // Square markers: family, dictionary or artkplus id mode ("bch", "simple"), id, and the
-  // edge of the black square.
+  // edge of the black square. runetag: id, and size_m = 2 R (R the outer ring's radius).
   std::string family;
   int id = -1;
   double size_m = 0.0;
@@ -61,7 +62,8 @@ struct MarkerSpec {
   //   (end of the second radius);
   // - square markers: corners of the black square, top-left, top-right, bottom-right,
   //   bottom-left as seen from the front: (-s,+s), (+s,+s), (+s,-s), (-s,-s), s = size_m/2;
-  // - dot rings: the dot centres in slot order.
+  // - dot rings and runetag: the dot centres in slot order (slot = rings · sector + ring;
+  //   runetag: 3 · sector + ring, ring 0 innermost).
   std::vector<Eigen::Vector2d> keypoints;
 
   // Bounds of everything inked, without the quiet zone (paper-coloured grid cells and the

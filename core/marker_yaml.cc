@@ -6,6 +6,7 @@
 
 #include "core/marker_bits.h"
 #include "core/yaml_reader.h"
+#include "trackers/runetag/cyclic_code.h"
 
 namespace markerbench {
 namespace {
@@ -244,6 +245,29 @@ void LoadSquareMarker(const YamlMap& root, MarkerSpec* spec) {
   AddSquareCorners(spec);
 }
 
+// Dots of radius ring / dot_radius_ratio on rings of radius ring_fractions[r] · radius_m, at
+// the angles 2πs/sectors counter-clockwise from +x, where has_dot(ring, sector); keypoints
+// in slot order (sectors outer loop, rings inner).
+template <typename HasDot>
+void PaintDotRings(double radius_m,
+                   const std::vector<double>& ring_fractions,
+                   int sectors,
+                   double dot_radius_ratio,
+                   const Rgb& color,
+                   const HasDot& has_dot,
+                   MarkerSpec* spec) {
+  for (int s = 0; s < sectors; ++s) {
+    const double angle = 2.0 * kPi * s / sectors;
+    for (size_t r = 0; r < ring_fractions.size(); ++r) {
+      if (!has_dot(static_cast<int>(r), s)) continue;
+      const double ring_m = ring_fractions[r] * radius_m;
+      const Eigen::Vector2d center = ring_m * Eigen::Vector2d(std::cos(angle), std::sin(angle));
+      spec->layers.push_back({DiskShape{center, ring_m / dot_radius_ratio}, color});
+      spec->keypoints.push_back(center);
+    }
+  }
+}
+
 void LoadDotRings(const YamlMap& root, MarkerSpec* spec) {
   const double radius_m = root.GetPositive("radius_m");
   const std::vector<double> rings = root.Get<std::vector<double>>("ring_radii");
@@ -262,18 +286,35 @@ void LoadDotRings(const YamlMap& root, MarkerSpec* spec) {
       root.Fail("pattern", "strings of '0'/'1', one character per sector");
     }
   }
-  // Slot = sectors are outer loop, rings inner (slot = rings.size()·sector + ring).
-  for (int s = 0; s < sectors; ++s) {
-    const double angle = 2.0 * kPi * s / sectors;
-    for (size_t r = 0; r < rings.size(); ++r) {
-      if (pattern[r][static_cast<size_t>(s)] != '1') continue;
-      const double ring_m = rings[r] * radius_m;
-      const Eigen::Vector2d center = ring_m * Eigen::Vector2d(std::cos(angle), std::sin(angle));
-      spec->layers.push_back({DiskShape{center, ring_m / ratio}, color});
-      spec->keypoints.push_back(center);
-    }
-  }
+  PaintDotRings(
+      radius_m,
+      rings,
+      sectors,
+      ratio,
+      color,
+      [&](int r, int s) { return pattern[static_cast<size_t>(r)][static_cast<size_t>(s)] == '1'; },
+      spec);
   if (spec->keypoints.empty()) root.Fail("pattern", "at least one dot ('1')");
+}
+
+// baselines.md: rings (4/6, 5/6, 1) R, dot radius = ring radius / 17.8, sector s holding the
+// symbol of RuneCodeword(id) with the inner ring as its most significant bit.
+void LoadRuneTag(const YamlMap& root, MarkerSpec* spec) {
+  const double radius_m = root.GetPositive("radius_m");
+  spec->id = root.Get<int>("id");
+  if (spec->id < 0 || spec->id >= kRuneIds) {
+    root.Fail("id", "an id in [0, " + std::to_string(kRuneIds - 1) + "]");
+  }
+  spec->size_m = 2.0 * radius_m;
+  const RuneWord& word = RuneCodeword(spec->id);
+  PaintDotRings(
+      radius_m,
+      {4.0 / 6.0, 5.0 / 6.0, 1.0},
+      kRuneSectors,
+      17.8,
+      Rgb::Zero(),
+      [&](int r, int s) { return (word[static_cast<size_t>(s)] >> (2 - r) & 1) != 0; },
+      spec);
 }
 
 }  // namespace
@@ -287,7 +328,7 @@ MarkerSpec LoadMarkerYaml(const std::string& path) {
   if (!kind) {
     root.Fail("kind",
               "one of circles_a, circles_b, circles_c, circle_d, circle_e, circle_f, apriltag, "
-              "aruco, bit_grid, artkplus, dot_rings");
+              "aruco, bit_grid, artkplus, dot_rings, runetag");
   }
   spec.kind = *kind;
   spec.background = root.Has("background") ? root.GetColor("background") : Rgb::Ones();
@@ -295,6 +336,8 @@ MarkerSpec LoadMarkerYaml(const std::string& path) {
     LoadCircleMarker(root, &spec);
   } else if (IsSquareKind(spec.kind)) {
     LoadSquareMarker(root, &spec);
+  } else if (spec.kind == MarkerKind::kRuneTag) {
+    LoadRuneTag(root, &spec);
   } else {
     LoadDotRings(root, &spec);
   }
