@@ -5,6 +5,7 @@
 #include "trackers/artkplus/artkplus_tracker.h"
 #include "trackers/aruco/aruco_tracker.h"
 #include "trackers/circle/circle_tracker.h"
+#include "trackers/runetag/runetag_tracker.h"
 
 namespace markerbench {
 namespace {
@@ -18,7 +19,7 @@ Options ReadOptions(const YamlMap* map) {
 }  // namespace
 
 std::vector<std::string> TrackerNames() {
-  return {"apriltag", "apriltag-ippe", "artkplus", "aruco", "circle"};
+  return {"apriltag", "apriltag-ippe", "artkplus", "aruco", "circle", "runetag"};
 }
 
 std::unique_ptr<Tracker> MakeTracker(const std::string& name, const YamlMap* options) {
@@ -28,6 +29,7 @@ std::unique_ptr<Tracker> MakeTracker(const std::string& name, const YamlMap* opt
   }
   if (name == "artkplus") return MakeArtkPlusTracker(ReadOptions<ArtkPlusOptions>(options));
   if (name == "aruco") return MakeArucoTracker(ReadOptions<ArucoOptions>(options));
+  if (name == "runetag") return MakeRuneTagTracker(ReadOptions<RuneTagOptions>(options));
   if (name == "circle") return MakeCircleTracker(ReadOptions<CircleTrackerOptions>(options));
   std::string names;
   for (const std::string& n : TrackerNames()) names += (names.empty() ? "" : ", ") + n;

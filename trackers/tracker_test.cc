@@ -26,15 +26,18 @@ TEST(TrackerFactory, TrackersCanTrackTheirOwnMarkersOnly) {
   const MarkerSpec apriltag = LoadMarkerYaml("scenarios/markers/apriltag.yaml");
   const MarkerSpec aruco = LoadMarkerYaml("scenarios/markers/aruco.yaml");
   const MarkerSpec artkplus = LoadMarkerYaml("scenarios/markers/artkplus.yaml");
+  const MarkerSpec runetag = LoadMarkerYaml("scenarios/markers/runetag.yaml");
   MarkerSpec other_family = apriltag;
   other_family.family = "tag25h9";
   for (const std::string& name : TrackerNames()) {
     const auto tracker = MakeTracker(name, nullptr);
     const bool is_aruco = name == "aruco", is_circle = name == "circle";
-    const bool is_artkplus = name == "artkplus";
-    EXPECT_EQ(tracker->CanTrack(apriltag), !is_aruco && !is_circle && !is_artkplus) << name;
+    const bool is_artkplus = name == "artkplus", is_runetag = name == "runetag";
+    EXPECT_EQ(tracker->CanTrack(apriltag), !is_aruco && !is_circle && !is_artkplus && !is_runetag)
+        << name;
     EXPECT_EQ(tracker->CanTrack(aruco), is_aruco) << name;
     EXPECT_EQ(tracker->CanTrack(artkplus), is_artkplus) << name;
+    EXPECT_EQ(tracker->CanTrack(runetag), is_runetag) << name;
     EXPECT_FALSE(tracker->CanTrack(other_family)) << name;
     for (const char* kind : {"circles_a", "circles_b", "circles_c", "circle_d"}) {
       const MarkerSpec circles = LoadMarkerYaml(std::string("scenarios/markers/") + kind + ".yaml");

@@ -1,0 +1,171 @@
+#include "trackers/runetag/dot_detector.h"
+
+#include <Eigen/Eigenvalues>
+#include <algorithm>
+#include <cmath>
+#include <functional>
+#include <opencv2/imgproc.hpp>
+
+namespace markerbench {
+namespace {
+
+const std::function<bool(int, int)> kAnyPixel = [](int, int) { return true; };
+
+// Contours of 12 points or fewer are too pixelated for the shape check.
+constexpr size_t kMinContourForShapeCheck = 12;
+
+// The brightest pixel on the rim of `box` (the paper around a dot).
+double RimLevel(const cv::Mat& image, const cv::Rect& box) {
+  double level = 0.0;
+  for (int x = box.x; x < box.br().x; ++x) {
+    level = std::max({level,
+                      static_cast<double>(image.at<uint8_t>(box.y, x)),
+                      static_cast<double>(image.at<uint8_t>(box.br().y - 1, x))});
+  }
+  for (int y = box.y; y < box.br().y; ++y) {
+    level = std::max({level,
+                      static_cast<double>(image.at<uint8_t>(y, box.x)),
+                      static_cast<double>(image.at<uint8_t>(y, box.br().x - 1))});
+  }
+  return level;
+}
+
+// The dot whose outline is `contour` (image coordinates), with a darkness-weighted centroid
+// and moment ellipse over the blob grown by 1 px; nullopt when it fails the size or shape
+// filters; misshapen says it failed the shape checks, so that merged dots can be split.
+// owns(x, y): whether a pixel may count for this dot (not nearer another part of a split).
+std::optional<ImagedDot> MeasureDot(const cv::Mat& image,
+                                    const std::vector<cv::Point>& contour,
+                                    double scale_sq,
+                                    const DotDetectorOptions& options,
+                                    const std::function<bool(int, int)>& owns,
+                                    bool* misshapen) {
+  *misshapen = false;
+  const cv::Rect frame(0, 0, image.cols, image.rows);
+  const cv::Rect box = cv::boundingRect(contour);
+  if (box.x == 0 || box.y == 0 || box.br().x >= image.cols || box.br().y >= image.rows) {
+    return std::nullopt;
+  }
+  // Pixel area of the blob: the contour's area plus the half pixel its outline leaves out.
+  const double area = cv::contourArea(contour) + 0.5 * static_cast<double>(contour.size()) + 1;
+  if (area < options.min_area_px * scale_sq || area > options.max_area_px * scale_sq) {
+    return std::nullopt;
+  }
+  const cv::Rect grown = (box + cv::Size(4, 4) - cv::Point(2, 2)) & frame;
+  cv::Mat mask = cv::Mat::zeros(grown.size(), CV_8UC1);
+  cv::drawContours(mask,
+                   std::vector<std::vector<cv::Point>>{contour},
+                   0,
+                   255,
+                   cv::FILLED,
+                   cv::LINE_8,
+                   cv::noArray(),
+                   0,
+                   -grown.tl());
+  cv::dilate(mask, mask, cv::Mat());
+  const double paper = RimLevel(image, grown);
+  double m0 = 0.0;
+  Eigen::Vector2d m1 = Eigen::Vector2d::Zero();
+  Eigen::Matrix2d m2 = Eigen::Matrix2d::Zero();
+  for (int y = grown.y; y < grown.br().y; ++y) {
+    for (int x = grown.x; x < grown.br().x; ++x) {
+      if (!mask.at<uint8_t>(y - grown.y, x - grown.x) || !owns(x, y)) continue;
+      const double w = std::max(0.0, paper - image.at<uint8_t>(y, x));
+      const Eigen::Vector2d p(x, y);
+      m0 += w;
+      m1 += w * p;
+      m2 += w * p * p.transpose();
+    }
+  }
+  if (!(m0 > 0.0)) return std::nullopt;
+  const Eigen::Vector2d center = m1 / m0;
+  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> eig(m2 / m0 - center * center.transpose());
+  // A uniform ellipse with semi-axes a, b has variances a^2/4 and b^2/4; pixel sampling of a
+  // box-filtered image adds 1/12.
+  const double minor_var = std::max(eig.eigenvalues()(0) - 1.0 / 12.0, 1e-6);
+  const double major_var = std::max(eig.eigenvalues()(1) - 1.0 / 12.0, 1e-6);
+  const ImagedDot dot{center, area, 2.0 * std::sqrt(major_var), 2.0 * std::sqrt(minor_var)};
+  if (dot.semi_minor_px < options.min_axis_ratio * dot.semi_major_px) {
+    *misshapen = true;
+    return std::nullopt;
+  }
+  if (contour.size() > kMinContourForShapeCheck) {
+    // The outline (boundary pixel centres, about half a pixel inside the edge) should lie on
+    // the moment ellipse shrunk by that half pixel.
+    const Eigen::Matrix2d axes = eig.eigenvectors();
+    double sum_sq = 0.0;
+    for (const cv::Point& q : contour) {
+      const Eigen::Vector2d d = axes.transpose() * (Eigen::Vector2d(q.x, q.y) - center);
+      const double r = std::hypot(d.x() / std::max(dot.semi_minor_px - 0.5, 0.5),
+                                  d.y() / std::max(dot.semi_major_px - 0.5, 0.5));
+      sum_sq += (r - 1.0) * (r - 1.0);
+    }
+    if (std::sqrt(sum_sq / static_cast<double>(contour.size())) > options.max_fit_error) {
+      *misshapen = true;
+      return std::nullopt;
+    }
+  }
+  return dot;
+}
+
+}  // namespace
+
+std::vector<ImagedDot> DetectDots(const uint8_t* grey,
+                                  int width,
+                                  int height,
+                                  const DotDetectorOptions& options) {
+  const cv::Mat image(height, width, CV_8UC1, const_cast<uint8_t*>(grey));
+  cv::Mat dark;
+  cv::adaptiveThreshold(image,
+                        dark,
+                        255,
+                        cv::ADAPTIVE_THRESH_MEAN_C,
+                        cv::THRESH_BINARY_INV,
+                        options.block_size_px,
+                        options.threshold_offset);
+  std::vector<std::vector<cv::Point>> contours;
+  cv::findContours(dark, contours, cv::RETR_EXTERNAL, cv::CHAIN_APPROX_NONE);
+  const double scale_sq = static_cast<double>(width) * height / (640.0 * 480.0);
+  std::vector<ImagedDot> dots;
+  for (const std::vector<cv::Point>& contour : contours) {
+    bool misshapen = false;
+    if (const std::optional<ImagedDot> dot =
+            MeasureDot(image, contour, scale_sq, options, kAnyPixel, &misshapen)) {
+      dots.push_back(*dot);
+      continue;
+    }
+    if (!misshapen) continue;
+    // Deliberate difference: a blob that is not one ellipse may be dots that the mean
+    // threshold merged across their anti-aliased gaps; split it at the level halfway between
+    // its darkest pixel and the paper around it.
+    const cv::Rect box = cv::boundingRect(contour) + cv::Size(2, 2) - cv::Point(1, 1);
+    const cv::Rect roi = box & cv::Rect(0, 0, width, height);
+    double darkest = 0.0;
+    cv::minMaxLoc(image(roi), &darkest);
+    const double mid = 0.5 * (darkest + RimLevel(image, roi));
+    cv::Mat split;
+    cv::threshold(image(roi), split, mid, 255, cv::THRESH_BINARY_INV);
+    std::vector<std::vector<cv::Point>> parts;
+    cv::findContours(split, parts, cv::RETR_EXTERNAL, cv::CHAIN_APPROX_NONE, roi.tl());
+    if (parts.size() < 2) continue;
+    // Each pixel of the box counts only for the part nearest to it.
+    cv::Mat distance, nearest;
+    cv::distanceTransform(
+        255 - split, distance, nearest, cv::DIST_L2, cv::DIST_MASK_5, cv::DIST_LABEL_CCOMP);
+    for (const std::vector<cv::Point>& part : parts) {
+      const cv::Point inside = part.front() - roi.tl();
+      const int label = nearest.at<int>(inside.y, inside.x);
+      const auto owns = [&](int x, int y) {
+        return roi.contains({x, y}) && nearest.at<int>(y - roi.y, x - roi.x) == label;
+      };
+      bool part_misshapen = false;
+      if (const std::optional<ImagedDot> dot =
+              MeasureDot(image, part, scale_sq, options, owns, &part_misshapen)) {
+        dots.push_back(*dot);
+      }
+    }
+  }
+  return dots;
+}
+
+}  // namespace markerbench

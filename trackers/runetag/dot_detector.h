@@ -1,0 +1,35 @@
+// Steps 1-2 of the RUNETag pipeline (baselines.md): an adaptive mean threshold, contours,
+// and the dark blobs that look like imaged dots, with sub-pixel centres.
+#pragma once
+
+#include <Eigen/Core>
+#include <cstdint>
+#include <optional>
+#include <vector>
+
+namespace markerbench {
+
+struct DotDetectorOptions {
+  int block_size_px = 127;       // adaptive mean threshold window (the original's)
+  double threshold_offset = 15;  // a pixel is dark when below its window mean minus this
+  // Size filters at 640x480, scaled by the image area (so by sqrt(area) for lengths): the
+  // original keeps 10-1000 px^2; we go down to 3 px^2 so that 1 px dots are still seen.
+  double min_area_px = 3.0;
+  double max_area_px = 1000.0;
+  double min_axis_ratio = 0.3;  // minor / major axis (the original's)
+  double max_fit_error = 0.24;  // RMS of (normalized radius - 1) over the contour
+};
+
+struct ImagedDot {
+  Eigen::Vector2d center_px;  // darkness-weighted centroid: the ellipse centre
+  double area_px = 0.0;
+  double semi_major_px = 0.0;
+  double semi_minor_px = 0.0;
+};
+
+std::vector<ImagedDot> DetectDots(const uint8_t* grey,
+                                  int width,
+                                  int height,
+                                  const DotDetectorOptions& options);
+
+}  // namespace markerbench

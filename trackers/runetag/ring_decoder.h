@@ -1,0 +1,45 @@
+// Steps 3-5 of the RUNETag pipeline (baselines.md): find the image of one of the marker's
+// rings, rectify the plane with K in both orientations the ring allows (circle-method.md
+// §4.7), fit the three rings, sweep the 43 sectors and decode.
+//
+// Deliberate difference: the original rectifies with the conic of each dot of each pair of
+// dots; we rectify with the conic of a whole ring, found by RANSAC over the dot centres (a
+// 5-point conic through dots of similar size, scored by the PND distance of all centres).
+// A ring 20-60 dots long fixes the plane orientation far better than one 2-6 px dot.
+#pragma once
+
+#include <Eigen/Core>
+#include <optional>
+#include <utility>
+#include <vector>
+
+#include "core/camera.h"
+#include "trackers/runetag/dot_detector.h"
+
+namespace markerbench {
+
+struct RingDecoderOptions {
+  int max_ransac_iterations = 1000;
+  double ring_tolerance_px = 1.0;  // PND distance of a dot centre to the ring conic
+  int min_ring_dots = 8;
+  double radius_tolerance = 0.04;  // |radius / R - ring fraction| for a dot to be on a ring
+  double angle_tolerance = 0.3;    // |angle - sector angle| in sector widths
+};
+
+struct RingMatch {
+  int id = -1;
+  int mismatches = 0;  // sectors read with another symbol
+  int erasures = 0;    // sectors with no dot seen
+  int ring_dots = 0;   // RANSAC inliers of the ring conic
+  // (index into the dots, marker slot 3 * sector + ring) for every dot that agrees with the
+  // decoded codeword.
+  std::vector<std::pair<int, int>> dot_slots;
+};
+
+// The best-decoding ring hypothesis, or nullopt. seed makes RANSAC deterministic.
+std::optional<RingMatch> MatchRings(const std::vector<ImagedDot>& dots,
+                                    const Camera& camera,
+                                    uint64_t seed,
+                                    const RingDecoderOptions& options);
+
+}  // namespace markerbench

@@ -1,0 +1,141 @@
+#include "trackers/runetag/runetag_tracker.h"
+
+#include <limits>
+#include <sstream>
+
+#include "core/number_text.h"
+#include "core/yaml_reader.h"
+#include "trackers/grey_image.h"
+#include "trackers/runetag/cyclic_code.h"
+
+namespace markerbench {
+
+bool RuneTagTracker::CanTrack(const MarkerSpec& marker) const {
+  return marker.kind == MarkerKind::kRuneTag;
+}
+
+TrackResult RuneTagTracker::Track(const Observation& obs) {
+  const MarkerSpec& marker = *obs.marker;
+  if (!CanTrack(marker)) return CannotTrack("the runetag tracker", marker);
+  diagnostics_ = {};
+  GreyImage grey(*obs.image);
+  const std::vector<ImagedDot> dots =
+      DetectDots(grey.data(), grey.width(), grey.height(), options_.dots);
+  diagnostics_.dots = static_cast<int>(dots.size());
+  TrackResult result;
+  const std::optional<RingMatch> match =
+      MatchRings(dots, *obs.camera, static_cast<uint64_t>(options_.ransac_seed), options_.rings);
+  if (!match) return result;  // not_detected
+  diagnostics_.ring_dots = match->ring_dots;
+  diagnostics_.matched = static_cast<int>(match->dot_slots.size());
+  diagnostics_.mismatches = match->mismatches;
+  diagnostics_.erasures = match->erasures;
+  if (match->id != marker.id) {
+    result.status = TrackStatus::kWrongId;
+    return result;
+  }
+  // Keypoints are the printed dots in slot order: index them by slot.
+  const RuneWord& codeword = RuneCodeword(marker.id);
+  std::vector<int> keypoint_of_slot(3 * kRuneSectors, -1);
+  int next = 0;
+  for (int s = 0; s < kRuneSectors; ++s) {
+    for (int r = 0; r < 3; ++r) {
+      if (codeword[s] & (4 >> r)) keypoint_of_slot[3 * s + r] = next++;
+    }
+  }
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  result.keypoints_px.assign(marker.keypoints.size(), Eigen::Vector2d(nan, nan));
+  std::vector<Eigen::Vector2d> centers_px, dots_xy;
+  std::vector<double> radii_m;
+  for (const auto& [dot, slot] : match->dot_slots) {
+    const int k = keypoint_of_slot[slot];
+    centers_px.push_back(dots[dot].center_px);
+    dots_xy.push_back(marker.keypoints[k]);
+    radii_m.push_back(marker.keypoints[k].norm() / 17.8);  // dot = ring radius / 17.8
+    result.keypoints_px[k] = dots[dot].center_px;
+  }
+  DotPoseOptions pose_options = options_.pose;
+  pose_options.ransac_seed = static_cast<uint64_t>(options_.ransac_seed);
+  const std::optional<DotPose> pose =
+      EstimateDotPose(centers_px, dots_xy, radii_m, *obs.camera, pose_options);
+  if (!pose) {
+    result.status = TrackStatus::kPoseFailed;
+    return result;
+  }
+  diagnostics_.inliers = pose->inliers;
+  diagnostics_.rms_px = pose->rms_px;
+  result.hypotheses = {pose->cam_from_marker};
+  result.status = TrackStatus::kOk;
+  return result;
+}
+
+std::vector<std::pair<std::string, std::string>> RuneTagTracker::Parameters() const {
+  const RuneTagOptions& o = options_;
+  return {{"block_size_px", NumberText(o.dots.block_size_px)},
+          {"threshold_offset", NumberText(o.dots.threshold_offset)},
+          {"min_area_px", NumberText(o.dots.min_area_px)},
+          {"max_area_px", NumberText(o.dots.max_area_px)},
+          {"min_axis_ratio", NumberText(o.dots.min_axis_ratio)},
+          {"max_fit_error", NumberText(o.dots.max_fit_error)},
+          {"ring_tolerance_px", NumberText(o.rings.ring_tolerance_px)},
+          {"radius_tolerance", NumberText(o.rings.radius_tolerance)},
+          {"angle_tolerance", NumberText(o.rings.angle_tolerance)},
+          {"max_ransac_iterations", NumberText(o.rings.max_ransac_iterations)},
+          {"ransac_reprojection_px", NumberText(o.pose.ransac_reprojection_px)},
+          {"refinement_passes", NumberText(o.pose.refinement_passes)},
+          {"ransac_seed", NumberText(o.ransac_seed)}};
+}
+
+bool RuneTagOptions::IsValid(std::string* error) const {
+  std::ostringstream msg;
+  if (dots.block_size_px < 3 || dots.block_size_px % 2 == 0) {
+    msg << "block_size_px=" << dots.block_size_px << " must be odd and >= 3";
+  } else if (!(dots.min_area_px > 0.0 && dots.max_area_px > dots.min_area_px)) {
+    msg << "min_area_px=" << dots.min_area_px << " must be > 0 and below max_area_px";
+  } else if (!(dots.min_axis_ratio > 0.0 && dots.min_axis_ratio <= 1.0)) {
+    msg << "min_axis_ratio=" << dots.min_axis_ratio << " must be in (0, 1]";
+  } else if (!(dots.max_fit_error > 0.0)) {
+    msg << "max_fit_error=" << dots.max_fit_error << " must be > 0";
+  } else if (!(rings.ring_tolerance_px > 0.0 && rings.radius_tolerance > 0.0 &&
+               rings.angle_tolerance > 0.0 && rings.angle_tolerance < 0.5)) {
+    msg << "ring_tolerance_px=" << rings.ring_tolerance_px
+        << " and radius_tolerance must be > 0, angle_tolerance in (0, 0.5)";
+  } else if (rings.max_ransac_iterations < 1 || pose.ransac_iterations < 1 ||
+             pose.refinement_passes < 0 || !(pose.ransac_reprojection_px > 0.0)) {
+    msg << "max_ransac_iterations=" << rings.max_ransac_iterations
+        << " must be >= 1, refinement_passes >= 0, ransac_reprojection_px > 0";
+  } else if (ransac_seed < 0) {
+    msg << "ransac_seed=" << ransac_seed << " must be >= 0";
+  } else {
+    return true;
+  }
+  if (error) *error = msg.str();
+  return false;
+}
+
+RuneTagOptions RuneTagOptions::FromYaml(const YamlMap& map) {
+  RuneTagOptions o;
+  o.dots.block_size_px = map.GetOr<int>("block_size_px", o.dots.block_size_px);
+  o.dots.threshold_offset = map.GetOr<double>("threshold_offset", o.dots.threshold_offset);
+  o.dots.min_area_px = map.GetOr<double>("min_area_px", o.dots.min_area_px);
+  o.dots.max_area_px = map.GetOr<double>("max_area_px", o.dots.max_area_px);
+  o.dots.min_axis_ratio = map.GetOr<double>("min_axis_ratio", o.dots.min_axis_ratio);
+  o.dots.max_fit_error = map.GetOr<double>("max_fit_error", o.dots.max_fit_error);
+  o.rings.ring_tolerance_px = map.GetOr<double>("ring_tolerance_px", o.rings.ring_tolerance_px);
+  o.rings.radius_tolerance = map.GetOr<double>("radius_tolerance", o.rings.radius_tolerance);
+  o.rings.angle_tolerance = map.GetOr<double>("angle_tolerance", o.rings.angle_tolerance);
+  o.rings.max_ransac_iterations =
+      map.GetOr<int>("max_ransac_iterations", o.rings.max_ransac_iterations);
+  o.pose.ransac_reprojection_px =
+      map.GetOr<double>("ransac_reprojection_px", o.pose.ransac_reprojection_px);
+  o.pose.refinement_passes = map.GetOr<int>("refinement_passes", o.pose.refinement_passes);
+  o.ransac_seed = map.GetOr<int>("ransac_seed", o.ransac_seed);
+  FinishOptions(map, o);
+  return o;
+}
+
+std::unique_ptr<Tracker> MakeRuneTagTracker(const RuneTagOptions& options) {
+  return std::make_unique<RuneTagTracker>(options);
+}
+
+}  // namespace markerbench

@@ -1,0 +1,63 @@
+// `runetag`: a faithful re-implementation of RUNETag (Bergamasco et al., TPAMI 2016;
+// baselines.md), not a wrapper: the original is not in Debian and its code must not be
+// copied. Per frame: dots by adaptive threshold and contours (DetectDots), a ring found and
+// rectified with K, the sectors swept and decoded with erasures (MatchRings), then RANSAC
+// PnP, LM and the perspective-bias refinement (EstimateDotPose). Deliberate differences
+// are listed in the README.
+#pragma once
+
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "trackers/runetag/dot_detector.h"
+#include "trackers/runetag/dot_pose.h"
+#include "trackers/runetag/ring_decoder.h"
+#include "trackers/tracker.h"
+
+namespace markerbench {
+
+class YamlMap;
+
+struct RuneTagOptions {
+  DotDetectorOptions dots;
+  RingDecoderOptions rings;
+  DotPoseOptions pose;
+  int ransac_seed = 1;  // both RANSACs restart from this seed every frame (reproducible)
+
+  bool IsValid(std::string* error) const;
+  // Flat keys: block_size_px, threshold_offset, min_area_px, max_area_px, min_axis_ratio,
+  // max_fit_error, ring_tolerance_px, radius_tolerance, angle_tolerance,
+  // max_ransac_iterations, ransac_reprojection_px, refinement_passes, ransac_seed. Throws
+  // ConfigError naming the file and key.
+  static RuneTagOptions FromYaml(const YamlMap& map);
+};
+
+// Every stage of the last Track call (style.md, item 4).
+struct RuneTagDiagnostics {
+  int dots = 0;        // dot candidates found
+  int ring_dots = 0;   // dots on the ring conic used to rectify
+  int matched = 0;     // dots matched to a slot of the decoded codeword
+  int mismatches = 0;  // sectors read with another symbol
+  int erasures = 0;    // sectors with no dot seen
+  int inliers = 0;     // RANSAC PnP inliers (the pose's support)
+  double rms_px = 0.0;
+};
+
+class RuneTagTracker final : public Tracker {
+ public:
+  explicit RuneTagTracker(const RuneTagOptions& options = {}) : options_(options) {}
+  TrackResult Track(const Observation& observation) override;
+  bool CanTrack(const MarkerSpec& marker) const override;
+  std::vector<std::pair<std::string, std::string>> Parameters() const override;
+
+  const RuneTagDiagnostics& diagnostics() const { return diagnostics_; }
+
+ private:
+  RuneTagOptions options_;
+  RuneTagDiagnostics diagnostics_;
+};
+
+std::unique_ptr<Tracker> MakeRuneTagTracker(const RuneTagOptions& options);
+
+}  // namespace markerbench
