@@ -67,4 +67,27 @@ std::optional<RuneDecoded> RuneDecode(const RuneWord& read) {
   return std::nullopt;
 }
 
+std::optional<RuneDecoded> RuneDecodeMissingDots(const RuneWord& read) {
+  constexpr int kLimit = (kRuneMinDistance - 1) / 2;
+  const std::vector<RuneWord>& book = Codebook();
+  for (size_t id = 0; id < book.size(); ++id) {
+    for (int r = 0; r < kRuneSectors; ++r) {
+      int partial = 0, contradictions = 0;
+      for (int i = 0; i < kRuneSectors && partial + 2 * contradictions <= kLimit; ++i) {
+        const uint8_t expected = book[id][(i + r) % kRuneSectors];
+        if (read[i] == expected) continue;
+        if ((read[i] & ~expected) != 0) {
+          ++contradictions;
+        } else {
+          ++partial;
+        }
+      }
+      if (partial + 2 * contradictions <= kLimit) {
+        return RuneDecoded{static_cast<int>(id), r, contradictions, partial};
+      }
+    }
+  }
+  return std::nullopt;
+}
+
 }  // namespace markerbench

@@ -36,4 +36,11 @@ struct RuneDecoded {
 // 2 * mismatches + erasures < kRuneMinDistance (unique when it exists), or nullopt.
 std::optional<RuneDecoded> RuneDecode(const RuneWord& read);
 
+// For reads that lost dots (small or merged dots the detector missed): a sector whose dots
+// are a strict subset of the codeword's costs 1 (RuneDecoded::erasures counts it), an empty
+// one 1, a sector with a dot the codeword lacks 2 (mismatches); the codeword and rotation of
+// least cost is accepted at cost <= (kRuneMinDistance - 1) / 2, where it is unique (every
+// sector where two codewords differ costs at least 1 against one of them).
+std::optional<RuneDecoded> RuneDecodeMissingDots(const RuneWord& read);
+
 }  // namespace markerbench

@@ -143,7 +143,8 @@ std::optional<RingMatch> SweepAndDecode(const std::vector<Eigen::Vector2d>& plan
     sector_of[i] = sector;
     read[sector] |= static_cast<uint8_t>(4 >> ring_of[i]);
   }
-  const std::optional<RuneDecoded> decoded = RuneDecode(read);
+  std::optional<RuneDecoded> decoded = RuneDecode(read);
+  if (!decoded) decoded = RuneDecodeMissingDots(read);
   if (!decoded) return std::nullopt;
   RingMatch match;
   match.id = decoded->id;
