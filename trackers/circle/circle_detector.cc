@@ -9,6 +9,7 @@
 #include <sstream>
 
 #include "trackers/circle/conic.h"
+#include "trackers/noise_estimate.h"
 
 namespace markerbench {
 namespace {
@@ -38,22 +39,6 @@ Eigen::Vector2d Centroid(const std::vector<cv::Point>& contour) {
   const cv::Moments m = cv::moments(contour);
   if (m.m00 <= 0.0) return ToPoints(contour).front();
   return {m.m10 / m.m00, m.m01 / m.m00};
-}
-
-// Robust noise σ (0-1 units) from the median absolute horizontal difference, every other row.
-double EstimateNoiseSigma(const cv::Mat& channel) {
-  std::array<int, 256> histogram{};
-  int count = 0;
-  for (int y = 0; y < channel.rows; y += 2) {
-    const uint8_t* row = channel.ptr<uint8_t>(y);
-    for (int x = 1; x < channel.cols; ++x) {
-      ++histogram[std::abs(row[x] - row[x - 1])];
-      ++count;
-    }
-  }
-  int seen = 0, median = 0;
-  while (median < 255 && (seen += histogram[median]) < (count + 1) / 2) ++median;
-  return 1.4826 * median / std::sqrt(2.0) / 255.0;
 }
 
 struct Threshold {

@@ -6,6 +6,8 @@
 #include <functional>
 #include <opencv2/imgproc.hpp>
 
+#include "trackers/noise_estimate.h"
+
 namespace markerbench {
 namespace {
 
@@ -14,20 +16,19 @@ const std::function<bool(int, int)> kAnyPixel = [](int, int) { return true; };
 // Contours of 12 points or fewer are too pixelated for the shape check.
 constexpr size_t kMinContourForShapeCheck = 12;
 
-// The brightest pixel on the rim of `box` (the paper around a dot).
+// The median level of the rim of `box` (the paper around a dot; robust to noise).
 double RimLevel(const cv::Mat& image, const cv::Rect& box) {
-  double level = 0.0;
+  std::vector<uint8_t> rim;
   for (int x = box.x; x < box.br().x; ++x) {
-    level = std::max({level,
-                      static_cast<double>(image.at<uint8_t>(box.y, x)),
-                      static_cast<double>(image.at<uint8_t>(box.br().y - 1, x))});
+    rim.push_back(image.at<uint8_t>(box.y, x));
+    rim.push_back(image.at<uint8_t>(box.br().y - 1, x));
   }
-  for (int y = box.y; y < box.br().y; ++y) {
-    level = std::max({level,
-                      static_cast<double>(image.at<uint8_t>(y, box.x)),
-                      static_cast<double>(image.at<uint8_t>(y, box.br().x - 1))});
+  for (int y = box.y + 1; y + 1 < box.br().y; ++y) {
+    rim.push_back(image.at<uint8_t>(y, box.x));
+    rim.push_back(image.at<uint8_t>(y, box.br().x - 1));
   }
-  return level;
+  std::nth_element(rim.begin(), rim.begin() + rim.size() / 2, rim.end());
+  return rim[rim.size() / 2];
 }
 
 // The dot whose outline is `contour` (image coordinates), with a darkness-weighted centroid
@@ -38,6 +39,7 @@ std::optional<ImagedDot> MeasureDot(const cv::Mat& image,
                                     const std::vector<cv::Point>& contour,
                                     double scale_sq,
                                     const DotDetectorOptions& options,
+                                    double min_contrast,
                                     const std::function<bool(int, int)>& owns,
                                     bool* misshapen) {
   *misshapen = false;
@@ -64,20 +66,21 @@ std::optional<ImagedDot> MeasureDot(const cv::Mat& image,
                    -grown.tl());
   cv::dilate(mask, mask, cv::Mat());
   const double paper = RimLevel(image, grown);
-  double m0 = 0.0;
+  double m0 = 0.0, darkness = 0.0;
   Eigen::Vector2d m1 = Eigen::Vector2d::Zero();
   Eigen::Matrix2d m2 = Eigen::Matrix2d::Zero();
   for (int y = grown.y; y < grown.br().y; ++y) {
     for (int x = grown.x; x < grown.br().x; ++x) {
       if (!mask.at<uint8_t>(y - grown.y, x - grown.x) || !owns(x, y)) continue;
       const double w = std::max(0.0, paper - image.at<uint8_t>(y, x));
+      darkness = std::max(darkness, w);
       const Eigen::Vector2d p(x, y);
       m0 += w;
       m1 += w * p;
       m2 += w * p * p.transpose();
     }
   }
-  if (!(m0 > 0.0)) return std::nullopt;
+  if (!(m0 > 0.0) || darkness < min_contrast) return std::nullopt;
   const Eigen::Vector2d center = m1 / m0;
   const Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> eig(m2 / m0 - center * center.transpose());
   // A uniform ellipse with semi-axes a, b has variances a^2/4 and b^2/4; pixel sampling of a
@@ -114,7 +117,17 @@ std::vector<ImagedDot> DetectDots(const uint8_t* grey,
                                   int width,
                                   int height,
                                   const DotDetectorOptions& options) {
-  const cv::Mat image(height, width, CV_8UC1, const_cast<uint8_t*>(grey));
+  const cv::Mat raw(height, width, CV_8UC1, const_cast<uint8_t*>(grey));
+  const double noise_sigma = EstimateNoiseSigma(raw);
+  const double smoothing_px =
+      std::min(options.max_smoothing_px, options.smoothing_per_noise * noise_sigma);
+  cv::Mat image = raw;
+  double noise = 255.0 * noise_sigma;
+  if (smoothing_px > 0.3) {
+    cv::GaussianBlur(raw, image, cv::Size(), smoothing_px);
+    noise /= 2.0 * std::sqrt(M_PI) * smoothing_px;  // white noise under a Gaussian of σ_s
+  }
+  const double min_contrast = std::max(options.min_contrast, options.contrast_per_noise * noise);
   cv::Mat dark;
   cv::adaptiveThreshold(image,
                         dark,
@@ -130,7 +143,7 @@ std::vector<ImagedDot> DetectDots(const uint8_t* grey,
   for (const std::vector<cv::Point>& contour : contours) {
     bool misshapen = false;
     if (const std::optional<ImagedDot> dot =
-            MeasureDot(image, contour, scale_sq, options, kAnyPixel, &misshapen)) {
+            MeasureDot(image, contour, scale_sq, options, min_contrast, kAnyPixel, &misshapen)) {
       dots.push_back(*dot);
       continue;
     }
@@ -160,7 +173,7 @@ std::vector<ImagedDot> DetectDots(const uint8_t* grey,
       };
       bool part_misshapen = false;
       if (const std::optional<ImagedDot> dot =
-              MeasureDot(image, part, scale_sq, options, owns, &part_misshapen)) {
+              MeasureDot(image, part, scale_sq, options, min_contrast, owns, &part_misshapen)) {
         dots.push_back(*dot);
       }
     }

@@ -10,6 +10,11 @@
 namespace markerbench {
 
 struct DotDetectorOptions {
+  // Deliberate difference: a Gaussian pre-smoothing of σ = smoothing_per_noise × the
+  // estimated noise σ (0-1 units), at most max_smoothing_px, none on clean images. Without
+  // it the mean threshold turns σ² = 0.02 noise into thousands of blobs.
+  double smoothing_per_noise = 10.0;
+  double max_smoothing_px = 1.5;
   int block_size_px = 127;       // adaptive mean threshold window (the original's)
   double threshold_offset = 15;  // a pixel is dark when below its window mean minus this
   // Size filters at 640x480, scaled by the image area (so by sqrt(area) for lengths): the
@@ -17,6 +22,10 @@ struct DotDetectorOptions {
   double min_area_px = 3.0;
   double max_area_px = 1000.0;
   double min_axis_ratio = 0.3;  // minor / major axis (the original's)
+  // A dot's darkness (paper level minus its darkest pixel, 0..255) must reach min_contrast
+  // and contrast_per_noise times the noise left after smoothing (noise blobs stay near 3).
+  double min_contrast = 30.0;
+  double contrast_per_noise = 6.0;
   double max_fit_error = 0.24;  // RMS of (normalized radius - 1) over the contour
 };
 

@@ -71,11 +71,15 @@ TrackResult RuneTagTracker::Track(const Observation& obs) {
 
 std::vector<std::pair<std::string, std::string>> RuneTagTracker::Parameters() const {
   const RuneTagOptions& o = options_;
-  return {{"block_size_px", NumberText(o.dots.block_size_px)},
+  return {{"smoothing_per_noise", NumberText(o.dots.smoothing_per_noise)},
+          {"max_smoothing_px", NumberText(o.dots.max_smoothing_px)},
+          {"block_size_px", NumberText(o.dots.block_size_px)},
           {"threshold_offset", NumberText(o.dots.threshold_offset)},
           {"min_area_px", NumberText(o.dots.min_area_px)},
           {"max_area_px", NumberText(o.dots.max_area_px)},
           {"min_axis_ratio", NumberText(o.dots.min_axis_ratio)},
+          {"min_contrast", NumberText(o.dots.min_contrast)},
+          {"contrast_per_noise", NumberText(o.dots.contrast_per_noise)},
           {"max_fit_error", NumberText(o.dots.max_fit_error)},
           {"ring_tolerance_px", NumberText(o.rings.ring_tolerance_px)},
           {"radius_tolerance", NumberText(o.rings.radius_tolerance)},
@@ -88,7 +92,10 @@ std::vector<std::pair<std::string, std::string>> RuneTagTracker::Parameters() co
 
 bool RuneTagOptions::IsValid(std::string* error) const {
   std::ostringstream msg;
-  if (dots.block_size_px < 3 || dots.block_size_px % 2 == 0) {
+  if (!(dots.smoothing_per_noise >= 0.0 && dots.max_smoothing_px >= 0.0)) {
+    msg << "smoothing_per_noise=" << dots.smoothing_per_noise
+        << " and max_smoothing_px must be >= 0";
+  } else if (dots.block_size_px < 3 || dots.block_size_px % 2 == 0) {
     msg << "block_size_px=" << dots.block_size_px << " must be odd and >= 3";
   } else if (!(dots.min_area_px > 0.0 && dots.max_area_px > dots.min_area_px)) {
     msg << "min_area_px=" << dots.min_area_px << " must be > 0 and below max_area_px";
@@ -115,11 +122,15 @@ bool RuneTagOptions::IsValid(std::string* error) const {
 
 RuneTagOptions RuneTagOptions::FromYaml(const YamlMap& map) {
   RuneTagOptions o;
+  o.dots.smoothing_per_noise = map.GetOr<double>("smoothing_per_noise", o.dots.smoothing_per_noise);
+  o.dots.max_smoothing_px = map.GetOr<double>("max_smoothing_px", o.dots.max_smoothing_px);
   o.dots.block_size_px = map.GetOr<int>("block_size_px", o.dots.block_size_px);
   o.dots.threshold_offset = map.GetOr<double>("threshold_offset", o.dots.threshold_offset);
   o.dots.min_area_px = map.GetOr<double>("min_area_px", o.dots.min_area_px);
   o.dots.max_area_px = map.GetOr<double>("max_area_px", o.dots.max_area_px);
   o.dots.min_axis_ratio = map.GetOr<double>("min_axis_ratio", o.dots.min_axis_ratio);
+  o.dots.min_contrast = map.GetOr<double>("min_contrast", o.dots.min_contrast);
+  o.dots.contrast_per_noise = map.GetOr<double>("contrast_per_noise", o.dots.contrast_per_noise);
   o.dots.max_fit_error = map.GetOr<double>("max_fit_error", o.dots.max_fit_error);
   o.rings.ring_tolerance_px = map.GetOr<double>("ring_tolerance_px", o.rings.ring_tolerance_px);
   o.rings.radius_tolerance = map.GetOr<double>("radius_tolerance", o.rings.radius_tolerance);

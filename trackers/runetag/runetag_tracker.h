@@ -26,10 +26,10 @@ struct RuneTagOptions {
   int ransac_seed = 1;  // both RANSACs restart from this seed every frame (reproducible)
 
   bool IsValid(std::string* error) const;
-  // Flat keys: block_size_px, threshold_offset, min_area_px, max_area_px, min_axis_ratio,
-  // max_fit_error, ring_tolerance_px, radius_tolerance, angle_tolerance,
-  // max_ransac_iterations, ransac_reprojection_px, refinement_passes, ransac_seed. Throws
-  // ConfigError naming the file and key.
+  // Flat keys: smoothing_per_noise, max_smoothing_px, block_size_px, threshold_offset, min_area_px,
+  // max_area_px, min_axis_ratio, max_fit_error, ring_tolerance_px, radius_tolerance,
+  // angle_tolerance, max_ransac_iterations, ransac_reprojection_px, refinement_passes, ransac_seed.
+  // Throws ConfigError naming the file and key.
   static RuneTagOptions FromYaml(const YamlMap& map);
 };
 
