@@ -72,10 +72,10 @@ TEST_F(RuneTagTrackerTest, NothingInEmptyOrNoiseOnlyImagesAndWrongIdReported) {
 // Half the marker covered by a paper-coloured sheet: the unseen sectors are erasures.
 TEST_F(RuneTagTrackerTest, AHalfOccludedMarkerStillDecodes) {
   MarkerSpec occluded = marker_;
-  occluded.layers.push_back(
-      {SectorShape{
-           {0.0, 0.0}, 0.07, 100.0 * 3.14159265358979 / 180.0, 280.0 * 3.14159265358979 / 180.0},
-       Rgb::Ones()});
+  constexpr double kDeg = 3.14159265358979 / 180.0;
+  PaintedShape& cover = occluded.layers.emplace_back();
+  cover.shape = SectorShape{{0.0, 0.0}, 0.07, 100.0 * kDeg, 280.0 * kDeg};
+  cover.color = Rgb::Ones();
   RuneTagTracker tracker;
   const Rigid3 truth = TiltedView(0.4, 20.0, 10.0);
   const TrackedFrame t = RenderAndTrack(&tracker, occluded, marker_, truth, 0.0, 6);
