@@ -1,12 +1,16 @@
 // Frames for tracker benchmarks: 640x480, the marker at 0.6 m (tilt 0-40°, any roll),
 // imnoise σ² = 0.02, rendered once before timing (issue 4's protocol); RGB for colour markers.
+// And the timing loop the tracker benchmarks share.
 #pragma once
+
+#include <benchmark/benchmark.h>
 
 #include <vector>
 
 #include "core/random.h"
 #include "renderer/render_frame.h"
 #include "renderer/test_scenes.h"
+#include "trackers/tracker.h"
 
 namespace markerbench {
 
@@ -26,6 +30,22 @@ inline std::vector<Image8> BenchmarkFrames(const MarkerSpec& marker, int count) 
     frames.push_back(RenderFrame(request).image);
   }
   return frames;
+}
+
+// One Track call per iteration over `frames` cycled in order, each after Reset() (frames
+// are independent, as in the sweeps); reports the fraction with status ok.
+inline void TimeIndependentFrames(benchmark::State& state,
+                                  Tracker& tracker,
+                                  const MarkerSpec& marker,
+                                  const std::vector<Image8>& frames) {
+  const Camera camera;
+  size_t i = 0, ok = 0;
+  for (auto _ : state) {
+    tracker.Reset();
+    ok +=
+        tracker.Track({&frames[i++ % frames.size()], &camera, &marker}).status == TrackStatus::kOk;
+  }
+  state.counters["ok_fraction"] = static_cast<double>(ok) / static_cast<double>(i);
 }
 
 }  // namespace markerbench

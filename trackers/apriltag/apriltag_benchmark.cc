@@ -12,14 +12,8 @@ namespace {
 void TrackFrames(benchmark::State& state, const char* name) {
   const MarkerSpec marker = LoadMarkerYaml("scenarios/markers/apriltag.yaml");
   const std::vector<Image8> frames = BenchmarkFrames(marker, 16);
-  const Camera camera;
   auto tracker = MakeTracker(name, nullptr);
-  size_t i = 0, ok = 0;
-  for (auto _ : state) {
-    const TrackResult r = tracker->Track({&frames[i++ % frames.size()], &camera, &marker});
-    ok += r.status == TrackStatus::kOk;
-  }
-  state.counters["ok_fraction"] = static_cast<double>(ok) / static_cast<double>(i);
+  TimeIndependentFrames(state, *tracker, marker, frames);
 }
 
 void BM_AprilTag(benchmark::State& state) { TrackFrames(state, "apriltag"); }

@@ -17,16 +17,9 @@ void TrackFrames(benchmark::State& state, const char* options_yaml) {
   cv::setNumThreads(1);  // connectedComponentsWithStats would otherwise run in parallel
   const MarkerSpec marker = LoadMarkerYaml("scenarios/markers/artkplus.yaml");
   const std::vector<Image8> frames = BenchmarkFrames(marker, 16);
-  const Camera camera;
   const YamlMap options(YAML::Load(options_yaml), "benchmark options", "");
   auto tracker = MakeTracker("artkplus", &options);
-  size_t i = 0, ok = 0;
-  for (auto _ : state) {
-    tracker->Reset();  // independent frames, as in the sweeps
-    const TrackResult r = tracker->Track({&frames[i++ % frames.size()], &camera, &marker});
-    ok += r.status == TrackStatus::kOk;
-  }
-  state.counters["ok_fraction"] = static_cast<double>(ok) / static_cast<double>(i);
+  TimeIndependentFrames(state, *tracker, marker, frames);
 }
 
 void BM_ArtkPlusRobustPlanarPose(benchmark::State& state) { TrackFrames(state, "pose: rpp"); }

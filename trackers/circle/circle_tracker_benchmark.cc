@@ -23,15 +23,8 @@ void BM_CircleFullDetection(benchmark::State& state) {
   cv::setNumThreads(1);
   const MarkerSpec marker = PaperCirclesA();
   const std::vector<Image8> frames = BenchmarkFrames(marker, 16);
-  const Camera camera;
   CircleTracker tracker;
-  size_t i = 0, ok = 0;
-  for (auto _ : state) {
-    tracker.Reset();
-    ok +=
-        tracker.Track({&frames[i++ % frames.size()], &camera, &marker}).status == TrackStatus::kOk;
-  }
-  state.counters["ok_fraction"] = static_cast<double>(ok) / static_cast<double>(i);
+  TimeIndependentFrames(state, tracker, marker, frames);
 }
 
 // Each frame is tracked twice: untimed (full detection, sets the previous pose), then timed
