@@ -297,8 +297,8 @@ void LoadDotRings(const YamlMap& root, MarkerSpec* spec) {
   if (spec->keypoints.empty()) root.Fail("pattern", "at least one dot ('1')");
 }
 
-// baselines.md: rings (4/6, 5/6, 1) R, dot radius = ring radius / 17.8, sector s holding the
-// symbol of RuneCodeword(id) with the inner ring as its most significant bit.
+// baselines.md: the rings and dots of kRuneRingFractions and kRuneDotRadiusRatio, sector s
+// holding the symbol of RuneCodeword(id) with the inner ring as its most significant bit.
 void LoadRuneTag(const YamlMap& root, MarkerSpec* spec) {
   const double radius_m = root.GetPositive("radius_m");
   spec->id = root.Get<int>("id");
@@ -309,9 +309,9 @@ void LoadRuneTag(const YamlMap& root, MarkerSpec* spec) {
   const RuneWord& word = RuneCodeword(spec->id);
   PaintDotRings(
       radius_m,
-      {4.0 / 6.0, 5.0 / 6.0, 1.0},
+      {kRuneRingFractions.begin(), kRuneRingFractions.end()},
       kRuneSectors,
-      17.8,
+      kRuneDotRadiusRatio,
       Rgb::Zero(),
       [&](int r, int s) { return (word[static_cast<size_t>(s)] >> (2 - r) & 1) != 0; },
       spec);

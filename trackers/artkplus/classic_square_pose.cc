@@ -6,8 +6,6 @@
 namespace markerbench {
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
-
 struct Square {
   std::array<Eigen::Vector3d, 4> corners_m;
   std::array<Eigen::Vector2d, 4> rays;
@@ -85,8 +83,8 @@ std::optional<Rigid3> ClassicSquarePose(const std::array<Eigen::Vector2d, 4>& ra
   double error = square.Error(cam_from_marker);
   for (int loop = 0; loop < options.max_loops; ++loop) {
     const double start_error = error;
-    for (double step = options.initial_step_deg * kPi / 180.0;
-         step >= options.min_step_deg * kPi / 180.0;) {
+    for (double step = options.initial_step_deg * M_PI / 180.0;
+         step >= options.min_step_deg * M_PI / 180.0;) {
       Rigid3 best = cam_from_marker;
       double best_error = error;
       for (int a = -1; a <= 1; ++a) {

@@ -14,6 +14,10 @@
 namespace markerbench {
 
 inline constexpr int kRuneSectors = 43;
+// The printed layout (baselines.md): ring radii as fractions of R, innermost first, and
+// dot radius = ring radius / kRuneDotRadiusRatio.
+inline constexpr std::array<double, 3> kRuneRingFractions = {4.0 / 6.0, 5.0 / 6.0, 1.0};
+inline constexpr double kRuneDotRadiusRatio = 17.8;
 inline constexpr int kRuneIds = 128;
 // The rotation-aware minimum Hamming distance over symbols that the codebook reaches
 // (cyclic_code_test checks it over every pair and rotation). 29 equals the original's GF(7)

@@ -15,9 +15,6 @@
 namespace markerbench {
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
-constexpr std::array<double, 3> kRingFractions = {4.0 / 6.0, 5.0 / 6.0, 1.0};
-
 // The conic through five points (pixels), or nullopt when it is not a real ellipse.
 std::optional<Eigen::Matrix3d> ConicThrough(const std::array<Eigen::Vector2d, 5>& points,
                                             const Eigen::Vector2d& origin,
@@ -123,7 +120,7 @@ std::optional<RingMatch> SweepAndDecode(const std::vector<Eigen::Vector2d>& plan
   for (size_t i = 0; i < plane.size(); ++i) {
     const double radius = plane[i].norm();
     for (int j = 0; j < 3; ++j) {
-      if (std::abs(radius - kRingFractions[j]) < options.radius_tolerance) ring_of[i] = j;
+      if (std::abs(radius - kRuneRingFractions[j]) < options.radius_tolerance) ring_of[i] = j;
     }
     if (ring_of[i] >= 0) {
       phase_sum += std::polar(1.0, kRuneSectors * std::atan2(plane[i].y(), plane[i].x()));
@@ -136,7 +133,7 @@ std::optional<RingMatch> SweepAndDecode(const std::vector<Eigen::Vector2d>& plan
   for (size_t i = 0; i < plane.size(); ++i) {
     if (ring_of[i] < 0) continue;
     const double position =
-        (std::atan2(plane[i].y(), plane[i].x()) - phase) * kRuneSectors / (2.0 * kPi);
+        (std::atan2(plane[i].y(), plane[i].x()) - phase) * kRuneSectors / (2.0 * M_PI);
     const double nearest = std::round(position);
     if (std::abs(position - nearest) > options.angle_tolerance) continue;
     const int sector = ((static_cast<int>(nearest) % kRuneSectors) + kRuneSectors) % kRuneSectors;
@@ -184,7 +181,7 @@ std::optional<RingMatch> MatchRings(const std::vector<ImagedDot>& dots,
   for (const Eigen::Vector3d& normal : SingleCircleNormals(C_n)) {
     const std::optional<std::vector<Eigen::Vector2d>> unit_plane = Rectify(C_n, normal, rays);
     if (!unit_plane) continue;
-    for (double found_ring : kRingFractions) {
+    for (double found_ring : kRuneRingFractions) {
       std::vector<Eigen::Vector2d> plane = *unit_plane;
       for (Eigen::Vector2d& p : plane) p *= found_ring;
       std::optional<RingMatch> match = SweepAndDecode(plane, options);

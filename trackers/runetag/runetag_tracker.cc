@@ -51,7 +51,7 @@ TrackResult RuneTagTracker::Track(const Observation& obs) {
     const int k = keypoint_of_slot[slot];
     centers_px.push_back(dots[dot].center_px);
     dots_xy.push_back(marker.keypoints[k]);
-    radii_m.push_back(marker.keypoints[k].norm() / 17.8);  // dot = ring radius / 17.8
+    radii_m.push_back(marker.keypoints[k].norm() / kRuneDotRadiusRatio);
     result.keypoints_px[k] = dots[dot].center_px;
   }
   DotPoseOptions pose_options = options_.pose;
