@@ -99,8 +99,14 @@ class ArtkPlusTracker final : public Tracker {
     std::vector<Detection> detections;
     for (const DarkRegion& region : regions.regions) {
       const std::vector<Eigen::Vector2i> contour = TraceOuterContour(regions, region);
-      std::optional<std::array<Eigen::Vector2d, 4>> corners =
-          FitQuad(contour, region, grey.data(), threshold, regions, camera, options_.quad);
+      const std::optional<std::array<size_t, 4>> vertices =
+          FindQuadVertices(contour, region, options_.quad);
+      if (!vertices) continue;
+      const auto fit_corners = [&](double edge_level) {
+        return FitQuadCorners(
+            contour, *vertices, grey.data(), edge_level, regions, camera, options_.quad);
+      };
+      std::optional<std::array<Eigen::Vector2d, 4>> corners = fit_corners(threshold);
       if (!corners) continue;
       const std::optional<PatternRead> pattern = ReadPattern(grey.data(),
                                                              grey.width(),
@@ -114,7 +120,7 @@ class ArtkPlusTracker final : public Tracker {
       if (options_.quad.subpixel_edges) {
         // Refit on the crossings of the level halfway between this marker's ink and paper.
         const double edge_level = 0.5 * (pattern->min_level + pattern->max_level);
-        corners = FitQuad(contour, region, grey.data(), edge_level, regions, camera, options_.quad);
+        corners = fit_corners(edge_level);
         if (!corners) continue;
       }
       Detection detection{{}, *pattern};

@@ -19,7 +19,7 @@ double ChordDistanceSq(const std::vector<Eigen::Vector2i>& contour, size_t a, si
 
 // Douglas-Peucker split of the contour between indices a < b (mod n): appends, in order, the
 // vertices strictly between them. Stops once more than 5 vertices are known
-// (a quadrilateral gives at most one spurious vertex, see FitQuad).
+// (a quadrilateral gives at most one spurious vertex, see FindQuadVertices).
 void SplitAtVertices(const std::vector<Eigen::Vector2i>& contour,
                      size_t a,
                      size_t b,
@@ -58,12 +58,8 @@ std::optional<Line> FitLine(const std::vector<Eigen::Vector2d>& points) {
 
 }  // namespace
 
-std::optional<std::array<Eigen::Vector2d, 4>> FitQuad(const std::vector<Eigen::Vector2i>& contour,
+std::optional<std::array<size_t, 4>> FindQuadVertices(const std::vector<Eigen::Vector2i>& contour,
                                                       const DarkRegion& region,
-                                                      const uint8_t* grey,
-                                                      double edge_level,
-                                                      const DarkRegions& regions,
-                                                      const Camera& camera,
                                                       const QuadFitOptions& options) {
   const size_t n = contour.size();
   if (n < 8) return std::nullopt;
@@ -97,7 +93,18 @@ std::optional<std::array<Eigen::Vector2d, 4>> FitQuad(const std::vector<Eigen::V
     }
   }
   if (vertices.size() != 4) return std::nullopt;
+  return std::array<size_t, 4>{vertices[0], vertices[1], vertices[2], vertices[3]};
+}
 
+std::optional<std::array<Eigen::Vector2d, 4>> FitQuadCorners(
+    const std::vector<Eigen::Vector2i>& contour,
+    const std::array<size_t, 4>& vertices,
+    const uint8_t* grey,
+    double edge_level,
+    const DarkRegions& regions,
+    const Camera& camera,
+    const QuadFitOptions& options) {
+  const size_t n = contour.size();
   const bool distorted = camera.HasDistortion();
   const Eigen::Matrix3d K = camera.K();
   const auto ideal = [&](const Eigen::Vector2d& px) -> Eigen::Vector2d {

@@ -24,16 +24,23 @@ struct QuadFitOptions {
   bool subpixel_edges = true;
 };
 
-// Corners in distorted pixels, clockwise on screen, starting at the contour's vertex
-// farthest from region.first_px; nullopt unless the contour has exactly 4 vertices.
+// The contour indices of its four vertices, in contour order (clockwise on screen) from the
+// vertex farthest from region.first_px (indices may exceed the contour's size by one turn);
+// nullopt unless the contour has exactly 4 vertices.
+std::optional<std::array<size_t, 4>> FindQuadVertices(const std::vector<Eigen::Vector2i>& contour,
+                                                      const DarkRegion& region,
+                                                      const QuadFitOptions& options);
+
+// Corners in distorted pixels, corner k at vertices[k]: the intersections of the sides' lines.
 // edge_level (0..255): the grey level of the edge for subpixel_edges, best halfway between
 // the ink and the paper (the labelling threshold is only a first guess of it).
-std::optional<std::array<Eigen::Vector2d, 4>> FitQuad(const std::vector<Eigen::Vector2i>& contour,
-                                                      const DarkRegion& region,
-                                                      const uint8_t* grey,
-                                                      double edge_level,
-                                                      const DarkRegions& regions,
-                                                      const Camera& camera,
-                                                      const QuadFitOptions& options);
+std::optional<std::array<Eigen::Vector2d, 4>> FitQuadCorners(
+    const std::vector<Eigen::Vector2i>& contour,
+    const std::array<size_t, 4>& vertices,
+    const uint8_t* grey,
+    double edge_level,
+    const DarkRegions& regions,
+    const Camera& camera,
+    const QuadFitOptions& options);
 
 }  // namespace markerbench
