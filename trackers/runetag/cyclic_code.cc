@@ -45,21 +45,26 @@ const std::vector<RuneWord>& Codebook() {
   return book;
 }
 
-}  // namespace
-
-const RuneWord& RuneCodeword(int id) { return Codebook()[static_cast<size_t>(id)]; }
-
-std::optional<RuneDecoded> RuneDecode(const RuneWord& read) {
-  int erasures = 0;
-  for (uint8_t s : read) erasures += s == 0;
+// The first codeword and rotation whose cost against `read` is at most `limit`: a sector
+// read as its symbol costs 0, one that is_erasure(read, expected) 1, any other 2.
+template <typename IsErasure>
+std::optional<RuneDecoded> FirstWithin(const RuneWord& read,
+                                       int limit,
+                                       const IsErasure& is_erasure) {
   const std::vector<RuneWord>& book = Codebook();
   for (size_t id = 0; id < book.size(); ++id) {
     for (int r = 0; r < kRuneSectors; ++r) {
-      int mismatches = 0;
-      for (int i = 0; i < kRuneSectors && 2 * mismatches + erasures < kRuneMinDistance; ++i) {
-        mismatches += read[i] != 0 && read[i] != book[id][(i + r) % kRuneSectors];
+      int erasures = 0, mismatches = 0;
+      for (int i = 0; i < kRuneSectors && erasures + 2 * mismatches <= limit; ++i) {
+        const uint8_t expected = book[id][(i + r) % kRuneSectors];
+        if (read[i] == expected) continue;
+        if (is_erasure(read[i], expected)) {
+          ++erasures;
+        } else {
+          ++mismatches;
+        }
       }
-      if (2 * mismatches + erasures < kRuneMinDistance) {
+      if (erasures + 2 * mismatches <= limit) {
         return RuneDecoded{static_cast<int>(id), r, mismatches, erasures};
       }
     }
@@ -67,27 +72,20 @@ std::optional<RuneDecoded> RuneDecode(const RuneWord& read) {
   return std::nullopt;
 }
 
+}  // namespace
+
+const RuneWord& RuneCodeword(int id) { return Codebook()[static_cast<size_t>(id)]; }
+
+std::optional<RuneDecoded> RuneDecode(const RuneWord& read) {
+  return FirstWithin(read, kRuneMinDistance - 1, [](uint8_t read_symbol, uint8_t) {
+    return read_symbol == 0;  // only an empty sector is an erasure
+  });
+}
+
 std::optional<RuneDecoded> RuneDecodeMissingDots(const RuneWord& read) {
-  constexpr int kLimit = (kRuneMinDistance - 1) / 2;
-  const std::vector<RuneWord>& book = Codebook();
-  for (size_t id = 0; id < book.size(); ++id) {
-    for (int r = 0; r < kRuneSectors; ++r) {
-      int partial = 0, contradictions = 0;
-      for (int i = 0; i < kRuneSectors && partial + 2 * contradictions <= kLimit; ++i) {
-        const uint8_t expected = book[id][(i + r) % kRuneSectors];
-        if (read[i] == expected) continue;
-        if ((read[i] & ~expected) != 0) {
-          ++contradictions;
-        } else {
-          ++partial;
-        }
-      }
-      if (partial + 2 * contradictions <= kLimit) {
-        return RuneDecoded{static_cast<int>(id), r, contradictions, partial};
-      }
-    }
-  }
-  return std::nullopt;
+  return FirstWithin(read, (kRuneMinDistance - 1) / 2, [](uint8_t read_symbol, uint8_t expected) {
+    return (read_symbol & ~expected) == 0;  // dots lost, none added (empty included)
+  });
 }
 
 }  // namespace markerbench
