@@ -1,5 +1,6 @@
 #include "trackers/runetag/cyclic_code.h"
 
+#include <utility>
 #include <vector>
 
 namespace markerbench {
@@ -45,28 +46,50 @@ const std::vector<RuneWord>& Codebook() {
   return book;
 }
 
-// The first codeword and rotation whose cost against `read` is at most `limit`: a sector
-// read as its symbol costs 0, one that is_erasure(read, expected) 1, any other 2.
-template <typename IsErasure>
-std::optional<RuneDecoded> FirstWithin(const RuneWord& read,
-                                       int limit,
-                                       const IsErasure& is_erasure) {
-  const std::vector<RuneWord>& book = Codebook();
-  for (size_t id = 0; id < book.size(); ++id) {
-    for (int r = 0; r < kRuneSectors; ++r) {
-      int erasures = 0, mismatches = 0;
-      for (int i = 0; i < kRuneSectors && erasures + 2 * mismatches <= limit; ++i) {
-        const uint8_t expected = book[id][(i + r) % kRuneSectors];
-        if (read[i] == expected) continue;
-        if (is_erasure(read[i], expected)) {
-          ++erasures;
-        } else {
-          ++mismatches;
-        }
-      }
-      if (erasures + 2 * mismatches <= limit) {
-        return RuneDecoded{static_cast<int>(id), r, mismatches, erasures};
-      }
+// A word as three 43-bit planes: bit i of plane b is bit b of sector i's symbol (a dot of
+// ring 2 - b), so that a whole word compares in a few popcounts.
+struct Planes {
+  std::array<uint64_t, 3> bits{};
+};
+
+Planes PlanesOf(const RuneWord& word, int rotation) {
+  Planes planes;
+  for (int i = 0; i < kRuneSectors; ++i) {
+    const uint8_t symbol = word[(i + rotation) % kRuneSectors];
+    for (int b = 0; b < 3; ++b) planes.bits[b] |= static_cast<uint64_t>((symbol >> b) & 1) << i;
+  }
+  return planes;
+}
+
+// Every codeword at every rotation: index kRuneSectors * id + rotation.
+const std::vector<Planes>& RotatedCodebook() {
+  static const std::vector<Planes> rotated = [] {
+    std::vector<Planes> all;
+    for (const RuneWord& word : Codebook()) {
+      for (int r = 0; r < kRuneSectors; ++r) all.push_back(PlanesOf(word, r));
+    }
+    return all;
+  }();
+  return rotated;
+}
+
+// The first codeword and rotation whose cost erasures + 2 * mismatches against `read` is at
+// most `limit`, where count(read, expected, planes) gives {erasures, mismatches} over the
+// first `planes` planes, a lower bound of the full count (so a candidate can be dropped
+// after one plane, as most are).
+template <typename Count>
+std::optional<RuneDecoded> FirstWithin(const RuneWord& read, int limit, const Count& count) {
+  const Planes read_planes = PlanesOf(read, 0);
+  const std::vector<Planes>& rotated = RotatedCodebook();
+  for (size_t k = 0; k < rotated.size(); ++k) {
+    const auto [lower_erasures, lower_mismatches] = count(read_planes, rotated[k], 1);
+    if (lower_erasures + 2 * lower_mismatches > limit) continue;
+    const auto [erasures, mismatches] = count(read_planes, rotated[k], 3);
+    if (erasures + 2 * mismatches <= limit) {
+      return RuneDecoded{static_cast<int>(k / kRuneSectors),
+                         static_cast<int>(k % kRuneSectors),
+                         mismatches,
+                         erasures};
     }
   }
   return std::nullopt;
@@ -77,15 +100,27 @@ std::optional<RuneDecoded> FirstWithin(const RuneWord& read,
 const RuneWord& RuneCodeword(int id) { return Codebook()[static_cast<size_t>(id)]; }
 
 std::optional<RuneDecoded> RuneDecode(const RuneWord& read) {
-  return FirstWithin(read, kRuneMinDistance - 1, [](uint8_t read_symbol, uint8_t) {
-    return read_symbol == 0;  // only an empty sector is an erasure
-  });
+  return FirstWithin(
+      read, kRuneMinDistance - 1, [](const Planes& read, const Planes& expected, int planes) {
+        const uint64_t seen = read.bits[0] | read.bits[1] | read.bits[2];
+        uint64_t differ = 0;
+        for (int b = 0; b < planes; ++b) differ |= read.bits[b] ^ expected.bits[b];
+        // Only an empty sector is an erasure.
+        return std::pair(__builtin_popcountll(differ & ~seen), __builtin_popcountll(differ & seen));
+      });
 }
 
 std::optional<RuneDecoded> RuneDecodeMissingDots(const RuneWord& read) {
-  return FirstWithin(read, (kRuneMinDistance - 1) / 2, [](uint8_t read_symbol, uint8_t expected) {
-    return (read_symbol & ~expected) == 0;  // dots lost, none added (empty included)
-  });
+  return FirstWithin(read,
+                     (kRuneMinDotDistance - 1) / 2,
+                     [](const Planes& read, const Planes& expected, int planes) {
+                       int lost = 0, added = 0;
+                       for (int b = 0; b < planes; ++b) {
+                         lost += __builtin_popcountll(expected.bits[b] & ~read.bits[b]);
+                         added += __builtin_popcountll(read.bits[b] & ~expected.bits[b]);
+                       }
+                       return std::pair(lost, added);
+                     });
 }
 
 }  // namespace markerbench

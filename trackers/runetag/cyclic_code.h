@@ -23,6 +23,9 @@ inline constexpr int kRuneIds = 128;
 // (cyclic_code_test checks it over every pair and rotation). 29 equals the original's GF(7)
 // code (2 * errors + erasures <= 28); 30 would take seconds of greedy search at start-up.
 inline constexpr int kRuneMinDistance = 29;
+// The same minimum counted in dots (slots printed in one word and not in the other): every
+// sector that differs differs in at least one dot, and most in two or three.
+inline constexpr int kRuneMinDotDistance = 39;
 
 using RuneWord = std::array<uint8_t, kRuneSectors>;  // symbols; 0 = erased (decoder input only)
 
@@ -40,11 +43,11 @@ struct RuneDecoded {
 // 2 * mismatches + erasures < kRuneMinDistance (unique when it exists), or nullopt.
 std::optional<RuneDecoded> RuneDecode(const RuneWord& read);
 
-// For reads that lost dots (small or merged dots the detector missed): a sector whose dots
-// are a strict subset of the codeword's costs 1 (RuneDecoded::erasures counts it), an empty
-// one 1, a sector with a dot the codeword lacks 2 (mismatches); the codeword and rotation of
-// least cost is accepted at cost <= (kRuneMinDistance - 1) / 2, where it is unique (every
-// sector where two codewords differ costs at least 1 against one of them).
+// For reads that lost dots (small, noisy or merged dots the detector missed), counted per
+// dot: erasures = codeword dots not read, mismatches = dots read where the codeword has none.
+// The codeword and rotation with erasures + 2 * mismatches <= (kRuneMinDotDistance - 1) / 2
+// is accepted; it is unique, since each dot where two codewords differ costs at least 1
+// against one of them.
 std::optional<RuneDecoded> RuneDecodeMissingDots(const RuneWord& read);
 
 }  // namespace markerbench

@@ -44,6 +44,23 @@ TEST(RuneCode, MinimumDistanceOverAllRotationsIsTheDocumentedOne) {
   EXPECT_EQ(smallest, kRuneMinDistance);
 }
 
+TEST(RuneCode, MinimumDotDistanceOverAllRotationsIsTheDocumentedOne) {
+  int smallest = 3 * kRuneSectors;
+  for (int a = 0; a < kRuneIds; ++a) {
+    for (int b = a; b < kRuneIds; ++b) {
+      for (int r = a == b ? 1 : 0; r < kRuneSectors; ++r) {
+        const RuneWord rotated = Rotated(RuneCodeword(b), r);
+        int dots = 0;
+        for (int i = 0; i < kRuneSectors; ++i) {
+          dots += __builtin_popcount(RuneCodeword(a)[i] ^ rotated[i]);
+        }
+        smallest = std::min(smallest, dots);
+      }
+    }
+  }
+  EXPECT_EQ(smallest, kRuneMinDotDistance);
+}
+
 TEST(RuneCode, EveryIdDecodesAtEveryRotation) {
   for (int id = 0; id < kRuneIds; ++id) {
     for (int r = 0; r < kRuneSectors; ++r) {
@@ -82,35 +99,39 @@ TEST(RuneCode, ErrorsAndErasuresUpToTheDesignLimitAreCorrected) {
   }
 }
 
-// Lost dots: up to 14 sectors keep a strict subset of their dots (or none), at random
-// rotations (seeded); one more dot where the codeword has none costs two of them.
-TEST(RuneCode, ReadsThatLostDotsDecodeUpToHalfTheDistance) {
+// Lost dots: up to (kRuneMinDotDistance - 1) / 2 of them, at random slots and rotations
+// (seeded); then with extra dots, each costing two lost ones.
+TEST(RuneCode, ReadsThatLostDotsDecodeUpToHalfTheDotDistance) {
   std::mt19937 rng(43);
-  std::vector<int> sectors(kRuneSectors);
-  for (int i = 0; i < kRuneSectors; ++i) sectors[i] = i;
-  constexpr int kLimit = (kRuneMinDistance - 1) / 2;
+  constexpr int kLimit = (kRuneMinDotDistance - 1) / 2;
   for (int id = 0; id < kRuneIds; ++id) {
     const int r = static_cast<int>(rng() % kRuneSectors);
+    const int extra = id % 3;  // 0, 1 or 2 dots added
     RuneWord read = Rotated(RuneCodeword(id), r);
-    std::shuffle(sectors.begin(), sectors.end(), rng);
-    int damaged = 0;
-    for (int k = 0; k < kRuneSectors && damaged < kLimit; ++k) {
-      uint8_t& s = read[sectors[k]];
-      const uint8_t kept = static_cast<uint8_t>(s & rng());  // a random subset of its dots
-      if (kept == s) continue;
-      s = kept;
-      ++damaged;
+    std::vector<int> printed, blank;  // slots 3 * sector + bit
+    for (int i = 0; i < kRuneSectors; ++i) {
+      for (int bit = 0; bit < 3; ++bit)
+        (read[i] & (1 << bit) ? printed : blank).push_back(3 * i + bit);
     }
-    EXPECT_FALSE(RuneDecode(read).has_value() && RuneDecode(read)->id != id);
+    std::shuffle(printed.begin(), printed.end(), rng);
+    std::shuffle(blank.begin(), blank.end(), rng);
+    const int lost = kLimit - 2 * extra;
+    for (int k = 0; k < lost; ++k)
+      read[printed[k] / 3] &= static_cast<uint8_t>(~(1 << printed[k] % 3));
+    for (int k = 0; k < extra; ++k) read[blank[k] / 3] |= static_cast<uint8_t>(1 << blank[k] % 3);
     const std::optional<RuneDecoded> decoded = RuneDecodeMissingDots(read);
     ASSERT_TRUE(decoded) << id;
     EXPECT_EQ(decoded->id, id);
     EXPECT_EQ(decoded->rotation, r);
-    EXPECT_EQ(decoded->erasures, kLimit);
-    EXPECT_EQ(decoded->mismatches, 0);
+    EXPECT_EQ(decoded->erasures, lost);
+    EXPECT_EQ(decoded->mismatches, extra);
   }
   RuneWord lost_too_many = RuneCodeword(9);
-  for (int i = 0; i <= kLimit; ++i) lost_too_many[i] = 0;
+  int lost = 0;
+  for (int i = 0; lost <= kLimit; ++i) {
+    lost += __builtin_popcount(lost_too_many[i]);
+    lost_too_many[i] = 0;
+  }
   EXPECT_FALSE(RuneDecodeMissingDots(lost_too_many));
 }
 

@@ -135,7 +135,7 @@ std::vector<ImagedDot> DetectDots(const uint8_t* grey,
                         cv::ADAPTIVE_THRESH_MEAN_C,
                         cv::THRESH_BINARY_INV,
                         options.block_size_px,
-                        options.threshold_offset);
+                        std::max(options.threshold_offset, options.offset_per_noise * noise));
   std::vector<std::vector<cv::Point>> contours;
   cv::findContours(dark, contours, cv::RETR_EXTERNAL, cv::CHAIN_APPROX_NONE);
   const double scale_sq = static_cast<double>(width) * height / (640.0 * 480.0);
@@ -166,6 +166,11 @@ std::vector<ImagedDot> DetectDots(const uint8_t* grey,
     cv::distanceTransform(
         255 - split, distance, nearest, cv::DIST_L2, cv::DIST_MASK_5, cv::DIST_LABEL_CCOMP);
     for (const std::vector<cv::Point>& part : parts) {
+      // The box may hold the edge of a neighbouring dot, which has its own contour.
+      const cv::Rect part_box = cv::boundingRect(part);
+      const cv::Point2f part_centre(part_box.x + 0.5f * (part_box.width - 1),
+                                    part_box.y + 0.5f * (part_box.height - 1));
+      if (cv::pointPolygonTest(contour, part_centre, false) < 0) continue;
       const cv::Point inside = part.front() - roi.tl();
       const int label = nearest.at<int>(inside.y, inside.x);
       const auto owns = [&](int x, int y) {

@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 #include <complex>
+#include <iterator>
 
 #include "core/random.h"
 #include "trackers/circle/analytic_pose.h"
@@ -36,28 +37,44 @@ std::optional<Eigen::Matrix3d> ConicThrough(const std::array<Eigen::Vector2d, 5>
   return CanonicalConic(C);
 }
 
-// RANSAC for the ring conic with the most dot centres within tolerance.
-std::optional<std::vector<int>> RingInliers(const std::vector<ImagedDot>& dots,
-                                            uint64_t seed,
-                                            const RingDecoderOptions& options) {
+// Whether inlier sets a and b (sorted) share more than half of the smaller one.
+bool Overlap(const std::vector<int>& a, const std::vector<int>& b) {
+  std::vector<int> common;
+  std::set_intersection(a.begin(), a.end(), b.begin(), b.end(), std::back_inserter(common));
+  return 2 * common.size() > std::min(a.size(), b.size());
+}
+
+// RANSAC for ring conics: the inlier sets (dot centres within tolerance) of the
+// options.ring_candidates conics with the most inliers that do not overlap, most first. A
+// conic through dots of two rings (an ellipse can cross both in a tilted view) may have more
+// inliers than a true ring, so the caller tries each.
+std::vector<std::vector<int>> RingCandidates(const std::vector<ImagedDot>& dots,
+                                             uint64_t seed,
+                                             const RingDecoderOptions& options) {
   const int n = static_cast<int>(dots.size());
-  if (n < options.min_ring_dots) return std::nullopt;
+  std::vector<std::vector<int>> candidates;
+  if (n < options.min_ring_dots) return candidates;
   Eigen::Vector2d origin = Eigen::Vector2d::Zero();
   for (const ImagedDot& d : dots) origin += d.center_px / n;
   double scale = 0.0;
   for (const ImagedDot& d : dots) scale += (d.center_px - origin).norm() / n;
-  if (!(scale > 0.0)) return std::nullopt;
+  if (!(scale > 0.0)) return candidates;
 
   Rng rng(seed);
-  std::vector<int> best, inliers, similar;
+  std::vector<int> inliers, similar;
   int iterations = options.max_ransac_iterations;
   for (int it = 0; it < iterations; ++it) {
-    // A seed dot, then four of similar size (dots of one ring are alike).
+    // A seed dot, then four of similar size (dots of one ring are alike) within reach: a
+    // ring's diameter is 2 × kRuneDotRadiusRatio dot radii, with a margin for perspective.
     const int first = static_cast<int>(rng.NextU64() % static_cast<uint64_t>(n));
+    const double reach = 2.5 * kRuneDotRadiusRatio * std::max(dots[first].semi_major_px, 1.0);
     similar.clear();
     for (int j = 0; j < n; ++j) {
       const double ratio = dots[j].area_px / dots[first].area_px;
-      if (j != first && ratio > 0.5 && ratio < 2.0) similar.push_back(j);
+      if (j != first && ratio > 0.5 && ratio < 2.0 &&
+          (dots[j].center_px - dots[first].center_px).squaredNorm() < reach * reach) {
+        similar.push_back(j);
+      }
     }
     if (similar.size() < 4) continue;
     std::array<Eigen::Vector2d, 5> sample;
@@ -76,16 +93,24 @@ std::optional<std::vector<int>> RingInliers(const std::vector<ImagedDot>& dots,
         inliers.push_back(j);
       }
     }
-    if (inliers.size() > best.size()) {
-      best = inliers;
-      // Adaptive stop at 99.9 % confidence with the best inlier ratio so far.
-      const double w = static_cast<double>(best.size()) / n;
-      const double needed = std::log(1e-3) / std::log(1.0 - std::pow(w, 4.0));
-      iterations = std::min(options.max_ransac_iterations, static_cast<int>(needed) + 1);
+    if (static_cast<int>(inliers.size()) < options.min_ring_dots) continue;
+    const auto same = std::find_if(
+        candidates.begin(), candidates.end(), [&](const auto& c) { return Overlap(c, inliers); });
+    if (same != candidates.end()) {
+      if (same->size() >= inliers.size()) continue;
+      candidates.erase(same);
     }
+    candidates.insert(std::find_if(candidates.begin(),
+                                   candidates.end(),
+                                   [&](const auto& c) { return c.size() < inliers.size(); }),
+                      inliers);
+    if (static_cast<int>(candidates.size()) > options.ring_candidates) candidates.pop_back();
+    // Adaptive stop at 99.9 % confidence with the best inlier ratio so far.
+    const double w = static_cast<double>(candidates.front().size()) / n;
+    const double needed = std::log(1e-3) / std::log(1.0 - std::pow(w, 4.0));
+    iterations = std::min(options.max_ransac_iterations, static_cast<int>(needed) + 1);
   }
-  if (static_cast<int>(best.size()) < options.min_ring_dots) return std::nullopt;
-  return best;
+  return candidates;
 }
 
 // Plane coordinates of the dots in units of the ring's radius, for one of the two plane
@@ -164,32 +189,31 @@ std::optional<RingMatch> MatchRings(const std::vector<ImagedDot>& dots,
                                     const Camera& camera,
                                     uint64_t seed,
                                     const RingDecoderOptions& options) {
-  const std::optional<std::vector<int>> ring = RingInliers(dots, seed, options);
-  if (!ring) return std::nullopt;
-  std::vector<Eigen::Vector2d> ring_px;
-  for (int i : *ring) ring_px.push_back(dots[i].center_px);
-  ConicFitOptions fit_options;
-  fit_options.refine_pnd = false;
-  const std::optional<ConicFit> fit = FitEllipse(ring_px, fit_options);
-  if (!fit) return std::nullopt;
   const Eigen::Matrix3d K = camera.K();
-  const Eigen::Matrix3d C_n = CanonicalConic(K.transpose() * fit->conic * K);
   std::vector<Eigen::Vector3d> rays;
   for (const ImagedDot& d : dots) rays.push_back(camera.CamFromImg(d.center_px));
-
+  ConicFitOptions fit_options;
+  fit_options.refine_pnd = false;
   std::optional<RingMatch> best;
-  for (const Eigen::Vector3d& normal : SingleCircleNormals(C_n)) {
-    const std::optional<std::vector<Eigen::Vector2d>> unit_plane = Rectify(C_n, normal, rays);
-    if (!unit_plane) continue;
-    for (double found_ring : kRuneRingFractions) {
-      std::vector<Eigen::Vector2d> plane = *unit_plane;
-      for (Eigen::Vector2d& p : plane) p *= found_ring;
-      std::optional<RingMatch> match = SweepAndDecode(plane, options);
-      if (!match) continue;
-      const int score = 2 * match->mismatches + match->erasures;
-      if (!best || score < 2 * best->mismatches + best->erasures) {
-        match->ring_dots = static_cast<int>(ring->size());
-        best = match;
+  for (const std::vector<int>& ring : RingCandidates(dots, seed, options)) {
+    std::vector<Eigen::Vector2d> ring_px;
+    for (int i : ring) ring_px.push_back(dots[i].center_px);
+    const std::optional<ConicFit> fit = FitEllipse(ring_px, fit_options);
+    if (!fit) continue;
+    const Eigen::Matrix3d C_n = CanonicalConic(K.transpose() * fit->conic * K);
+    for (const Eigen::Vector3d& normal : SingleCircleNormals(C_n)) {
+      const std::optional<std::vector<Eigen::Vector2d>> unit_plane = Rectify(C_n, normal, rays);
+      if (!unit_plane) continue;
+      for (double found_ring : kRuneRingFractions) {
+        std::vector<Eigen::Vector2d> plane = *unit_plane;
+        for (Eigen::Vector2d& p : plane) p *= found_ring;
+        std::optional<RingMatch> match = SweepAndDecode(plane, options);
+        if (!match) continue;
+        const int score = 2 * match->mismatches + match->erasures;
+        if (!best || score < 2 * best->mismatches + best->erasures) {
+          match->ring_dots = static_cast<int>(ring.size());
+          best = match;
+        }
       }
     }
   }

@@ -20,6 +20,7 @@ namespace markerbench {
 
 struct RingDecoderOptions {
   int max_ransac_iterations = 1000;
+  int ring_candidates = 3;         // distinct RANSAC conics tried, most inliers first
   double ring_tolerance_px = 1.0;  // PND distance of a dot centre to the ring conic
   int min_ring_dots = 8;
   double radius_tolerance = 0.04;  // |radius / R - ring fraction| for a dot to be on a ring

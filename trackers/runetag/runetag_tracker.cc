@@ -75,6 +75,7 @@ std::vector<std::pair<std::string, std::string>> RuneTagTracker::Parameters() co
           {"max_smoothing_px", NumberText(o.dots.max_smoothing_px)},
           {"block_size_px", NumberText(o.dots.block_size_px)},
           {"threshold_offset", NumberText(o.dots.threshold_offset)},
+          {"offset_per_noise", NumberText(o.dots.offset_per_noise)},
           {"min_area_px", NumberText(o.dots.min_area_px)},
           {"max_area_px", NumberText(o.dots.max_area_px)},
           {"min_axis_ratio", NumberText(o.dots.min_axis_ratio)},
@@ -95,6 +96,8 @@ bool RuneTagOptions::IsValid(std::string* error) const {
   if (!(dots.smoothing_per_noise >= 0.0 && dots.max_smoothing_px >= 0.0)) {
     msg << "smoothing_per_noise=" << dots.smoothing_per_noise
         << " and max_smoothing_px must be >= 0";
+  } else if (!(dots.offset_per_noise >= 0.0)) {
+    msg << "offset_per_noise=" << dots.offset_per_noise << " must be >= 0";
   } else if (dots.block_size_px < 3 || dots.block_size_px % 2 == 0) {
     msg << "block_size_px=" << dots.block_size_px << " must be odd and >= 3";
   } else if (!(dots.min_area_px > 0.0 && dots.max_area_px > dots.min_area_px)) {
@@ -126,6 +129,7 @@ RuneTagOptions RuneTagOptions::FromYaml(const YamlMap& map) {
   o.dots.max_smoothing_px = map.GetOr<double>("max_smoothing_px", o.dots.max_smoothing_px);
   o.dots.block_size_px = map.GetOr<int>("block_size_px", o.dots.block_size_px);
   o.dots.threshold_offset = map.GetOr<double>("threshold_offset", o.dots.threshold_offset);
+  o.dots.offset_per_noise = map.GetOr<double>("offset_per_noise", o.dots.offset_per_noise);
   o.dots.min_area_px = map.GetOr<double>("min_area_px", o.dots.min_area_px);
   o.dots.max_area_px = map.GetOr<double>("max_area_px", o.dots.max_area_px);
   o.dots.min_axis_ratio = map.GetOr<double>("min_axis_ratio", o.dots.min_axis_ratio);
