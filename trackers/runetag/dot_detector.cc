@@ -31,15 +31,20 @@ double RimLevel(const cv::Mat& image, const cv::Rect& box) {
   return rim[rim.size() / 2];
 }
 
+// Per-image acceptance limits of a dot.
+struct DotLimits {
+  double min_area = 0.0, max_area = 0.0;  // px^2
+  double min_contrast = 0.0;              // 0..255
+};
+
 // The dot whose outline is `contour` (image coordinates), with a darkness-weighted centroid
 // and moment ellipse over the blob grown by 1 px; nullopt when it fails the size or shape
 // filters; misshapen says it failed the shape checks, so that merged dots can be split.
 // owns(x, y): whether a pixel may count for this dot (not nearer another part of a split).
 std::optional<ImagedDot> MeasureDot(const cv::Mat& image,
                                     const std::vector<cv::Point>& contour,
-                                    double scale_sq,
+                                    const DotLimits& limits,
                                     const DotDetectorOptions& options,
-                                    double min_contrast,
                                     const std::function<bool(int, int)>& owns,
                                     bool* misshapen) {
   *misshapen = false;
@@ -50,7 +55,7 @@ std::optional<ImagedDot> MeasureDot(const cv::Mat& image,
   }
   // Pixel area of the blob: the contour's area plus the half pixel its outline leaves out.
   const double area = cv::contourArea(contour) + 0.5 * static_cast<double>(contour.size()) + 1;
-  if (area < options.min_area_px * scale_sq || area > options.max_area_px * scale_sq) {
+  if (area < limits.min_area || area > limits.max_area) {
     return std::nullopt;
   }
   const cv::Rect grown = (box + cv::Size(4, 4) - cv::Point(2, 2)) & frame;
@@ -80,7 +85,7 @@ std::optional<ImagedDot> MeasureDot(const cv::Mat& image,
       m2 += w * p * p.transpose();
     }
   }
-  if (!(m0 > 0.0) || darkness < min_contrast) return std::nullopt;
+  if (!(m0 > 0.0) || darkness < limits.min_contrast) return std::nullopt;
   const Eigen::Vector2d center = m1 / m0;
   const Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> eig(m2 / m0 - center * center.transpose());
   // A uniform ellipse with semi-axes a, b has variances a^2/4 and b^2/4; pixel sampling of a
@@ -111,6 +116,54 @@ std::optional<ImagedDot> MeasureDot(const cv::Mat& image,
   return dot;
 }
 
+// Deliberate difference: a blob that is not one ellipse may be dots that the mean threshold
+// merged across their anti-aliased gaps. Split it at levels from halfway between its darkest
+// pixel and the paper around it towards the darkest (narrow gaps need a deeper cut), and keep
+// the cut that yields the most dots.
+std::vector<ImagedDot> SplitMergedDots(const cv::Mat& image,
+                                       const std::vector<cv::Point>& contour,
+                                       const DotLimits& limits,
+                                       const DotDetectorOptions& options) {
+  const cv::Rect box = cv::boundingRect(contour) + cv::Size(2, 2) - cv::Point(1, 1);
+  const cv::Rect roi = box & cv::Rect(0, 0, image.cols, image.rows);
+  double darkest = 0.0;
+  cv::minMaxLoc(image(roi), &darkest);
+  const double paper = RimLevel(image, roi);
+  std::vector<ImagedDot> best;
+  for (double depth : options.split_depths) {
+    cv::Mat split;
+    cv::threshold(
+        image(roi), split, darkest + depth * (paper - darkest), 255, cv::THRESH_BINARY_INV);
+    std::vector<std::vector<cv::Point>> parts;
+    cv::findContours(split, parts, cv::RETR_EXTERNAL, cv::CHAIN_APPROX_NONE, roi.tl());
+    if (parts.size() < 2) continue;
+    // Each pixel of the box counts only for the part nearest to it.
+    cv::Mat distance, nearest;
+    cv::distanceTransform(
+        255 - split, distance, nearest, cv::DIST_L2, cv::DIST_MASK_5, cv::DIST_LABEL_CCOMP);
+    std::vector<ImagedDot> found;
+    for (const std::vector<cv::Point>& part : parts) {
+      // The box may hold the edge of a neighbouring dot, which has its own contour.
+      const cv::Rect part_box = cv::boundingRect(part);
+      const cv::Point2f part_centre(part_box.x + 0.5f * (part_box.width - 1),
+                                    part_box.y + 0.5f * (part_box.height - 1));
+      if (cv::pointPolygonTest(contour, part_centre, false) < 0) continue;
+      const cv::Point inside = part.front() - roi.tl();
+      const int label = nearest.at<int>(inside.y, inside.x);
+      const auto owns = [&](int x, int y) {
+        return roi.contains({x, y}) && nearest.at<int>(y - roi.y, x - roi.x) == label;
+      };
+      bool part_misshapen = false;
+      if (const std::optional<ImagedDot> dot =
+              MeasureDot(image, part, limits, options, owns, &part_misshapen)) {
+        found.push_back(*dot);
+      }
+    }
+    if (found.size() > best.size()) best = found;
+  }
+  return best;
+}
+
 }  // namespace
 
 std::vector<ImagedDot> DetectDots(const uint8_t* grey,
@@ -127,7 +180,6 @@ std::vector<ImagedDot> DetectDots(const uint8_t* grey,
     cv::GaussianBlur(raw, image, cv::Size(), smoothing_px);
     noise /= 2.0 * std::sqrt(M_PI) * smoothing_px;  // white noise under a Gaussian of σ_s
   }
-  const double min_contrast = std::max(options.min_contrast, options.contrast_per_noise * noise);
   cv::Mat dark;
   cv::adaptiveThreshold(image,
                         dark,
@@ -139,49 +191,21 @@ std::vector<ImagedDot> DetectDots(const uint8_t* grey,
   std::vector<std::vector<cv::Point>> contours;
   cv::findContours(dark, contours, cv::RETR_EXTERNAL, cv::CHAIN_APPROX_NONE);
   const double scale_sq = static_cast<double>(width) * height / (640.0 * 480.0);
+  DotLimits limits;
+  limits.min_area = options.min_area_px * scale_sq;
+  limits.max_area = options.max_area_px * scale_sq;
+  limits.min_contrast = std::max(options.min_contrast, options.contrast_per_noise * noise);
   std::vector<ImagedDot> dots;
   for (const std::vector<cv::Point>& contour : contours) {
     bool misshapen = false;
     if (const std::optional<ImagedDot> dot =
-            MeasureDot(image, contour, scale_sq, options, min_contrast, kAnyPixel, &misshapen)) {
+            MeasureDot(image, contour, limits, options, kAnyPixel, &misshapen)) {
       dots.push_back(*dot);
       continue;
     }
     if (!misshapen) continue;
-    // Deliberate difference: a blob that is not one ellipse may be dots that the mean
-    // threshold merged across their anti-aliased gaps; split it at the level halfway between
-    // its darkest pixel and the paper around it.
-    const cv::Rect box = cv::boundingRect(contour) + cv::Size(2, 2) - cv::Point(1, 1);
-    const cv::Rect roi = box & cv::Rect(0, 0, width, height);
-    double darkest = 0.0;
-    cv::minMaxLoc(image(roi), &darkest);
-    const double mid = 0.5 * (darkest + RimLevel(image, roi));
-    cv::Mat split;
-    cv::threshold(image(roi), split, mid, 255, cv::THRESH_BINARY_INV);
-    std::vector<std::vector<cv::Point>> parts;
-    cv::findContours(split, parts, cv::RETR_EXTERNAL, cv::CHAIN_APPROX_NONE, roi.tl());
-    if (parts.size() < 2) continue;
-    // Each pixel of the box counts only for the part nearest to it.
-    cv::Mat distance, nearest;
-    cv::distanceTransform(
-        255 - split, distance, nearest, cv::DIST_L2, cv::DIST_MASK_5, cv::DIST_LABEL_CCOMP);
-    for (const std::vector<cv::Point>& part : parts) {
-      // The box may hold the edge of a neighbouring dot, which has its own contour.
-      const cv::Rect part_box = cv::boundingRect(part);
-      const cv::Point2f part_centre(part_box.x + 0.5f * (part_box.width - 1),
-                                    part_box.y + 0.5f * (part_box.height - 1));
-      if (cv::pointPolygonTest(contour, part_centre, false) < 0) continue;
-      const cv::Point inside = part.front() - roi.tl();
-      const int label = nearest.at<int>(inside.y, inside.x);
-      const auto owns = [&](int x, int y) {
-        return roi.contains({x, y}) && nearest.at<int>(y - roi.y, x - roi.x) == label;
-      };
-      bool part_misshapen = false;
-      if (const std::optional<ImagedDot> dot =
-              MeasureDot(image, part, scale_sq, options, min_contrast, owns, &part_misshapen)) {
-        dots.push_back(*dot);
-      }
-    }
+    const std::vector<ImagedDot> parts = SplitMergedDots(image, contour, limits, options);
+    dots.insert(dots.end(), parts.begin(), parts.end());
   }
   return dots;
 }

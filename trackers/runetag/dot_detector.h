@@ -22,8 +22,9 @@ struct DotDetectorOptions {
   double threshold_offset = 15;
   double offset_per_noise = 5.0;
   // Size filters at 640x480, scaled by the image area (so by sqrt(area) for lengths): the
-  // original keeps 10-1000 px^2; we go down to 3 px^2 so that 1 px dots are still seen.
-  double min_area_px = 3.0;
+  // original keeps 10-1000 px^2; we go down to 2 px^2 so that dots of radius 0.8 px are
+  // still seen (1.5 px^2 lets too many σ² = 0.02 noise blobs through).
+  double min_area_px = 2.0;
   double max_area_px = 1000.0;
   double min_axis_ratio = 0.3;  // minor / major axis (the original's)
   // A dot's darkness (paper level minus its darkest pixel, 0..255) must reach min_contrast
@@ -31,6 +32,9 @@ struct DotDetectorOptions {
   double min_contrast = 30.0;
   double contrast_per_noise = 6.0;
   double max_fit_error = 0.24;  // RMS of (normalized radius - 1) over the contour
+  // Levels tried to split a misshapen blob into dots, as fractions of the way from its
+  // darkest pixel to the paper around it.
+  std::vector<double> split_depths = {0.5, 0.3, 0.15};
 };
 
 struct ImagedDot {
