@@ -123,5 +123,11 @@ TEST(TrackCommand, TracksAnArtkPlusMarkerThroughAVideo) {
       "artkplus", "scenarios/markers/artkplus.yaml", MovingView(kVideoDistanceM), kVideoCenterTolM);
 }
 
+// runetag through MJPEG compression: its 2 mm inner dots survive the codec's blocks.
+TEST(TrackCommand, TracksARuneTagMarkerThroughAVideo) {
+  ExpectCentresThroughVideo(
+      "runetag", "scenarios/markers/runetag.yaml", MovingView(kVideoDistanceM), kVideoCenterTolM);
+}
+
 }  // namespace
 }  // namespace markerbench
