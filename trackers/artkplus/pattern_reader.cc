@@ -5,19 +5,10 @@
 #include <cmath>
 
 #include "trackers/artkplus/homography.h"
+#include "trackers/bilinear_sample.h"
 
 namespace markerbench {
 namespace {
-
-double Bilinear(const uint8_t* grey, int width, int height, const Eigen::Vector2d& p) {
-  const double x = std::clamp(p.x(), 0.0, width - 1.001);
-  const double y = std::clamp(p.y(), 0.0, height - 1.001);
-  const int x0 = static_cast<int>(x), y0 = static_cast<int>(y);
-  const double fx = x - x0, fy = y - y0;
-  const uint8_t* row = grey + static_cast<size_t>(y0) * width + x0;
-  return (1 - fy) * ((1 - fx) * row[0] + fx * row[1]) +
-         fy * ((1 - fx) * row[width] + fx * row[width + 1]);
-}
 
 double Nearest(const uint8_t* grey, int width, int height, const Eigen::Vector2d& p) {
   const int x = std::clamp(static_cast<int>(std::lround(p.x())), 0, width - 1);
@@ -59,7 +50,7 @@ std::optional<PatternRead> ReadPattern(const uint8_t* grey,
           const double du = 0.75 * ((j + 0.5) / n - 0.5), dv = 0.75 * ((i + 0.5) / n - 0.5);
           const Eigen::Vector2d p =
               to_px({(border_cells + c + 0.5 + du) / cells, (border_cells + r + 0.5 + dv) / cells});
-          sum += n == 1 ? Nearest(grey, width, height, p) : Bilinear(grey, width, height, p);
+          sum += n == 1 ? Nearest(grey, width, height, p) : BilinearSample(grey, width, height, p);
         }
       }
       level[static_cast<size_t>(6 * r + c)] = sum / (n * n);

@@ -166,20 +166,22 @@ std::vector<ImagedDot> SplitMergedDots(const cv::Mat& image,
 
 }  // namespace
 
-std::vector<ImagedDot> DetectDots(const uint8_t* grey,
-                                  int width,
-                                  int height,
-                                  const DotDetectorOptions& options) {
-  const cv::Mat raw(height, width, CV_8UC1, const_cast<uint8_t*>(grey));
-  const double noise_sigma = EstimateNoiseSigma(raw);
+DotImage SmoothForDots(const cv::Mat& grey, const DotDetectorOptions& options) {
+  const double noise_sigma = EstimateNoiseSigma(grey);
   const double smoothing_px =
       std::min(options.max_smoothing_px, options.smoothing_per_noise * noise_sigma);
-  cv::Mat image = raw;
-  double noise = 255.0 * noise_sigma;
+  DotImage result{grey, 255.0 * noise_sigma};
   if (smoothing_px > 0.3) {
-    cv::GaussianBlur(raw, image, cv::Size(), smoothing_px);
-    noise /= 2.0 * std::sqrt(M_PI) * smoothing_px;  // white noise under a Gaussian of σ_s
+    cv::GaussianBlur(grey, result.smoothed, cv::Size(), smoothing_px);
+    result.noise /= 2.0 * std::sqrt(M_PI) * smoothing_px;  // white noise under a Gaussian of σ_s
   }
+  return result;
+}
+
+std::vector<ImagedDot> DetectDots(const DotImage& dot_image, const DotDetectorOptions& options) {
+  const cv::Mat& image = dot_image.smoothed;
+  const double noise = dot_image.noise;
+  const int width = image.cols, height = image.rows;
   cv::Mat dark;
   cv::adaptiveThreshold(image,
                         dark,

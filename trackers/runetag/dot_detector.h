@@ -4,6 +4,7 @@
 
 #include <Eigen/Core>
 #include <cstdint>
+#include <opencv2/core.hpp>
 #include <optional>
 #include <vector>
 
@@ -44,9 +45,15 @@ struct ImagedDot {
   double semi_minor_px = 0.0;
 };
 
-std::vector<ImagedDot> DetectDots(const uint8_t* grey,
-                                  int width,
-                                  int height,
-                                  const DotDetectorOptions& options);
+// The image the dots are found in, and the ring decoder samples: the grey image smoothed
+// against its noise (DotDetectorOptions::smoothing_per_noise).
+struct DotImage {
+  cv::Mat smoothed;    // CV_8UC1
+  double noise = 0.0;  // the noise σ left after smoothing, in grey levels
+};
+
+DotImage SmoothForDots(const cv::Mat& grey, const DotDetectorOptions& options);
+
+std::vector<ImagedDot> DetectDots(const DotImage& image, const DotDetectorOptions& options);
 
 }  // namespace markerbench

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <limits>
 #include <opencv2/calib3d.hpp>
 
 #include "core/random.h"
@@ -91,23 +92,41 @@ std::optional<DotPose> EstimateDotPose(const std::vector<Eigen::Vector2d>& cente
     }
   }
   if (inlier_index.size() < 4) return std::nullopt;
-  // LM on the inliers, then keep those within 3 robust sigmas (at least kMinInlierPx) of
-  // the fit, and LM again: dots mis-centred by a px or two are not RANSAC outliers at
-  // ransac_reprojection_px but still bias the pose.
-  constexpr double kMinInlierPx = 0.3;
+  // A small or distant marker seen nearly face-on fits a 4-dot sample in both of the
+  // planar pose's mirror-image solutions within the RANSAC threshold, so the sample's choice
+  // between them is arbitrary: choose again with IPPE on all the inliers, each of its two
+  // solutions refined by LM, by the lower reprojection error.
   std::vector<cv::Point3d> inlier_object;
   std::vector<cv::Point2d> inlier_measured, corrected;
-  const auto refine_on = [&](const std::vector<int>& index) {
+  const auto select = [&](const std::vector<int>& index) {
     inlier_object.clear();
     inlier_measured.clear();
     for (int i : index) {
       inlier_object.push_back(object[i]);
       inlier_measured.push_back(measured[i]);
     }
-    cv::solvePnPRefineLM(
-        inlier_object, inlier_measured, K_cv, cv::noArray(), rvec, tvec, kLmCriteria);
   };
-  refine_on(inlier_index);
+  select(inlier_index);
+  std::vector<cv::Mat> rvecs, tvecs;
+  cv::solvePnPGeneric(
+      inlier_object, inlier_measured, K_cv, cv::noArray(), rvecs, tvecs, false, cv::SOLVEPNP_IPPE);
+  double best_error = std::numeric_limits<double>::infinity();
+  for (size_t k = 0; k < rvecs.size(); ++k) {
+    cv::solvePnPRefineLM(
+        inlier_object, inlier_measured, K_cv, cv::noArray(), rvecs[k], tvecs[k], kLmCriteria);
+    const std::vector<double> e = residuals(rvecs[k], tvecs[k]);
+    double error = 0.0;
+    for (int i : inlier_index) error += e[i] * e[i];
+    if (error < best_error) {
+      best_error = error;
+      rvec = rvecs[k];
+      tvec = tvecs[k];
+    }
+  }
+  // Keep the inliers within 3 robust sigmas (at least kMinInlierPx) of that fit, and LM
+  // again: dots mis-centred by a px or two are not RANSAC outliers at
+  // ransac_reprojection_px but still bias the pose.
+  constexpr double kMinInlierPx = 0.3;
   std::vector<double> e = residuals(rvec, tvec);
   std::vector<double> sorted;
   for (int i : inlier_index) sorted.push_back(e[i]);
@@ -116,7 +135,9 @@ std::optional<DotPose> EstimateDotPose(const std::vector<Eigen::Vector2d>& cente
   inlier_index = inliers_below(
       e, std::min(options.ransac_reprojection_px, std::max(kMinInlierPx, 3.0 * sigma)));
   if (inlier_index.size() < 4) return std::nullopt;
-  refine_on(inlier_index);
+  select(inlier_index);
+  cv::solvePnPRefineLM(
+      inlier_object, inlier_measured, K_cv, cv::noArray(), rvec, tvec, kLmCriteria);
   // Perspective bias (circle-method.md §4.6): under cam_from_marker, dot k's circle images to
   // an ellipse whose centre is off the image of the dot's centre; measure the centre of the
   // latter by removing that offset from the ellipse centre measured.

@@ -7,6 +7,7 @@
 #include <iterator>
 
 #include "core/random.h"
+#include "trackers/bilinear_sample.h"
 #include "trackers/circle/analytic_pose.h"
 #include "trackers/circle/conic.h"
 #include "trackers/circle/conic_fit.h"
@@ -113,79 +114,156 @@ std::vector<std::vector<int>> RingCandidates(const std::vector<ImagedDot>& dots,
   return candidates;
 }
 
-// Plane coordinates of the dots in units of the ring's radius, for one of the two plane
-// orientations a calibrated circle allows (§4.7) and a right-handed plane frame with z
-// towards the camera (so a rotation, not a reflection, from the marker frame).
-std::optional<std::vector<Eigen::Vector2d>> Rectify(const Eigen::Matrix3d& C_n,
-                                                    const Eigen::Vector3d& normal,
-                                                    const std::vector<Eigen::Vector3d>& rays) {
+// The plane of a ring, for one of the two orientations a calibrated circle allows (§4.7):
+// a right-handed frame with r3 towards the camera (so a rotation, not a reflection, from the
+// marker frame) and the ring's centre in the camera frame, in units of the ring's radius.
+struct RingPlane {
+  Eigen::Vector3d r1, r2, r3, centre;
+
+  Eigen::Vector2d FromRay(const Eigen::Vector3d& ray) const {
+    const Eigen::Vector3d X = (r3.dot(centre) / r3.dot(ray)) * ray - centre;
+    return {r1.dot(X), r2.dot(X)};
+  }
+  Eigen::Vector3d ToCamera(const Eigen::Vector2d& xy) const {
+    return centre + xy.x() * r1 + xy.y() * r2;
+  }
+};
+
+std::optional<RingPlane> RingPlaneFor(const Eigen::Matrix3d& C_n, const Eigen::Vector3d& normal) {
   const Eigen::Vector3d centre_guess = EllipseFromConic(C_n).center.homogeneous();
   const Eigen::Vector3d l_inf = OrientLineAtInfinity(normal, centre_guess);
   const std::optional<Eigen::Vector3d> m = ImagedCenter(C_n, l_inf);
   if (!m) return std::nullopt;
-  const Eigen::Vector3d r3 = l_inf.normalized();
-  const Eigen::Vector3d r1 = r3.unitOrthogonal();
-  const Eigen::Vector3d r2 = r3.cross(r1);
-  const double depth = DepthFromRadius(C_n, r1, r2, *m, 1.0);
+  RingPlane plane;
+  plane.r3 = l_inf.normalized();
+  plane.r1 = plane.r3.unitOrthogonal();
+  plane.r2 = plane.r3.cross(plane.r1);
+  const double depth = DepthFromRadius(C_n, plane.r1, plane.r2, *m, 1.0);
   if (!(depth > 0.0)) return std::nullopt;
-  const Eigen::Vector3d X_c = depth * *m;
-  std::vector<Eigen::Vector2d> plane;
-  for (const Eigen::Vector3d& v : rays) {
-    const Eigen::Vector3d X = (r3.dot(X_c) / r3.dot(v)) * v - X_c;
-    plane.emplace_back(r1.dot(X), r2.dot(X));
-  }
+  plane.centre = depth * *m;
   return plane;
 }
 
-// Sweeps the sectors for dots at plane coordinates `plane` (units of R) and decodes.
-std::optional<RingMatch> SweepAndDecode(const std::vector<Eigen::Vector2d>& plane,
-                                        const RingDecoderOptions& options) {
-  std::vector<int> ring_of(plane.size(), -1);
+// The symbols read from the dots at plane coordinates `plane` (units of R): each dot near a
+// ring and a sector angle sets that slot's bit.
+struct DotReading {
+  RuneWord read{};
+  double phase = 0.0;                   // plane angle of sector 0
+  std::vector<int> ring_of, sector_of;  // per dot, -1 when on no slot
+};
+
+std::optional<DotReading> ReadDots(const std::vector<Eigen::Vector2d>& plane,
+                                   const RingDecoderOptions& options) {
+  DotReading reading;
+  reading.ring_of.assign(plane.size(), -1);
+  reading.sector_of.assign(plane.size(), -1);
   std::complex<double> phase_sum = 0.0;
   for (size_t i = 0; i < plane.size(); ++i) {
     const double radius = plane[i].norm();
     for (int j = 0; j < 3; ++j) {
-      if (std::abs(radius - kRuneRingFractions[j]) < options.radius_tolerance) ring_of[i] = j;
+      if (std::abs(radius - kRuneRingFractions[j]) < options.radius_tolerance) {
+        reading.ring_of[i] = j;
+      }
     }
-    if (ring_of[i] >= 0) {
+    if (reading.ring_of[i] >= 0) {
       phase_sum += std::polar(1.0, kRuneSectors * std::atan2(plane[i].y(), plane[i].x()));
     }
   }
   if (std::abs(phase_sum) == 0.0) return std::nullopt;
-  const double phase = std::arg(phase_sum) / kRuneSectors;
-  RuneWord read{};
-  std::vector<int> sector_of(plane.size(), -1);
+  reading.phase = std::arg(phase_sum) / kRuneSectors;
   for (size_t i = 0; i < plane.size(); ++i) {
-    if (ring_of[i] < 0) continue;
+    if (reading.ring_of[i] < 0) continue;
     const double position =
-        (std::atan2(plane[i].y(), plane[i].x()) - phase) * kRuneSectors / (2.0 * M_PI);
+        (std::atan2(plane[i].y(), plane[i].x()) - reading.phase) * kRuneSectors / (2.0 * M_PI);
     const double nearest = std::round(position);
     if (std::abs(position - nearest) > options.angle_tolerance) continue;
     const int sector = ((static_cast<int>(nearest) % kRuneSectors) + kRuneSectors) % kRuneSectors;
-    sector_of[i] = sector;
-    read[sector] |= static_cast<uint8_t>(4 >> ring_of[i]);
+    reading.sector_of[i] = sector;
+    reading.read[sector] |= static_cast<uint8_t>(4 >> reading.ring_of[i]);
   }
-  std::optional<RuneDecoded> decoded = RuneDecode(read);
-  if (!decoded) decoded = RuneDecodeMissingDots(read);
-  if (!decoded) return std::nullopt;
-  RingMatch match;
-  match.id = decoded->id;
-  match.mismatches = decoded->mismatches;
-  match.erasures = decoded->erasures;
-  const RuneWord& codeword = RuneCodeword(decoded->id);
-  for (size_t i = 0; i < plane.size(); ++i) {
-    if (sector_of[i] < 0) continue;
-    const int sector = (sector_of[i] + decoded->rotation) % kRuneSectors;
-    if (codeword[sector] & (4 >> ring_of[i])) {
-      match.dot_slots.emplace_back(static_cast<int>(i), 3 * sector + ring_of[i]);
+  return reading;
+}
+
+// Sweeps the slots (baselines.md, step 3): the symbols read from the image's grey level at
+// every slot centre, projected through the ring's plane (scale: units of R per plane unit),
+// against the paper inside and outside the rings and the ring's own dark level. A sector is
+// erased when one of its slots is outside the image, too near the threshold or on a ring
+// without contrast. This reads dots too small or too close to be told apart as blobs.
+RuneWord ReadSlots(const DotImage& image,
+                   const Camera& camera,
+                   const RingPlane& plane,
+                   double scale,
+                   double phase,
+                   const RingDecoderOptions& options) {
+  const cv::Mat& grey = image.smoothed;
+  const auto sample = [&](double radius, double angle) -> std::optional<double> {
+    const Eigen::Vector2d xy = radius / scale * Eigen::Vector2d(std::cos(angle), std::sin(angle));
+    const Eigen::Vector2d px = camera.ImgFromCam(plane.ToCamera(xy));
+    if (!(px.x() >= 1.0 && px.y() >= 1.0 && px.x() <= grey.cols - 2.0 &&
+          px.y() <= grey.rows - 2.0)) {
+      return std::nullopt;
+    }
+    return BilinearSample(grey.data, grey.cols, grey.rows, px);
+  };
+  const double sector_angle = 2.0 * M_PI / kRuneSectors;
+  std::vector<double> paper;
+  for (int s = 0; s < kRuneSectors; ++s) {
+    for (double radius : options.paper_radii) {
+      if (const std::optional<double> v = sample(radius, phase + (s + 0.5) * sector_angle)) {
+        paper.push_back(*v);
+      }
     }
   }
-  return match;
+  RuneWord read{};
+  if (paper.empty()) return read;
+  std::nth_element(paper.begin(), paper.begin() + paper.size() / 2, paper.end());
+  const double paper_level = paper[paper.size() / 2];
+  std::array<uint8_t, kRuneSectors> known{};  // bit r: ring r's slot was read
+  for (int r = 0; r < 3; ++r) {
+    std::array<std::optional<double>, kRuneSectors> level;
+    std::vector<double> seen;
+    for (int s = 0; s < kRuneSectors; ++s) {
+      level[s] = sample(kRuneRingFractions[r], phase + s * sector_angle);
+      if (level[s]) seen.push_back(*level[s]);
+    }
+    if (seen.size() < 4) continue;
+    // Every ring of a codeword is at least a quarter dots.
+    std::nth_element(seen.begin(), seen.begin() + seen.size() / 4, seen.end());
+    const double dark = seen[seen.size() / 4];
+    const double contrast = paper_level - dark;
+    if (contrast <
+        std::max(options.min_slot_contrast, options.slot_contrast_per_noise * image.noise)) {
+      continue;
+    }
+    for (int s = 0; s < kRuneSectors; ++s) {
+      if (!level[s]) continue;
+      const double t = (*level[s] - dark) / contrast;  // 0 dot, 1 paper
+      if (std::abs(t - 0.5) < options.slot_margin) continue;
+      known[s] |= static_cast<uint8_t>(4 >> r);
+      if (t < 0.5) read[s] |= static_cast<uint8_t>(4 >> r);
+    }
+  }
+  for (int s = 0; s < kRuneSectors; ++s) {
+    if (known[s] != 7) read[s] = 0;
+  }
+  return read;
+}
+
+// The better of the decodings of the dots and of the swept slots, or nullopt.
+std::optional<RuneDecoded> DecodeReadings(const RuneWord& dots, const RuneWord& slots) {
+  std::optional<RuneDecoded> from_dots = RuneDecode(dots);
+  if (!from_dots) from_dots = RuneDecodeMissingDots(dots);
+  const std::optional<RuneDecoded> from_slots = RuneDecode(slots);
+  if (!from_dots) return from_slots;
+  if (!from_slots) return from_dots;
+  const auto score = [](const RuneDecoded& d) { return 2 * d.mismatches + d.erasures; };
+  return score(*from_slots) < score(*from_dots) ? from_slots : from_dots;
 }
 
 }  // namespace
 
 std::optional<RingMatch> MatchRings(const std::vector<ImagedDot>& dots,
+                                    const DotImage& image,
                                     const Camera& camera,
                                     uint64_t seed,
                                     const RingDecoderOptions& options) {
@@ -202,18 +280,42 @@ std::optional<RingMatch> MatchRings(const std::vector<ImagedDot>& dots,
     if (!fit) continue;
     const Eigen::Matrix3d C_n = CanonicalConic(K.transpose() * fit->conic * K);
     for (const Eigen::Vector3d& normal : SingleCircleNormals(C_n)) {
-      const std::optional<std::vector<Eigen::Vector2d>> unit_plane = Rectify(C_n, normal, rays);
-      if (!unit_plane) continue;
+      const std::optional<RingPlane> ring_plane = RingPlaneFor(C_n, normal);
+      if (!ring_plane) continue;
       for (double found_ring : kRuneRingFractions) {
-        std::vector<Eigen::Vector2d> plane = *unit_plane;
-        for (Eigen::Vector2d& p : plane) p *= found_ring;
-        std::optional<RingMatch> match = SweepAndDecode(plane, options);
-        if (!match) continue;
-        const int score = 2 * match->mismatches + match->erasures;
-        if (!best || score < 2 * best->mismatches + best->erasures) {
-          match->ring_dots = static_cast<int>(ring.size());
-          best = match;
+        std::vector<Eigen::Vector2d> plane;
+        for (const Eigen::Vector3d& ray : rays) {
+          plane.push_back(found_ring * ring_plane->FromRay(ray));
         }
+        const std::optional<DotReading> reading = ReadDots(plane, options);
+        if (!reading) continue;
+        const std::optional<RuneDecoded> decoded = DecodeReadings(
+            reading->read,
+            ReadSlots(image, camera, *ring_plane, found_ring, reading->phase, options));
+        if (!decoded) continue;
+        const int score = 2 * decoded->mismatches + decoded->erasures;
+        if (best && score >= 2 * best->mismatches + best->erasures) continue;
+        RingMatch match;
+        match.id = decoded->id;
+        match.mismatches = decoded->mismatches;
+        match.erasures = decoded->erasures;
+        match.ring_dots = static_cast<int>(ring.size());
+        const RuneWord& codeword = RuneCodeword(decoded->id);
+        for (size_t i = 0; i < plane.size(); ++i) {
+          if (reading->sector_of[i] < 0) continue;
+          const int sector = (reading->sector_of[i] + decoded->rotation) % kRuneSectors;
+          const int r = reading->ring_of[i];
+          // The imaged dot's semi-major axis, f × radius / depth (plane units are the found
+          // ring's radius); a blob much larger is dots merged, centred between them.
+          const double dot_radius = kRuneRingFractions[r] / kRuneDotRadiusRatio / found_ring;
+          const double semi_major_px =
+              K(0, 0) * dot_radius / ring_plane->ToCamera(plane[i] / found_ring).z();
+          if ((codeword[sector] & (4 >> r)) &&
+              dots[i].semi_major_px <= options.max_dot_growth * semi_major_px) {
+            match.dot_slots.emplace_back(static_cast<int>(i), 3 * sector + r);
+          }
+        }
+        best = std::move(match);
       }
     }
   }

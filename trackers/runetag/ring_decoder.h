@@ -9,6 +9,7 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <array>
 #include <optional>
 #include <utility>
 #include <vector>
@@ -25,6 +26,17 @@ struct RingDecoderOptions {
   int min_ring_dots = 8;
   double radius_tolerance = 0.04;  // |radius / R - ring fraction| for a dot to be on a ring
   double angle_tolerance = 0.3;    // |angle - sector angle| in sector widths
+  // Sweeping the slots: the paper level is sampled at these radii (units of R, clear of the
+  // dots); a ring is read when its dark level is below the paper by max(min_slot_contrast,
+  // slot_contrast_per_noise × the noise); a slot within slot_margin (fraction of that
+  // contrast) of the midway level is erased.
+  std::array<double, 2> paper_radii = {0.5, 1.15};
+  double min_slot_contrast = 20.0;
+  double slot_contrast_per_noise = 4.0;
+  double slot_margin = 0.1;
+  // A dot whose semi-major axis exceeds its slot's imaged dot's by this factor is merged
+  // with a neighbour (the threshold bridged their gap) and is not matched for the pose.
+  double max_dot_growth = 1.5;
 };
 
 struct RingMatch {
@@ -39,6 +51,7 @@ struct RingMatch {
 
 // The best-decoding ring hypothesis, or nullopt. seed makes RANSAC deterministic.
 std::optional<RingMatch> MatchRings(const std::vector<ImagedDot>& dots,
+                                    const DotImage& image,
                                     const Camera& camera,
                                     uint64_t seed,
                                     const RingDecoderOptions& options);

@@ -19,12 +19,13 @@ TrackResult RuneTagTracker::Track(const Observation& obs) {
   if (!CanTrack(marker)) return CannotTrack("the runetag tracker", marker);
   diagnostics_ = {};
   GreyImage grey(*obs.image);
-  const std::vector<ImagedDot> dots =
-      DetectDots(grey.data(), grey.width(), grey.height(), options_.dots);
+  const DotImage image =
+      SmoothForDots(cv::Mat(grey.height(), grey.width(), CV_8UC1, grey.data()), options_.dots);
+  const std::vector<ImagedDot> dots = DetectDots(image, options_.dots);
   diagnostics_.dots = static_cast<int>(dots.size());
   TrackResult result;
-  const std::optional<RingMatch> match =
-      MatchRings(dots, *obs.camera, static_cast<uint64_t>(options_.ransac_seed), options_.rings);
+  const std::optional<RingMatch> match = MatchRings(
+      dots, image, *obs.camera, static_cast<uint64_t>(options_.ransac_seed), options_.rings);
   if (!match) return result;  // not_detected
   diagnostics_.ring_dots = match->ring_dots;
   diagnostics_.matched = static_cast<int>(match->dot_slots.size());
@@ -85,6 +86,10 @@ std::vector<std::pair<std::string, std::string>> RuneTagTracker::Parameters() co
           {"ring_tolerance_px", NumberText(o.rings.ring_tolerance_px)},
           {"radius_tolerance", NumberText(o.rings.radius_tolerance)},
           {"angle_tolerance", NumberText(o.rings.angle_tolerance)},
+          {"min_slot_contrast", NumberText(o.rings.min_slot_contrast)},
+          {"slot_contrast_per_noise", NumberText(o.rings.slot_contrast_per_noise)},
+          {"slot_margin", NumberText(o.rings.slot_margin)},
+          {"max_dot_growth", NumberText(o.rings.max_dot_growth)},
           {"max_ransac_iterations", NumberText(o.rings.max_ransac_iterations)},
           {"ransac_reprojection_px", NumberText(o.pose.ransac_reprojection_px)},
           {"refinement_passes", NumberText(o.pose.refinement_passes)},
@@ -110,6 +115,13 @@ bool RuneTagOptions::IsValid(std::string* error) const {
                rings.angle_tolerance > 0.0 && rings.angle_tolerance < 0.5)) {
     msg << "ring_tolerance_px=" << rings.ring_tolerance_px
         << " and radius_tolerance must be > 0, angle_tolerance in (0, 0.5)";
+  } else if (!(rings.min_slot_contrast >= 0.0 && rings.slot_contrast_per_noise >= 0.0)) {
+    msg << "min_slot_contrast=" << rings.min_slot_contrast
+        << " and slot_contrast_per_noise must be >= 0";
+  } else if (!(rings.slot_margin >= 0.0 && rings.slot_margin < 0.5)) {
+    msg << "slot_margin=" << rings.slot_margin << " must be in [0, 0.5)";
+  } else if (!(rings.max_dot_growth >= 1.0)) {
+    msg << "max_dot_growth=" << rings.max_dot_growth << " must be >= 1";
   } else if (rings.max_ransac_iterations < 1 || pose.ransac_iterations < 1 ||
              pose.refinement_passes < 0 || !(pose.ransac_reprojection_px > 0.0)) {
     msg << "max_ransac_iterations=" << rings.max_ransac_iterations
@@ -139,6 +151,11 @@ RuneTagOptions RuneTagOptions::FromYaml(const YamlMap& map) {
   o.rings.ring_tolerance_px = map.GetOr<double>("ring_tolerance_px", o.rings.ring_tolerance_px);
   o.rings.radius_tolerance = map.GetOr<double>("radius_tolerance", o.rings.radius_tolerance);
   o.rings.angle_tolerance = map.GetOr<double>("angle_tolerance", o.rings.angle_tolerance);
+  o.rings.min_slot_contrast = map.GetOr<double>("min_slot_contrast", o.rings.min_slot_contrast);
+  o.rings.slot_contrast_per_noise =
+      map.GetOr<double>("slot_contrast_per_noise", o.rings.slot_contrast_per_noise);
+  o.rings.slot_margin = map.GetOr<double>("slot_margin", o.rings.slot_margin);
+  o.rings.max_dot_growth = map.GetOr<double>("max_dot_growth", o.rings.max_dot_growth);
   o.rings.max_ransac_iterations =
       map.GetOr<int>("max_ransac_iterations", o.rings.max_ransac_iterations);
   o.pose.ransac_reprojection_px =

@@ -26,9 +26,7 @@ struct RuneTagOptions {
   int ransac_seed = 1;  // both RANSACs restart from this seed every frame (reproducible)
 
   bool IsValid(std::string* error) const;
-  // Flat keys: smoothing_per_noise, max_smoothing_px, block_size_px, threshold_offset, min_area_px,
-  // max_area_px, min_axis_ratio, max_fit_error, ring_tolerance_px, radius_tolerance,
-  // angle_tolerance, max_ransac_iterations, ransac_reprojection_px, refinement_passes, ransac_seed.
+  // Flat keys named as the fields of the options structs, the same keys Parameters() lists.
   // Throws ConfigError naming the file and key.
   static RuneTagOptions FromYaml(const YamlMap& map);
 };

@@ -35,14 +35,13 @@ TEST_F(RuneTagTrackerTest, CleanCameraCentresAtHalfAMetreOverTilt) {
   }
 }
 
-// Farther out the 2 mm inner dots shrink to 1.6 px (0.75 m) and 1.2 px (1 m) across, 0.9 and
-// 0.6 px apart: merged dots must be split and small ones kept. Position within 1 % of the
-// distance (measured 0.2-6 mm; frontal views are the least accurate). Beyond about 1.1 m
-// the inner ring is lost (README).
-TEST_F(RuneTagTrackerTest, CleanMarkersDecodeOutToOneMetre) {
+// Farther out the inner dots (2 mm radius) shrink to 1.6 px (0.75 m) and 0.8 px (1.5 m), 0.46
+// px apart at 1.5 m: the threshold merges them, and the code is read by sweeping the slots.
+// Tilted views: within 1 % of the distance and 1° (measured at most 0.65 %).
+TEST_F(RuneTagTrackerTest, TiltedMarkersDecodeOutToOneAndAHalfMetres) {
   RuneTagTracker tracker;
-  for (double distance : {0.75, 1.0}) {
-    for (double tilt : {0.0, 30.0, 50.0}) {
+  for (double distance : {0.75, 1.0, 1.25, 1.5}) {
+    for (double tilt : {30.0, 60.0}) {
       SCOPED_TRACE("d=" + std::to_string(distance) + " tilt=" + std::to_string(tilt));
       const Rigid3 truth = TiltedView(distance, tilt, 17.0);
       const TrackedFrame t = RenderAndTrack(&tracker, marker_, marker_, truth, 0.0, 3);
@@ -50,6 +49,21 @@ TEST_F(RuneTagTrackerTest, CleanMarkersDecodeOutToOneMetre) {
       EXPECT_LE(PositionError(t.result.hypotheses[0], truth), 0.01 * distance);
       EXPECT_LE(RotationErrorDeg(t.result.hypotheses[0], truth), 1.0);
     }
+  }
+}
+
+// Face-on, a marker 40-80 px across barely shows which way it is tilted (at 1.5 m a 3° tilt
+// moves the outer dots by 0.04 px), so the camera centre errs sideways along the tilt:
+// measured 0.3 % of the distance at 0.75 m, 3.7 % at 1.25 m and 5.6 % at 1.5 m. The sweeps'
+// success criterion, 10 % of the distance (experiments.md), must hold.
+TEST_F(RuneTagTrackerTest, FaceOnMarkersDecodeOutToOneAndAHalfMetres) {
+  RuneTagTracker tracker;
+  for (double distance : {0.75, 1.0, 1.25, 1.5}) {
+    SCOPED_TRACE("d=" + std::to_string(distance));
+    const Rigid3 truth = TiltedView(distance, 0.0, 17.0);
+    const TrackedFrame t = RenderAndTrack(&tracker, marker_, marker_, truth, 0.0, 3);
+    ASSERT_EQ(t.result.status, TrackStatus::kOk);
+    EXPECT_LE(PositionError(t.result.hypotheses[0], truth), 0.1 * distance);
   }
 }
 
@@ -123,6 +137,14 @@ TEST(RuneTagOptions, ErrorsNameTheKey) {
   options.dots.block_size_px = 128;
   EXPECT_FALSE(options.IsValid(&error));
   EXPECT_NE(error.find("block_size_px"), std::string::npos);
+  options = {};
+  options.rings.slot_margin = 0.5;
+  EXPECT_FALSE(options.IsValid(&error));
+  EXPECT_EQ(error.rfind("slot_margin=", 0), 0u);
+  options = {};
+  options.rings.max_dot_growth = 0.9;
+  EXPECT_FALSE(options.IsValid(&error));
+  EXPECT_EQ(error.rfind("max_dot_growth=", 0), 0u);
   EXPECT_TRUE(
       MakeTracker("runetag", nullptr)->CanTrack(LoadMarkerYaml("scenarios/markers/runetag.yaml")));
 }

@@ -1,0 +1,18 @@
+#include "trackers/bilinear_sample.h"
+
+#include <algorithm>
+#include <cstddef>
+
+namespace markerbench {
+
+double BilinearSample(const uint8_t* grey, int width, int height, const Eigen::Vector2d& p) {
+  const double x = std::clamp(p.x(), 0.0, width - 1.001);
+  const double y = std::clamp(p.y(), 0.0, height - 1.001);
+  const int x0 = static_cast<int>(x), y0 = static_cast<int>(y);
+  const double fx = x - x0, fy = y - y0;
+  const uint8_t* row = grey + static_cast<size_t>(y0) * width + x0;
+  return (1 - fy) * ((1 - fx) * row[0] + fx * row[1]) +
+         fy * ((1 - fx) * row[width] + fx * row[width + 1]);
+}
+
+}  // namespace markerbench
