@@ -38,6 +38,10 @@ std::optional<Eigen::Matrix3d> ConicThrough(const std::array<Eigen::Vector2d, 5>
   return CanonicalConic(C);
 }
 
+// A dot's moment-ellipse area over π: steadier than its pixel count, which for a dot of
+// radius 1.2 px ranges over 2-10 px^2 with its sub-pixel position.
+double MomentArea(const ImagedDot& dot) { return dot.semi_major_px * dot.semi_minor_px; }
+
 // Whether inlier sets a and b (sorted) share more than half of the smaller one.
 bool Overlap(const std::vector<int>& a, const std::vector<int>& b) {
   std::vector<int> common;
@@ -61,17 +65,31 @@ std::vector<std::vector<int>> RingCandidates(const std::vector<ImagedDot>& dots,
   for (const ImagedDot& d : dots) scale += (d.center_px - origin).norm() / n;
   if (!(scale > 0.0)) return candidates;
 
+  // Samples come from dots with a neighbour within options.neighbour_reach of their radii: a
+  // marker's dots are 2π × kRuneDotRadiusRatio / 43 = 2.6 radii apart along a ring and 3-4.4
+  // across rings, while noise blobs lie scattered.
+  std::vector<int> pool;
+  for (int i = 0; i < n; ++i) {
+    const double reach = options.neighbour_reach * std::max(dots[i].semi_major_px, 1.0);
+    for (int j = 0; j < n; ++j) {
+      if (j != i && (dots[j].center_px - dots[i].center_px).squaredNorm() < reach * reach) {
+        pool.push_back(i);
+        break;
+      }
+    }
+  }
+  if (static_cast<int>(pool.size()) < options.min_ring_dots) return candidates;
   Rng rng(seed);
   std::vector<int> inliers, similar;
   int iterations = options.max_ransac_iterations;
   for (int it = 0; it < iterations; ++it) {
     // A seed dot, then four of similar size (dots of one ring are alike) within reach: a
     // ring's diameter is 2 × kRuneDotRadiusRatio dot radii, with a margin for perspective.
-    const int first = static_cast<int>(rng.NextU64() % static_cast<uint64_t>(n));
+    const int first = pool[rng.NextU64() % pool.size()];
     const double reach = 2.5 * kRuneDotRadiusRatio * std::max(dots[first].semi_major_px, 1.0);
     similar.clear();
-    for (int j = 0; j < n; ++j) {
-      const double ratio = dots[j].area_px / dots[first].area_px;
+    for (int j : pool) {
+      const double ratio = MomentArea(dots[j]) / MomentArea(dots[first]);
       if (j != first && ratio > 0.5 && ratio < 2.0 &&
           (dots[j].center_px - dots[first].center_px).squaredNorm() < reach * reach) {
         similar.push_back(j);
@@ -88,9 +106,11 @@ std::vector<std::vector<int>> RingCandidates(const std::vector<ImagedDot>& dots,
     const std::optional<Eigen::Matrix3d> C = ConicThrough(sample, origin, scale);
     if (!C) continue;
     inliers.clear();
+    const double tolerance = std::min(options.ring_tolerance_px,
+                                      options.ring_tolerance_radii * dots[first].semi_major_px);
     for (int j = 0; j < n; ++j) {
       const Eigen::Vector2d& p = dots[j].center_px;
-      if (std::abs(PndResidual<double>(*C, p.x(), p.y())) < options.ring_tolerance_px) {
+      if (std::abs(PndResidual<double>(*C, p.x(), p.y())) < tolerance) {
         inliers.push_back(j);
       }
     }

@@ -21,9 +21,13 @@ namespace markerbench {
 
 struct RingDecoderOptions {
   int max_ransac_iterations = 1000;
-  int ring_candidates = 3;         // distinct RANSAC conics tried, most inliers first
-  double ring_tolerance_px = 1.0;  // PND distance of a dot centre to the ring conic
+  int ring_candidates = 3;  // distinct RANSAC conics tried, most inliers first
+  // PND distance of a dot centre to the ring conic: at most ring_tolerance_px, and at most
+  // ring_tolerance_radii dot radii, since rings are only 3 outer-dot radii apart (R / 6).
+  double ring_tolerance_px = 1.0;
+  double ring_tolerance_radii = 0.7;
   int min_ring_dots = 8;
+  double neighbour_reach = 5.0;    // RANSAC samples dots with a neighbour within this many radii
   double radius_tolerance = 0.04;  // |radius / R - ring fraction| for a dot to be on a ring
   double angle_tolerance = 0.3;    // |angle - sector angle| in sector widths
   // Sweeping the slots: the paper level is sampled at these radii (units of R, clear of the

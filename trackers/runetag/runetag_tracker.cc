@@ -84,6 +84,8 @@ std::vector<std::pair<std::string, std::string>> RuneTagTracker::Parameters() co
           {"contrast_per_noise", NumberText(o.dots.contrast_per_noise)},
           {"max_fit_error", NumberText(o.dots.max_fit_error)},
           {"ring_tolerance_px", NumberText(o.rings.ring_tolerance_px)},
+          {"ring_tolerance_radii", NumberText(o.rings.ring_tolerance_radii)},
+          {"neighbour_reach", NumberText(o.rings.neighbour_reach)},
           {"radius_tolerance", NumberText(o.rings.radius_tolerance)},
           {"angle_tolerance", NumberText(o.rings.angle_tolerance)},
           {"min_slot_contrast", NumberText(o.rings.min_slot_contrast)},
@@ -115,6 +117,9 @@ bool RuneTagOptions::IsValid(std::string* error) const {
                rings.angle_tolerance > 0.0 && rings.angle_tolerance < 0.5)) {
     msg << "ring_tolerance_px=" << rings.ring_tolerance_px
         << " and radius_tolerance must be > 0, angle_tolerance in (0, 0.5)";
+  } else if (!(rings.ring_tolerance_radii > 0.0 && rings.neighbour_reach > 0.0)) {
+    msg << "ring_tolerance_radii=" << rings.ring_tolerance_radii
+        << " and neighbour_reach must be > 0";
   } else if (!(rings.min_slot_contrast >= 0.0 && rings.slot_contrast_per_noise >= 0.0)) {
     msg << "min_slot_contrast=" << rings.min_slot_contrast
         << " and slot_contrast_per_noise must be >= 0";
@@ -149,6 +154,9 @@ RuneTagOptions RuneTagOptions::FromYaml(const YamlMap& map) {
   o.dots.contrast_per_noise = map.GetOr<double>("contrast_per_noise", o.dots.contrast_per_noise);
   o.dots.max_fit_error = map.GetOr<double>("max_fit_error", o.dots.max_fit_error);
   o.rings.ring_tolerance_px = map.GetOr<double>("ring_tolerance_px", o.rings.ring_tolerance_px);
+  o.rings.ring_tolerance_radii =
+      map.GetOr<double>("ring_tolerance_radii", o.rings.ring_tolerance_radii);
+  o.rings.neighbour_reach = map.GetOr<double>("neighbour_reach", o.rings.neighbour_reach);
   o.rings.radius_tolerance = map.GetOr<double>("radius_tolerance", o.rings.radius_tolerance);
   o.rings.angle_tolerance = map.GetOr<double>("angle_tolerance", o.rings.angle_tolerance);
   o.rings.min_slot_contrast = map.GetOr<double>("min_slot_contrast", o.rings.min_slot_contrast);
