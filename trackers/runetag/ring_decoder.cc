@@ -126,8 +126,10 @@ std::vector<std::vector<int>> RingCandidates(const std::vector<ImagedDot>& dots,
                                    [&](const auto& c) { return c.size() < inliers.size(); }),
                       inliers);
     if (static_cast<int>(candidates.size()) > options.ring_candidates) candidates.pop_back();
-    // Adaptive stop at 99.9 % confidence with the best inlier ratio so far.
-    const double w = static_cast<double>(candidates.front().size()) / n;
+    // Adaptive stop at 99.9 % confidence with the best inlier ratio so far (of the pool the
+    // samples are drawn from; at most 1).
+    const double w = std::min(
+        1.0, static_cast<double>(candidates.front().size()) / static_cast<double>(pool.size()));
     const double needed = std::log(1e-3) / std::log(1.0 - std::pow(w, 4.0));
     iterations = std::min(options.max_ransac_iterations, static_cast<int>(needed) + 1);
   }
@@ -336,6 +338,7 @@ std::optional<RingMatch> MatchRings(const std::vector<ImagedDot>& dots,
           }
         }
         best = std::move(match);
+        if (score == 0) return best;  // no later hypothesis can score lower
       }
     }
   }
