@@ -207,7 +207,7 @@ std::optional<DotReading> ReadDots(const std::vector<Eigen::Vector2d>& plane,
 }
 
 // Sweeps the slots (baselines.md, step 3): the symbols read from the image's grey level at
-// every slot centre, projected through the ring's plane (scale: units of R per plane unit),
+// every slot centre, projected through the ring's plane (whose unit is scale × R),
 // against the paper inside and outside the rings and the ring's own dark level. A sector is
 // erased when one of its slots is outside the image, too near the threshold or on a ring
 // without contrast. This reads dots too small or too close to be told apart as blobs.

@@ -2,10 +2,12 @@
 // rings, rectify the plane with K in both orientations the ring allows (circle-method.md
 // §4.7), fit the three rings, sweep the 43 sectors and decode.
 //
-// Deliberate difference: the original rectifies with the conic of each dot of each pair of
+// Deliberate differences: the original rectifies with the conic of each dot of each pair of
 // dots; we rectify with the conic of a whole ring, found by RANSAC over the dot centres (a
 // 5-point conic through dots of similar size, scored by the PND distance of all centres).
-// A ring 20-60 dots long fixes the plane orientation far better than one 2-6 px dot.
+// A ring 20-60 dots long fixes the plane orientation far better than one 2-6 px dot. And
+// besides the dots found, we read every slot's grey level through the rectified plane, which
+// reads dots that the threshold merged or lost; the better of the two readings is decoded.
 #pragma once
 
 #include <Eigen/Core>
