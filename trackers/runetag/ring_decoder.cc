@@ -271,6 +271,9 @@ RuneWord ReadSlots(const DotImage& image,
   return read;
 }
 
+// How far a read is from its codeword: a mismatch costs what two erasures do (RuneDecode).
+int Cost(int mismatches, int erasures) { return 2 * mismatches + erasures; }
+
 // The better of the decodings of the dots and of the swept slots, or nullopt.
 std::optional<RuneDecoded> DecodeReadings(const RuneWord& dots, const RuneWord& slots) {
   std::optional<RuneDecoded> from_dots = RuneDecode(dots);
@@ -278,8 +281,10 @@ std::optional<RuneDecoded> DecodeReadings(const RuneWord& dots, const RuneWord& 
   const std::optional<RuneDecoded> from_slots = RuneDecode(slots);
   if (!from_dots) return from_slots;
   if (!from_slots) return from_dots;
-  const auto score = [](const RuneDecoded& d) { return 2 * d.mismatches + d.erasures; };
-  return score(*from_slots) < score(*from_dots) ? from_slots : from_dots;
+  return Cost(from_slots->mismatches, from_slots->erasures) <
+                 Cost(from_dots->mismatches, from_dots->erasures)
+             ? from_slots
+             : from_dots;
 }
 
 }  // namespace
@@ -315,8 +320,8 @@ std::optional<RingMatch> MatchRings(const std::vector<ImagedDot>& dots,
             reading->read,
             ReadSlots(image, camera, *ring_plane, found_ring, reading->phase, options));
         if (!decoded) continue;
-        const int score = 2 * decoded->mismatches + decoded->erasures;
-        if (best && score >= 2 * best->mismatches + best->erasures) continue;
+        const int cost = Cost(decoded->mismatches, decoded->erasures);
+        if (best && cost >= Cost(best->mismatches, best->erasures)) continue;
         RingMatch match;
         match.id = decoded->id;
         match.mismatches = decoded->mismatches;
@@ -338,7 +343,7 @@ std::optional<RingMatch> MatchRings(const std::vector<ImagedDot>& dots,
           }
         }
         best = std::move(match);
-        if (score == 0) return best;  // no later hypothesis can score lower
+        if (cost == 0) return best;  // no later hypothesis can cost less
       }
     }
   }
