@@ -1,16 +1,21 @@
 // Frames for tracker benchmarks: 640x480, the marker at 0.6 m (tilt 0-40°, any roll),
 // imnoise σ² = 0.02, rendered once before timing (issue 4's protocol); RGB for colour markers.
-// And the timing loop the tracker benchmarks share.
+// And the timing loop the tracker benchmarks share, with a factory tracker on those frames.
 #pragma once
 
 #include <benchmark/benchmark.h>
+#include <yaml-cpp/yaml.h>
 
+#include <opencv2/core/utility.hpp>
 #include <vector>
 
+#include "core/marker_yaml.h"
 #include "core/random.h"
+#include "core/yaml_reader.h"
 #include "renderer/render_frame.h"
 #include "renderer/test_scenes.h"
 #include "trackers/tracker.h"
+#include "trackers/tracker_factory.h"
 
 namespace markerbench {
 
@@ -46,6 +51,20 @@ inline void TimeIndependentFrames(benchmark::State& state,
         tracker.Track({&frames[i++ % frames.size()], &camera, &marker}).status == TrackStatus::kOk;
   }
   state.counters["ok_fraction"] = static_cast<double>(ok) / static_cast<double>(i);
+}
+
+// The factory's tracker `name` with `options_yaml`, timed on 16 frames of the marker file
+// `marker_yaml` (a path from the project root) on one thread: OpenCV's own threads are off.
+inline void TimeFactoryTracker(benchmark::State& state,
+                               const char* marker_yaml,
+                               const char* name,
+                               const char* options_yaml = "{}") {
+  cv::setNumThreads(1);
+  const MarkerSpec marker = LoadMarkerYaml(marker_yaml);
+  const std::vector<Image8> frames = BenchmarkFrames(marker, 16);
+  const YamlMap options(YAML::Load(options_yaml), "benchmark options", "");
+  const std::unique_ptr<Tracker> tracker = MakeTracker(name, &options);
+  TimeIndependentFrames(state, *tracker, marker, frames);
 }
 
 }  // namespace markerbench
