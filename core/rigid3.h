@@ -33,6 +33,15 @@ inline Eigen::Vector3d CameraCenterInMarker(const Rigid3& cam_from_marker) {
   return -cam_from_marker.rotation.transpose() * cam_from_marker.translation;
 }
 
+// [r1 r2 t]: the homography from the marker plane's points (X, Y, 1) (z = 0) to their rays
+// (x, y, z) in the camera frame; K times it maps them to pixels (circle-method.md §0).
+inline Eigen::Matrix3d RayFromPlane(const Rigid3& cam_from_marker) {
+  Eigen::Matrix3d H;
+  H << cam_from_marker.rotation.col(0), cam_from_marker.rotation.col(1),
+      cam_from_marker.translation;
+  return H;
+}
+
 // Angle of the relative rotation between two rotations, in radians, in [0, π].
 double RotationAngleBetween(const Eigen::Matrix3d& a, const Eigen::Matrix3d& b);
 

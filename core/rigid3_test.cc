@@ -40,6 +40,18 @@ TEST(Rigid3, CameraCenterMapsToCameraOrigin) {
   EXPECT_LE((cam_from_marker * center).norm(), kRoundTripTol);
 }
 
+TEST(Rigid3, RayFromPlaneMapsPlanePointsAndBack) {
+  const Rigid3 cam_from_marker = RandomRigid(8);
+  const Eigen::Matrix3d H = RayFromPlane(cam_from_marker);
+  for (const Eigen::Vector2d& xy : {Eigen::Vector2d(0.0, 0.0), Eigen::Vector2d(0.3, -1.2)}) {
+    EXPECT_LE(
+        (H * xy.homogeneous() - cam_from_marker * Eigen::Vector3d(xy.x(), xy.y(), 0.0)).norm(),
+        kRoundTripTol);
+    const Eigen::Vector3d ray = 3.0 * (H * xy.homogeneous());  // any point of the ray
+    EXPECT_LE(((H.inverse() * ray).hnormalized() - xy).norm(), kRoundTripTol);
+  }
+}
+
 TEST(Rigid3, RotationAngleBetween) {
   const Eigen::Matrix3d a = RandomRigid(9).rotation;
   const Eigen::Matrix3d b =

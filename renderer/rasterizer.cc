@@ -49,10 +49,7 @@ std::pair<double, double> SingularValues(const Eigen::Matrix2d& m) {
 class PlaneMapper {
  public:
   PlaneMapper(const Camera& camera, const Rigid3& cam_from_marker) : camera_(camera) {
-    Eigen::Matrix3d h_normalized;  // plane (X, Y, 1) → normalized ray; [r1 r2 t]
-    h_normalized << cam_from_marker.rotation.col(0), cam_from_marker.rotation.col(1),
-        cam_from_marker.translation;
-    plane_from_ray_ = h_normalized.inverse();
+    plane_from_ray_ = RayFromPlane(cam_from_marker).inverse();
     distorted_ = camera.HasDistortion();
   }
 

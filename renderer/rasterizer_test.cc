@@ -46,9 +46,7 @@ TEST(Rasterizer, ObliqueDiskInkMatchesProjectedEllipse) {
     const RasterResult raster = Rasterize(scene, 1);
 
     // Projected conic C_img = H⁻ᵀ diag(1, 1, -r²) H⁻¹ with H = K [r1 r2 t].
-    Eigen::Matrix3d H;
-    H << pose.rotation.col(0), pose.rotation.col(1), pose.translation;
-    H = scene.camera.K() * H;
+    const Eigen::Matrix3d H = scene.camera.K() * RayFromPlane(pose);
     const Eigen::Matrix3d Hinv = H.inverse();
     const Eigen::Matrix3d C =
         Hinv.transpose() * Eigen::Vector3d(1, 1, -0.05 * 0.05).asDiagonal() * Hinv;

@@ -11,13 +11,6 @@
 namespace markerbench {
 namespace {
 
-// Plane-to-pixel homography H = K [r1 r2 t] (circle-method.md §0).
-Eigen::Matrix3d Homography(const Eigen::Matrix3d& K, const Rigid3& cam_from_paper) {
-  Eigen::Matrix3d Rt;
-  Rt << cam_from_paper.rotation.col(0), cam_from_paper.rotation.col(1), cam_from_paper.translation;
-  return K * Rt;
-}
-
 Eigen::Vector2d Undistorted(const Camera& camera, const Eigen::Vector2d& px) {
   const Eigen::Vector3d ray = camera.CamFromImg(px);
   return {camera.fx * ray.x() + camera.cx, camera.fy * ray.y() + camera.cy};
@@ -117,7 +110,7 @@ TrackResult CircleTracker::Track(const Observation& observation) {
     // Predicted ellipses (and the marker's points) from the previous pose, grown by a margin.
     const Camera& camera = *observation.camera;
     const Rigid3 previous = *previous_cam_from_paper_;
-    const Eigen::Matrix3d H = Homography(camera.K(), previous);
+    const Eigen::Matrix3d H = camera.K() * RayFromPlane(previous);
     cv::Rect2d box;
     std::vector<Eigen::Matrix3d> predicted;
     for (size_t i = 0; i < geometry->centers.size(); ++i) {
@@ -253,7 +246,7 @@ TrackResult CircleTracker::TrackIn(const Observation& observation,
   }
 
   // Acceptance: the marker in front of the camera, and its projected circles on the edges.
-  const Eigen::Matrix3d H = Homography(K, cam_from_paper);
+  const Eigen::Matrix3d H = K * RayFromPlane(cam_from_paper);
   double sum = 0.0;
   size_t count = 0;
   for (const RefinementCircle& circle : problem.circles) {

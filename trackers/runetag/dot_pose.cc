@@ -143,9 +143,7 @@ std::optional<DotPose> EstimateDotPose(const std::vector<Eigen::Vector2d>& cente
   // latter by removing that offset from the ellipse centre measured.
   for (int pass = 0; pass < options.refinement_passes; ++pass) {
     const Rigid3 pose = PoseFromVectors(rvec, tvec);
-    Eigen::Matrix3d H;
-    H << pose.rotation.col(0), pose.rotation.col(1), pose.translation;
-    H = K * H;
+    const Eigen::Matrix3d H = K * RayFromPlane(pose);
     corrected.clear();
     for (size_t k = 0; k < inlier_index.size(); ++k) {
       const size_t i = static_cast<size_t>(inlier_index[k]);
