@@ -29,7 +29,11 @@ const std::vector<std::string>& Columns() {
                                   "rotation_error_deg",
                                   "best_position_error_m",
                                   "best_rotation_error_deg",
-                                  "flip"};
+                                  "flip",
+                                  "crlb_position_m",
+                                  "crlb_position_med_m",
+                                  "crlb_rotation_deg",
+                                  "crlb_rotation_med_deg"};
     for (const char* p : kPoseColumns) c.push_back(std::string("gt_") + p);
     for (const char* p : kPoseColumns) c.push_back(p);
     c.push_back("message");
@@ -109,7 +113,10 @@ std::string FormatFrameRow(const FrameRow& r) {
       std::to_string(r.hypotheses) + ',' + NumberTextOrEmpty(r.errors.position_error_m) + ',' +
       NumberTextOrEmpty(r.errors.rotation_error_deg) + ',' +
       NumberTextOrEmpty(r.errors.best_position_error_m) + ',' +
-      NumberTextOrEmpty(r.errors.best_rotation_error_deg) + ',' + (r.errors.flip ? "1" : "0");
+      NumberTextOrEmpty(r.errors.best_rotation_error_deg) + ',' + (r.errors.flip ? "1" : "0") +
+      ',' + NumberTextOrEmpty(r.crlb_position_m) + ',' + NumberTextOrEmpty(r.crlb_position_med_m) +
+      ',' + NumberTextOrEmpty(r.crlb_rotation_deg) + ',' +
+      NumberTextOrEmpty(r.crlb_rotation_med_deg);
   out += PoseFields(r.truth) + (r.estimate ? PoseFields(*r.estimate) : std::string(12, ','));
   return out + ',' + CsvField(r.message) + '\n';
 }
@@ -140,9 +147,13 @@ FrameRow ParseFrameRow(const std::string& line) {
   r.errors.best_position_error_m = ParseNumber(f, 14, true);
   r.errors.best_rotation_error_deg = ParseNumber(f, 15, true);
   r.errors.flip = f[16] == "1";
-  r.truth = ParsePose(f, 17);
-  if (!f[29].empty()) r.estimate = ParsePose(f, 29);
-  r.message = f[41];
+  r.crlb_position_m = ParseNumber(f, 17, true);
+  r.crlb_position_med_m = ParseNumber(f, 18, true);
+  r.crlb_rotation_deg = ParseNumber(f, 19, true);
+  r.crlb_rotation_med_deg = ParseNumber(f, 20, true);
+  r.truth = ParsePose(f, 21);
+  if (!f[33].empty()) r.estimate = ParsePose(f, 33);
+  r.message = f[45];
   return r;
 }
 

@@ -3,6 +3,7 @@
 // and thread counts; the measured call times go to timing.csv (frame, tracker, time_ms).
 #pragma once
 
+#include <cmath>
 #include <cstdint>
 #include <optional>
 #include <string>
@@ -28,6 +29,13 @@ struct FrameRow {
   TrackStatus status = TrackStatus::kNotDetected;
   int hypotheses = 0;
   PoseErrors errors{};
+  // The frame's Cramér-Rao bound (renderer/pose_crlb.h), the same for every tracker: RMS and
+  // median camera-centre error, RMS and median rotation error of an efficient estimator.
+  // NaN when the scenario turns the bound off, +inf when the pose is unobservable.
+  double crlb_position_m = NAN;
+  double crlb_position_med_m = NAN;
+  double crlb_rotation_deg = NAN;
+  double crlb_rotation_med_deg = NAN;
   Rigid3 truth;
   std::optional<Rigid3> estimate;  // the first hypothesis, when the status is ok
   std::string message;

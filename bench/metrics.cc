@@ -13,10 +13,9 @@ constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 constexpr double kFlipWrongDeg = 30.0;
 constexpr double kFlipRightDeg = 5.0;
 
-std::vector<double> Finite(std::vector<double> values) {
-  values.erase(
-      std::remove_if(values.begin(), values.end(), [](double v) { return !std::isfinite(v); }),
-      values.end());
+std::vector<double> WithoutNaN(std::vector<double> values) {
+  values.erase(std::remove_if(values.begin(), values.end(), [](double v) { return std::isnan(v); }),
+               values.end());
   return values;
 }
 
@@ -63,21 +62,23 @@ bool IsSuccess(bool has_pose, double position_error_m, double distance_m, double
 double Median(std::vector<double> values) { return Percentile(std::move(values), 50.0); }
 
 double Mean(const std::vector<double>& values) {
-  const std::vector<double> finite = Finite(values);
-  if (finite.empty()) return kNaN;
+  const std::vector<double> numbers = WithoutNaN(values);
+  if (numbers.empty()) return kNaN;
   double sum = 0.0;
-  for (double v : finite) sum += v;
-  return sum / static_cast<double>(finite.size());
+  for (double v : numbers) sum += v;
+  return sum / static_cast<double>(numbers.size());
 }
 
 double Percentile(std::vector<double> values, double p) {
-  values = Finite(std::move(values));
+  values = WithoutNaN(std::move(values));
   if (values.empty()) return kNaN;
   std::sort(values.begin(), values.end());
   const double rank = p / 100.0 * static_cast<double>(values.size() - 1);
   const size_t lo = static_cast<size_t>(std::floor(rank));
   const size_t hi = std::min(lo + 1, values.size() - 1);
-  return values[lo] + (rank - static_cast<double>(lo)) * (values[hi] - values[lo]);
+  const double fraction = rank - static_cast<double>(lo);
+  if (fraction == 0.0 || values[lo] == values[hi]) return values[lo];  // no 0 · ∞
+  return values[lo] + fraction * (values[hi] - values[lo]);
 }
 
 }  // namespace markerbench

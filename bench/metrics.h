@@ -31,7 +31,8 @@ PoseErrors ComputePoseErrors(const std::vector<Rigid3>& hypotheses, const Rigid3
 // `fraction` × the true camera-to-marker distance.
 bool IsSuccess(bool has_pose, double position_error_m, double distance_m, double fraction);
 
-// Order statistics over the finite entries of `values`; NaN when there are none. Percentile
+// Order statistics over the entries of `values` that are not NaN (NaN: no value; +inf, e.g.
+// an unobservable frame's bound, sorts last); NaN when there are none. Percentile
 // interpolates linearly between order statistics (numpy's default), p in [0, 100].
 double Median(std::vector<double> values);
 double Mean(const std::vector<double>& values);

@@ -73,6 +73,10 @@ TEST(Metrics, OrderStatisticsSkipNaNAndInterpolate) {
   EXPECT_NEAR(Percentile({10, 9, 8, 7, 6, 5, 4, 3, 2, 1}, 90.0), 9.1, kTol);
   EXPECT_EQ(Percentile({5.0}, 90.0), 5.0);
   EXPECT_TRUE(std::isnan(Median({NAN})));
+  // +inf is a value (an unobservable frame's bound), larger than every other.
+  EXPECT_EQ(Median({INFINITY, 1.0, 2.0}), 2.0);
+  EXPECT_EQ(Median({INFINITY, 1.0, INFINITY}), INFINITY);
+  EXPECT_EQ(Median({INFINITY, 1.0}), INFINITY);
   EXPECT_TRUE(std::isnan(Mean({})));
 }
 

@@ -18,7 +18,7 @@ using ::testing::HasSubstr;
 namespace fs = std::filesystem;
 
 // A frame of tracker `tracker` whose first hypothesis is `error_m` from the truth along x
-// (NaN: not detected), at 1 m.
+// (NaN: not detected), at 1 m; its bound's median position error is (trial + 1) cm.
 FrameRow Row(const std::string& scenario,
              const std::string& tracker,
              double value,
@@ -36,6 +36,10 @@ FrameRow Row(const std::string& scenario,
   r.apparent_size_px = 60.0;
   r.distance_m = 1.0;
   r.truth.translation = Eigen::Vector3d(0.0, 0.0, 1.0);
+  r.crlb_position_m = 0.012 * (trial + 1);
+  r.crlb_position_med_m = 0.01 * (trial + 1);
+  r.crlb_rotation_deg = 0.6;
+  r.crlb_rotation_med_deg = 0.5;
   if (std::isnan(error_m)) {
     r.status = TrackStatus::kNotDetected;
     r.errors = {NAN, NAN, NAN, NAN, false};
@@ -52,7 +56,12 @@ FrameRow Row(const std::string& scenario,
 }
 
 TEST(FramesCsv, RowsRoundTrip) {
-  for (const FrameRow& row : {Row("s", "apriltag", 0.1, 3, 0.02), Row("s", "x", 0.2, 1, NAN)}) {
+  FrameRow unobservable = Row("s", "x", 0.2, 1, NAN);
+  unobservable.crlb_position_m = unobservable.crlb_position_med_m = INFINITY;
+  FrameRow without_bound = Row("s", "y", 0.2, 1, NAN);
+  without_bound.crlb_position_m = without_bound.crlb_position_med_m = NAN;
+  without_bound.crlb_rotation_deg = without_bound.crlb_rotation_med_deg = NAN;
+  for (const FrameRow& row : {Row("s", "apriltag", 0.1, 3, 0.02), unobservable, without_bound}) {
     std::string line = FormatFrameRow(row);
     ASSERT_EQ(line.back(), '\n');
     line.pop_back();
@@ -60,6 +69,8 @@ TEST(FramesCsv, RowsRoundTrip) {
     EXPECT_EQ(FormatFrameRow(back), FormatFrameRow(row));
     EXPECT_EQ(back.message, row.message);
     EXPECT_EQ(back.estimate.has_value(), row.estimate.has_value());
+    EXPECT_EQ(std::isinf(back.crlb_position_m), std::isinf(row.crlb_position_m));
+    EXPECT_EQ(std::isnan(back.crlb_rotation_med_deg), std::isnan(row.crlb_rotation_med_deg));
   }
   EXPECT_THROW(ParseFrameRow("a,b,c"), std::runtime_error);
 }
@@ -101,17 +112,20 @@ TEST_F(ReportTest, SummaryOfASyntheticSweep) {
   std::string line;
   std::getline(summary, line);  // header
   // scenario .. marker, then n, median apparent size, detection, success, median / mean / p90
-  // error, median rotation, oracle median, flip rate, median time (of every call: 1..5 ms).
+  // error, median rotation, oracle median, flip rate, median time (of every call: 1..5 ms),
+  // median bound (1..5 cm over all trials: 3 cm), efficiency (median error / median bound of
+  // the posed trials), median rotation bound, rotation efficiency (no rotation error: 0).
   const std::vector<std::vector<double>> expected = {
-      {5, 60, 1.0, 1.0, 0.03, 0.03, 0.046, 0, 0.03, 0, 3},
-      // Posed errors 0.01, 0.05, 0.09, 0.2: median 0.07, mean 0.0875, p90 0.167.
-      {5, 60, 0.8, 0.6, 0.07, 0.0875, 0.167, 0, 0.07, 0, 3},
-      // Posed errors 0.02, 0.08, 0.5: median 0.08, mean 0.2, p90 0.416.
-      {5, 60, 0.6, 0.4, 0.08, 0.2, 0.416, 0, 0.08, 0, 3}};
+      {5, 60, 1.0, 1.0, 0.03, 0.03, 0.046, 0, 0.03, 0, 3, 0.03, 1.0, 0.5, 0},
+      // Posed errors 0.01, 0.05, 0.09, 0.2: median 0.07, mean 0.0875, p90 0.167; posed
+      // bounds 1-4 cm: efficiency 0.07 / 0.025.
+      {5, 60, 0.8, 0.6, 0.07, 0.0875, 0.167, 0, 0.07, 0, 3, 0.03, 2.8, 0.5, 0},
+      // Posed errors 0.02, 0.08, 0.5: median 0.08, mean 0.2, p90 0.416; bounds 1-3 cm.
+      {5, 60, 0.6, 0.4, 0.08, 0.2, 0.416, 0, 0.08, 0, 3, 0.03, 4.0, 0.5, 0}};
   for (const std::vector<double>& want : expected) {
     ASSERT_TRUE(std::getline(summary, line));
     const std::vector<std::string> fields = SplitCsvLine(line);
-    ASSERT_EQ(fields.size(), 16u) << line;
+    ASSERT_EQ(fields.size(), 20u) << line;
     EXPECT_EQ(fields[0] + fields[3] + fields[4], "fig6_noiseapriltagtag");
     for (size_t i = 0; i < want.size(); ++i) {
       EXPECT_NEAR(std::stod(fields[5 + i]), want[i], 1e-12) << line << " column " << 5 + i;
@@ -127,6 +141,7 @@ TEST_F(ReportTest, SummaryOfASyntheticSweep) {
                         "| agrees |"));
   EXPECT_THAT(report, HasSubstr("not run: no `artkplus` rows in `fig6_noise`"));
   EXPECT_THAT(report, HasSubstr("| 0.18 | apriltag | 5 | 60 | 80% | 60% | 70.00 |"));
+  EXPECT_THAT(report, HasSubstr("| 3.00 | 30 | 2.80 | 0.00 |\n"));  // ms, bound, × bound
   EXPECT_THAT(ReadFileBytes(dir_ + "/manifest.json"),
               HasSubstr("\"success_position_fraction_of_distance\": 0.1"));
 }

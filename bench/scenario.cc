@@ -184,6 +184,7 @@ Scenario LoadScenario(const std::string& path) {
   sweep.RejectUnknownKeys();
   s.trials = root.GetInt("trials", 1, 1000000);
   s.seed = static_cast<uint64_t>(root.GetInt("seed", 0, 2147483647));
+  s.crlb = root.GetOr<bool>("crlb", true);
   root.RejectUnknownKeys();
   try {
     PlanFrames(s);

@@ -72,6 +72,9 @@ struct Scenario {
   double example_value = 0.0;  // the sweep value whose example images the report shows
   int trials = 1;
   uint64_t seed = 0;
+  // Compute every frame's Cramér-Rao bound (frames.csv's crlb_* columns); `crlb: false`
+  // saves its cost (a few ms a frame).
+  bool crlb = true;
 };
 
 // Throws ConfigError naming the file, line and key. Also checks what can only be checked by

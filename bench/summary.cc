@@ -50,6 +50,8 @@ std::vector<SummaryRow> Summarize(const std::vector<FrameRow>& rows,
     s.n = static_cast<int>(group.size());
     int detected = 0, successes = 0, posed = 0, flips = 0;
     std::vector<double> sizes, position, rotation, best_position, times;
+    std::vector<double> position_bound, rotation_bound;              // every frame
+    std::vector<double> posed_position_bound, posed_rotation_bound;  // frames with a pose
     for (const size_t i : group) {
       const FrameRow& r = rows[i];
       const bool has_pose = r.estimate.has_value();
@@ -58,7 +60,11 @@ std::vector<SummaryRow> Summarize(const std::vector<FrameRow>& rows,
           IsSuccess(has_pose, r.errors.position_error_m, r.distance_m, options.success_fraction);
       sizes.push_back(r.apparent_size_px);
       times.push_back(i < time_ms.size() ? time_ms[i] : NAN);
+      position_bound.push_back(r.crlb_position_med_m);
+      rotation_bound.push_back(r.crlb_rotation_med_deg);
       if (!has_pose) continue;
+      posed_position_bound.push_back(r.crlb_position_med_m);
+      posed_rotation_bound.push_back(r.crlb_rotation_med_deg);
       ++posed;
       flips += r.errors.flip;
       position.push_back(r.errors.position_error_m);
@@ -75,6 +81,10 @@ std::vector<SummaryRow> Summarize(const std::vector<FrameRow>& rows,
     s.best_position_error_median_m = Median(best_position);
     s.flip_rate = posed ? static_cast<double>(flips) / posed : NAN;
     s.time_median_ms = Median(times);
+    s.crlb_position_median_m = Median(position_bound);
+    s.crlb_rotation_median_deg = Median(rotation_bound);
+    s.efficiency = s.position_error_median_m / Median(posed_position_bound);
+    s.rotation_efficiency = s.rotation_error_median_deg / Median(posed_rotation_bound);
     summary.push_back(s);
   }
   return summary;
@@ -104,7 +114,8 @@ std::string SummaryCsv(const std::vector<SummaryRow>& rows) {
       "scenario,sweep_parameter,sweep_value,tracker,marker,n,apparent_size_median_px,"
       "detection_rate,success_rate,"
       "position_error_median_m,position_error_mean_m,position_error_p90_m,"
-      "rotation_error_median_deg,best_position_error_median_m,flip_rate,time_median_ms\n";
+      "rotation_error_median_deg,best_position_error_median_m,flip_rate,time_median_ms,"
+      "crlb_position_median_m,efficiency,crlb_rotation_median_deg,rotation_efficiency\n";
   for (const SummaryRow& r : rows) {
     csv += r.scenario + ',' + r.sweep_parameter + ',' + NumberText(r.sweep_value) + ',' +
            r.tracker + ',' + r.marker + ',' + std::to_string(r.n) + ',' +
@@ -114,7 +125,10 @@ std::string SummaryCsv(const std::vector<SummaryRow>& rows) {
            NumberTextOrEmpty(r.position_error_p90_m) + ',' +
            NumberTextOrEmpty(r.rotation_error_median_deg) + ',' +
            NumberTextOrEmpty(r.best_position_error_median_m) + ',' +
-           NumberTextOrEmpty(r.flip_rate) + ',' + NumberTextOrEmpty(r.time_median_ms) + '\n';
+           NumberTextOrEmpty(r.flip_rate) + ',' + NumberTextOrEmpty(r.time_median_ms) + ',' +
+           NumberTextOrEmpty(r.crlb_position_median_m) + ',' + NumberTextOrEmpty(r.efficiency) +
+           ',' + NumberTextOrEmpty(r.crlb_rotation_median_deg) + ',' +
+           NumberTextOrEmpty(r.rotation_efficiency) + '\n';
   }
   return csv;
 }

@@ -35,6 +35,14 @@ struct SummaryRow {
   double best_position_error_median_m = 0.0;  // the oracle hypothesis
   double flip_rate = 0.0;
   double time_median_ms = 0.0;  // NaN when timing.csv is missing
+  // The physical limit (frames.csv's crlb_*_med columns; NaN when the run has no bound):
+  // the median over all the cell's frames of the error an efficient estimator would have,
+  // and the efficiency: the median error over the frames with a pose divided by the median
+  // bound over the same frames (1 at the limit; a success rate below 100 % is left out).
+  double crlb_position_median_m = 0.0;
+  double crlb_rotation_median_deg = 0.0;
+  double efficiency = 0.0;
+  double rotation_efficiency = 0.0;
 };
 
 // `time_ms[i]` belongs to rows[i] (NaN when unknown). Groups keep the order in which they

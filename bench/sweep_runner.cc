@@ -24,6 +24,7 @@
 #include "core/sha256.h"
 #include "core/yaml_reader.h"
 #include "renderer/image_io.h"
+#include "renderer/pose_crlb.h"
 
 namespace fs = std::filesystem;
 
@@ -247,10 +248,12 @@ std::pair<std::string, std::string> RunJob(const PreparedSweep& p,
   const Scenario& s = p.scenario;
   const PlannedFrame& f = job.frame;
   const MarkerSpec& marker = s.markers[static_cast<size_t>(f.marker_index)];
-  const RenderedFrame frame = RenderFrame(RequestFor(s, f));
+  const FrameRequest request = RequestFor(s, f);
+  const RenderedFrame frame = RenderFrame(request);
   if (f.trial == 0 && f.sweep_value == s.example_value) {
     WriteImageAtomically(p.dir + "/examples/" + marker.name + ".png", frame.image);
   }
+  if (job.trackers.empty()) return {};
   const Eigen::Vector2d center = marker.InkBounds().center();
   FrameRow row;
   row.scenario = s.name;
@@ -263,6 +266,13 @@ std::pair<std::string, std::string> RunJob(const PreparedSweep& p,
   row.apparent_size_px = frame.truth.apparent_size_px;
   row.distance_m = (f.cam_from_marker * Eigen::Vector3d(center.x(), center.y(), 0.0)).norm();
   row.truth = f.cam_from_marker;
+  if (s.crlb) {
+    const PoseBound bound = PoseCrlb(request);
+    row.crlb_position_m = bound.position_rms_m;
+    row.crlb_position_med_m = bound.position_median_m;
+    row.crlb_rotation_deg = bound.rotation_rms_deg;
+    row.crlb_rotation_med_deg = bound.rotation_median_deg;
+  }
   std::string frame_rows, timing_rows;
   for (const size_t t : job.trackers) {
     Tracker* tracker = (*trackers)[t].get();
@@ -295,6 +305,7 @@ nlohmann::json ScenarioManifest(const PreparedSweep& p, int threads) {
   }
   entry["seed"] = s.seed;
   entry["trials"] = s.trials;
+  entry["crlb"] = s.crlb;
   entry["sweep"] = {{"parameter", s.sweep_parameter},
                     {"values", s.sweep_values},
                     {"example_value", s.example_value}};

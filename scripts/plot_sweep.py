@@ -5,15 +5,18 @@ Usage: plot_sweep.py DIR
 
 Reads DIR/summary.csv (written by `markerbench report DIR`) and DIR/manifest.json, and
 writes, for every scenario:
-  DIR/<scenario>.png           median position error (log axis, p90 dashed) and, in its own
-                               panel, the success rate versus the sweep value; one line per
-                               tracker;
+  DIR/<scenario>.png           median position error (log axis, p90 dashed) over the
+                               physical limit (the median Cramér-Rao bound of the frames,
+                               dotted, the unreachable region below it shaded) and, in its
+                               own panel, the success rate versus the sweep value; one line
+                               per tracker;
   DIR/<scenario>_examples.png  trial 0 of every marker at the scenario's example value
                                (DIR/<scenario>/examples/<marker>.png), like panels (a)-(d).
 Needs Debian's python3-matplotlib (run with /usr/bin/python3).
 """
 import csv
 import json
+import math
 import os
 import string
 import sys
@@ -57,17 +60,28 @@ def plot_errors(directory, scenario, series):
     fig, (err_ax, ok_ax) = plt.subplots(
         2, 1, sharex=True, figsize=(7, 6), gridspec_kw={"height_ratios": [3, 2]}
     )
+    floors = []
     for (tracker, marker), rows in series.items():
         x = [number(r["sweep_value"]) for r in rows]
         label = f"{tracker} ({marker})" if tracker in trackers_with_many_markers else tracker
         median = [1e3 * number(r["position_error_median_m"]) for r in rows]
         p90 = [1e3 * number(r["position_error_p90_m"]) for r in rows]
         success = [100 * number(r["success_rate"]) for r in rows]
+        bound = [1e3 * number(r.get("crlb_position_median_m", "")) for r in rows]
         (line,) = err_ax.plot(x, median, "o-", label=label, markersize=4)
         err_ax.plot(x, p90, "--", color=line.get_color(), linewidth=0.8)
+        if any(math.isfinite(b) for b in bound):
+            err_ax.plot(x, bound, ":", color=line.get_color(), linewidth=1.0)
+            floors.append((x, bound, line.get_color()))
         ok_ax.plot(x, success, "o-", color=line.get_color(), label=label, markersize=4)
     err_ax.set_yscale("log")
-    err_ax.set_ylabel("camera-centre error (mm)\nmedian, p90 dashed")
+    if floors:
+        bottom = err_ax.get_ylim()[0]
+        for x, bound, color in floors:
+            err_ax.fill_between(x, bottom, bound, color=color, alpha=0.06, linewidth=0)
+        err_ax.set_ylim(bottom=bottom)
+        err_ax.plot([], [], ":", color="grey", label="physical limit (Cramér-Rao)")
+    err_ax.set_ylabel("camera-centre error (mm)\nmedian, p90 dashed, bound dotted")
     err_ax.grid(True, which="both", alpha=0.3)
     err_ax.legend(fontsize=8)
     err_ax.set_title(f"{scenario}: localization error versus {LABELS.get(parameter, parameter)}")

@@ -1,0 +1,266 @@
+#include "renderer/pose_crlb.h"
+
+#include <Eigen/Eigenvalues>
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <limits>
+#include <vector>
+
+#include "renderer/boundary_pieces.h"
+
+namespace markerbench {
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+// F is singular when its smallest eigenvalue, after scaling its diagonal to 1, is below this.
+constexpr double kSingularEigenvalue = 1e-12;
+
+// Calls add(x, y, fraction) for every pixel that the segment a → b crosses, with the
+// fraction of the segment inside it (pixel (x, y) covers [x ± ½] × [y ± ½]).
+template <typename Add>
+void ForEachPixelPart(const Eigen::Vector2d& a, const Eigen::Vector2d& b, Add add) {
+  std::vector<double> cuts = {0.0, 1.0};
+  const Eigen::Vector2d d = b - a;
+  for (int axis = 0; axis < 2; ++axis) {
+    if (d[axis] == 0.0) continue;
+    const double lo = std::min(a[axis], b[axis]), hi = std::max(a[axis], b[axis]);
+    for (double border = std::floor(lo - 0.5) + 1.5; border < hi; border += 1.0) {
+      cuts.push_back((border - a[axis]) / d[axis]);
+    }
+  }
+  std::sort(cuts.begin(), cuts.end());
+  for (size_t i = 0; i + 1 < cuts.size(); ++i) {
+    const double fraction = cuts[i + 1] - cuts[i];
+    if (!(fraction > 0.0)) continue;
+    const Eigen::Vector2d mid = a + 0.5 * (cuts[i] + cuts[i + 1]) * d;
+    add(static_cast<int>(std::floor(mid.x() + 0.5)),
+        static_cast<int>(std::floor(mid.y() + 0.5)),
+        fraction);
+  }
+}
+
+// d(pixel)/dθ of a point x_cam of the marker for θ = (ω, t) at the pose's translation t.
+Eigen::Matrix<double, 2, 6> ImageVelocity(const Camera& camera,
+                                          const Eigen::Vector3d& x_cam,
+                                          const Eigen::Vector3d& t) {
+  const Eigen::Vector3d y = x_cam - t;  // R0 · x_marker
+  Eigen::Matrix<double, 3, 6> dx_dtheta;
+  for (int k = 0; k < 3; ++k) dx_dtheta.col(k) = Eigen::Vector3d::Unit(k).cross(y);
+  dx_dtheta.rightCols<3>().setIdentity();
+  return ImgFromCamJacobian(camera, x_cam) * dx_dtheta;
+}
+
+// Gauss-Legendre nodes and weights on [0, 1] (Newton on the Legendre polynomial).
+template <int N>
+struct GaussLegendre {
+  std::array<double, N> x{}, w{};
+  GaussLegendre() {
+    for (int i = 0; i < N; ++i) {
+      double z = std::cos(kPi * (i + 0.75) / (N + 0.5)), dp = 1.0;
+      for (int iteration = 0; iteration < 100; ++iteration) {
+        double p0 = 1.0, p1 = z;
+        for (int j = 2; j <= N; ++j) {
+          const double p2 = ((2.0 * j - 1.0) * z * p1 - (j - 1.0) * p0) / j;
+          p0 = p1;
+          p1 = p2;
+        }
+        dp = N * (z * p1 - p0) / (z * z - 1.0);
+        const double step = p1 / dp;
+        z -= step;
+        if (std::abs(step) < 1e-15) break;
+      }
+      x[static_cast<size_t>(i)] = 0.5 * (1.0 - z);
+      w[static_cast<size_t>(i)] = 1.0 / ((1.0 - z * z) * dp * dp);
+    }
+  }
+};
+
+// P(|e| <= r) for e with independent components of variances l1 >= l2 >= l3 >= 0, l1 > 0:
+// E over (z2, z3) of P(l1·z1² <= r² - l2·z2² - l3·z3²), in polar coordinates (s, a) of
+// (z2, z3) on one quadrant.
+double GaussianNormCdf(double r, double l1, double l2, double l3) {
+  static const GaussLegendre<16> angle_rule;
+  static const GaussLegendre<48> radial_rule;
+  constexpr double kRadialEnd = 9.0;  // s e^{-s²/2} is below 1e-16 beyond
+  const double inv = 1.0 / std::sqrt(2.0 * l1);
+  double total = 0.0;
+  for (size_t i = 0; i < angle_rule.x.size(); ++i) {
+    const double a = 0.5 * kPi * angle_rule.x[i];
+    const double m = l2 * std::cos(a) * std::cos(a) + l3 * std::sin(a) * std::sin(a);
+    double inner = 0.0;
+    const double s_max = m > 0.0 ? r / std::sqrt(m) : std::numeric_limits<double>::infinity();
+    if (s_max > kRadialEnd) {
+      for (size_t j = 0; j < radial_rule.x.size(); ++j) {
+        const double s = kRadialEnd * radial_rule.x[j];
+        inner += radial_rule.w[j] * kRadialEnd * s * std::exp(-0.5 * s * s) *
+                 std::erf(std::sqrt(std::max(0.0, r * r - s * s * m)) * inv);
+      }
+    } else {
+      // s = s_max sin β removes the square root's kink at s_max.
+      for (size_t j = 0; j < radial_rule.x.size(); ++j) {
+        const double beta = 0.5 * kPi * radial_rule.x[j];
+        const double s = s_max * std::sin(beta);
+        inner += radial_rule.w[j] * 0.5 * kPi * s_max * std::cos(beta) * s *
+                 std::exp(-0.5 * s * s) * std::erf(r * std::cos(beta) * inv);
+      }
+    }
+    total += angle_rule.w[i] * inner;
+  }
+  return total;  // (2/π) ∫ da over [0, π/2] = the mean over the quadrant
+}
+
+}  // namespace
+
+double MedianGaussianNorm(const Eigen::Matrix3d& covariance) {
+  const Eigen::Vector3d l =
+      Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d>(covariance, Eigen::EigenvaluesOnly)
+          .eigenvalues()
+          .cwiseMax(0.0);  // ascending
+  if (!(l(2) > 0.0)) return 0.0;
+  const double rms = std::sqrt(l.sum());
+  // The median lies between the 1-D (0.674 rms) and the isotropic (0.888 rms) cases.
+  double lo = 0.6 * rms, hi = 0.95 * rms;
+  double f_lo = GaussianNormCdf(lo, l(2), l(1), l(0)) - 0.5;
+  double f_hi = GaussianNormCdf(hi, l(2), l(1), l(0)) - 0.5;
+  // Illinois false position.
+  int side = 0;
+  for (int iteration = 0; iteration < 100 && hi - lo > 1e-10 * rms; ++iteration) {
+    const double r = (lo * f_hi - hi * f_lo) / (f_hi - f_lo);
+    const double f = GaussianNormCdf(r, l(2), l(1), l(0)) - 0.5;
+    if (f == 0.0) return r;
+    if ((f < 0.0) == (f_lo < 0.0)) {
+      lo = r;
+      f_lo = f;
+      if (side == -1) f_hi *= 0.5;
+      side = -1;
+    } else {
+      hi = r;
+      f_hi = f;
+      if (side == 1) f_lo *= 0.5;
+      side = 1;
+    }
+  }
+  return 0.5 * (lo + hi);
+}
+
+Matrix6d PoseFisherInformation(const FrameRequest& request, const CrlbOptions& options) {
+  const Camera& camera = request.scene.camera;
+  const Degradations& d = request.degradations;
+  const int channels = request.channels;
+  // The canvas: the image and the margin whose scene the blur carries into it.
+  const int margin = d.MarginPx();
+  const Eigen::AlignedBox2d window(
+      Eigen::Vector2d(-margin - 0.5, -margin - 0.5),
+      Eigen::Vector2d(camera.width - 0.5 + margin, camera.height - 0.5 + margin));
+  const std::vector<BoundaryPiece> pieces =
+      ImageBoundaryPieces(request.scene, channels, window, options.max_piece_px);
+
+  // dI/dθ_k of each piece, per unit jump: -(image velocity · normal) × length.
+  const Eigen::Vector3d& t = request.scene.cam_from_marker.translation;
+  std::vector<Eigen::Matrix<double, 6, 1>> rates;
+  PixelRect deposits{camera.width + margin, camera.height + margin, -margin, -margin};
+  for (const BoundaryPiece& piece : pieces) {
+    rates.push_back(-ImageVelocity(camera, piece.mid_cam, t).transpose() * piece.normal_px);
+    ForEachPixelPart(piece.a_px, piece.b_px, [&](int x, int y, double) {
+      deposits.x0 = std::min(deposits.x0, x);
+      deposits.y0 = std::min(deposits.y0, y);
+      deposits.x1 = std::max(deposits.x1, x + 1);
+      deposits.y1 = std::max(deposits.y1, y + 1);
+    });
+  }
+  // Clip to the canvas, then leave room for the blur around the deposits.
+  deposits = {std::max(deposits.x0, -margin),
+              std::max(deposits.y0, -margin),
+              std::min(deposits.x1, camera.width + margin),
+              std::min(deposits.y1, camera.height + margin)};
+  if (deposits.Empty()) return Matrix6d::Zero();
+  const int pad = margin + 1;
+  const PixelRect area{std::max(deposits.x0 - pad, -margin),
+                       std::max(deposits.y0 - pad, -margin),
+                       std::min(deposits.x1 + pad, camera.width + margin),
+                       std::min(deposits.y1 + pad, camera.height + margin)};
+  // Planes k · channels + c hold dI_c/dθ_k over `area`.
+  ImageF derivative(area.x1 - area.x0, area.y1 - area.y0, 6 * channels);
+  for (size_t i = 0; i < pieces.size(); ++i) {
+    const BoundaryPiece& piece = pieces[i];
+    ForEachPixelPart(piece.a_px, piece.b_px, [&](int x, int y, double fraction) {
+      if (x < area.x0 || y < area.y0 || x >= area.x1 || y >= area.y1) return;
+      const size_t at = static_cast<size_t>(y - area.y0) * derivative.width + (x - area.x0);
+      for (int k = 0; k < 6; ++k) {
+        for (int c = 0; c < channels; ++c) {
+          derivative.plane(k * channels + c)[at] +=
+              static_cast<float>(fraction * rates[i][k] * piece.jump[static_cast<size_t>(c)]);
+        }
+      }
+    });
+  }
+  const PixelRect local{
+      deposits.x0 - area.x0, deposits.y0 - area.y0, deposits.x1 - area.x0, deposits.y1 - area.y0};
+  const PixelRect blurred = GaussianBlur(d.blur_sigma_px, local, &derivative);
+  MotionBlur(d.motion_blur_px, d.motion_blur_angle_deg, blurred, &derivative);
+
+  // F over the image's pixels; lighting scales the image by the gain.
+  const double scale = d.gain * d.gain / (d.noise_var + kQuantisationVariance);
+  const int x0 = std::max(area.x0, 0), x1 = std::min(area.x1, camera.width);
+  const int y0 = std::max(area.y0, 0), y1 = std::min(area.y1, camera.height);
+  Matrix6d fisher = Matrix6d::Zero();
+  for (int c = 0; c < channels; ++c) {
+    for (int k = 0; k < 6; ++k) {
+      for (int l = k; l < 6; ++l) {
+        const float* pk = derivative.plane(k * channels + c);
+        const float* pl = derivative.plane(l * channels + c);
+        double sum = 0.0;
+        for (int y = y0; y < y1; ++y) {
+          const size_t row = static_cast<size_t>(y - area.y0) * derivative.width;
+          for (int x = x0 - area.x0; x < x1 - area.x0; ++x) {
+            sum += static_cast<double>(pk[row + x]) * pl[row + x];
+          }
+        }
+        fisher(k, l) += sum;
+      }
+    }
+  }
+  fisher = fisher.selfadjointView<Eigen::Upper>();
+  return scale * fisher;
+}
+
+PoseBound PoseCrlb(const FrameRequest& request, const CrlbOptions& options) {
+  PoseBound bound;
+  bound.fisher = PoseFisherInformation(request, options);
+  constexpr double kInfinity = std::numeric_limits<double>::infinity();
+  bound.position_rms_m = bound.position_median_m = kInfinity;
+  bound.rotation_rms_deg = bound.rotation_median_deg = kInfinity;
+  bound.position_covariance.setConstant(kInfinity);
+  bound.rotation_covariance.setConstant(kInfinity);
+  const Eigen::Matrix<double, 6, 1> diagonal = bound.fisher.diagonal();
+  if (!(diagonal.minCoeff() > 0.0)) return bound;
+  // Equilibrate before inverting: ω and t have different units.
+  const Eigen::Matrix<double, 6, 1> s = diagonal.cwiseSqrt().cwiseInverse();
+  const Matrix6d scaled = s.asDiagonal() * bound.fisher * s.asDiagonal();
+  const Eigen::SelfAdjointEigenSolver<Matrix6d> eigen(scaled);
+  if (!(eigen.eigenvalues()(0) > kSingularEigenvalue * eigen.eigenvalues()(5))) return bound;
+  const Matrix6d covariance =
+      s.asDiagonal() *
+      (eigen.eigenvectors() * eigen.eigenvalues().cwiseInverse().asDiagonal() *
+       eigen.eigenvectors().transpose()) *
+      s.asDiagonal();
+  bound.observable = true;
+  // C = -Rᵀt with R = exp([ω]×) R0: dC/dω = -R0ᵀ[t]×, dC/dt = -R0ᵀ.
+  const Eigen::Matrix3d& R0 = request.scene.cam_from_marker.rotation;
+  const Eigen::Vector3d& t = request.scene.cam_from_marker.translation;
+  Eigen::Matrix3d t_cross;
+  t_cross << 0.0, -t.z(), t.y(), t.z(), 0.0, -t.x(), -t.y(), t.x(), 0.0;
+  Eigen::Matrix<double, 3, 6> dC_dtheta;
+  dC_dtheta << -R0.transpose() * t_cross, -R0.transpose();
+  bound.position_covariance = dC_dtheta * covariance * dC_dtheta.transpose();
+  bound.rotation_covariance = covariance.topLeftCorner<3, 3>();
+  constexpr double kDeg = 180.0 / kPi;
+  bound.position_rms_m = std::sqrt(bound.position_covariance.trace());
+  bound.position_median_m = MedianGaussianNorm(bound.position_covariance);
+  bound.rotation_rms_deg = kDeg * std::sqrt(bound.rotation_covariance.trace());
+  bound.rotation_median_deg = kDeg * MedianGaussianNorm(bound.rotation_covariance);
+  return bound;
+}
+
+}  // namespace markerbench

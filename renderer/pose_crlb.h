@@ -1,0 +1,56 @@
+// The physical limit of one frame: the Cramér-Rao lower bound on the camera pose that the
+// rendered image allows (crlb.md).
+//
+// Model: the image is I(θ) + n, I the renderer's noise-free linear image (exact pixel-area
+// average, Gaussian and motion blur, lighting gain), n i.i.d. Gaussian per pixel and channel
+// with the frame's noise variance plus the 8-bit quantisation variance 1/(12·255²). Clipping
+// and JPEG are left out. θ = (ω, t) with R = exp([ω]×)·R0: a rotation increment in the camera
+// frame (radians) and the translation (metres).
+//
+// ∇θI is exact, not a finite difference: the colour jump across each printed edge times the
+// edge's normal image velocity, integrated along the edge (boundary_pieces.h) and assigned to
+// the pixels each piece crosses, then blurred like the image. Fisher information
+// F = Σ_pixels Σ_channels ∇θI ∇θIᵀ / σ², cov(θ) ≥ F⁻¹, and the camera centre C = -Rᵀt has
+// cov(C) ≥ J F⁻¹ Jᵀ.
+#pragma once
+
+#include <Eigen/Core>
+
+#include "renderer/render_frame.h"
+
+namespace markerbench {
+
+// The variance of 8-bit rounding in [0, 1] units: the noise floor of a noise-free frame.
+inline constexpr double kQuantisationVariance = 1.0 / (12.0 * 255.0 * 255.0);
+
+struct CrlbOptions {
+  // Longest edge piece in the image (px). Pieces are split at pixel borders, so the bound
+  // changes by less than 0.1 % when this is halved (tested).
+  double max_piece_px = 0.25;
+};
+
+using Matrix6d = Eigen::Matrix<double, 6, 6>;
+
+struct PoseBound {
+  Matrix6d fisher = Matrix6d::Zero();  // θ = (ω, t)
+  // False when F is singular (the marker is not in view, or a pose direction leaves the
+  // image unchanged); every bound below is then +infinity.
+  bool observable = false;
+  Eigen::Matrix3d position_covariance = Eigen::Matrix3d::Zero();  // of C, m²
+  Eigen::Matrix3d rotation_covariance = Eigen::Matrix3d::Zero();  // of ω, rad²
+  double position_rms_m = 0.0;                                    // sqrt(trace cov(C))
+  double position_median_m = 0.0;                                 // median |e| for e ~ N(0, cov(C))
+  double rotation_rms_deg = 0.0;                                  // sqrt(trace cov(ω))
+  double rotation_median_deg = 0.0;
+};
+
+// F for the frame `request` describes (its noise seed is not used).
+Matrix6d PoseFisherInformation(const FrameRequest& request, const CrlbOptions& options = {});
+
+PoseBound PoseCrlb(const FrameRequest& request, const CrlbOptions& options = {});
+
+// The median of |e| for e ~ N(0, covariance) in 3-D (a quadrature, relative error < 1e-6):
+// what an efficient estimator's median error is compared with (crlb.md).
+double MedianGaussianNorm(const Eigen::Matrix3d& covariance);
+
+}  // namespace markerbench

@@ -1,0 +1,285 @@
+#include "renderer/pose_crlb.h"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <string>
+#include <vector>
+
+#include "renderer/test_scenes.h"
+
+namespace markerbench {
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+constexpr double kDeg = kPi / 180.0;
+
+FrameRequest Request(const MarkerSpec& marker,
+                     const Rigid3& cam_from_marker,
+                     double noise_var,
+                     double blur_sigma_px,
+                     int channels) {
+  FrameRequest request;
+  request.scene.marker = &marker;
+  request.scene.cam_from_marker = cam_from_marker;
+  request.degradations.noise_var = noise_var;
+  request.degradations.blur_sigma_px = blur_sigma_px;
+  request.channels = channels;
+  return request;
+}
+
+// crlb.md's circles_a: red and blue disks, r = 33 mm, centres 87 mm apart, on white.
+MarkerSpec CrlbCirclesA() {
+  MarkerSpec spec;
+  spec.kind = MarkerKind::kCirclesA;
+  const Eigen::Vector2d m0(0.0, 0.0), m1(0.087, 0.0);
+  spec.circles = {{m0, 0.033, Rgb(1.0, 0.0, 0.0)}, {m1, 0.033, Rgb(0.0, 0.0, 1.0)}};
+  spec.layers = {{DiskShape{m0, 0.033}, Rgb(1.0, 0.0, 0.0)},
+                 {DiskShape{m1, 0.033}, Rgb(0.0, 0.0, 1.0)}};
+  spec.keypoints = {m0, m1};
+  return spec;
+}
+
+// crlb.md's look-at pose: the camera at distance_m from `center`, at `tilt` from the normal
+// and `azimuth` about it, looking at it (its image at the principal point), rolled by `roll`.
+Rigid3 LookAt(const Eigen::Vector2d& center,
+              double distance_m,
+              double tilt_deg,
+              double azimuth_deg,
+              double roll_deg) {
+  const double tilt = tilt_deg * kDeg, azimuth = azimuth_deg * kDeg;
+  const Eigen::Vector3d target(center.x(), center.y(), 0.0);
+  const Eigen::Vector3d eye =
+      target + distance_m * Eigen::Vector3d(std::sin(tilt) * std::cos(azimuth),
+                                            std::sin(tilt) * std::sin(azimuth),
+                                            std::cos(tilt));
+  const Eigen::Vector3d z = (target - eye).normalized();
+  // Any x perpendicular to z; the roll spans all of them.
+  const Eigen::Vector3d helper =
+      std::abs(z.x()) < 0.9 ? Eigen::Vector3d::UnitX() : Eigen::Vector3d::UnitY();
+  const Eigen::Vector3d x0 = helper.cross(z).normalized();
+  const Eigen::Vector3d x = Eigen::AngleAxisd(roll_deg * kDeg, z) * x0;
+  Eigen::Matrix3d marker_from_cam;
+  marker_from_cam << x, z.cross(x), z;
+  const Rigid3 cam_from_marker(marker_from_cam.transpose(), -marker_from_cam.transpose() * eye);
+  return cam_from_marker;
+}
+
+// The median over crlb.md's pose distribution (tilt U[0°, 40°], azimuth and roll
+// U[0°, 360°)) of position_rms_m, position_median_m and rotation_rms_deg. The bound falls
+// steeply with tilt, so the tilts are stratified (a random sample's median would wander by
+// ±5 %) and azimuth and roll follow golden-ratio sequences.
+Eigen::Vector3d MedianBounds(const MarkerSpec& marker,
+                             double distance_m,
+                             double noise_var,
+                             double blur_sigma_px,
+                             int channels,
+                             int poses) {
+  const Eigen::Vector2d center = marker.InkBounds().center();
+  std::vector<double> rms, median, rotation;
+  for (int i = 0; i < poses; ++i) {
+    const double tilt = 40.0 * (i + 0.5) / poses;
+    const double azimuth = 360.0 * std::fmod(i * 0.6180339887, 1.0);
+    const double roll = 360.0 * std::fmod(i * 0.7548776662, 1.0);
+    const PoseBound b = PoseCrlb(Request(marker,
+                                         LookAt(center, distance_m, tilt, azimuth, roll),
+                                         noise_var,
+                                         blur_sigma_px,
+                                         channels));
+    rms.push_back(b.position_rms_m);
+    median.push_back(b.position_median_m);
+    rotation.push_back(b.rotation_rms_deg);
+  }
+  const auto middle = [poses](std::vector<double> v) {
+    std::nth_element(v.begin(), v.begin() + poses / 2, v.end());
+    return v[static_cast<size_t>(poses / 2)];
+  };
+  return {middle(rms), middle(median), middle(rotation)};
+}
+
+TEST(MedianGaussianNormTest, MatchesClosedForms) {
+  constexpr double kTol = 1e-6;  // relative; the quadrature is far better
+  // Isotropic: σ·sqrt(median of χ²₃); one axis: σ·Φ⁻¹(3/4); two equal axes: σ·sqrt(2 ln 2).
+  EXPECT_NEAR(MedianGaussianNorm(4.0 * Eigen::Matrix3d::Identity()), 2.0 * 1.5381722544, 2 * kTol);
+  EXPECT_NEAR(MedianGaussianNorm(Eigen::Vector3d(9.0, 0.0, 0.0).asDiagonal()),
+              3.0 * 0.6744897502,
+              3 * kTol);
+  EXPECT_NEAR(MedianGaussianNorm(Eigen::Vector3d(0.0, 1.0, 1.0).asDiagonal()),
+              std::sqrt(2.0 * std::log(2.0)),
+              kTol);
+}
+
+TEST(MedianGaussianNormTest, IsRotationInvariantAndHandlesStrongAnisotropy) {
+  const Eigen::Matrix3d diagonal = Eigen::Vector3d(1e4, 1.0, 0.01).asDiagonal();
+  const Eigen::Matrix3d R =
+      Eigen::AngleAxisd(0.7, Eigen::Vector3d(1.0, 2.0, 3.0).normalized()).toRotationMatrix();
+  const double median = MedianGaussianNorm(diagonal);
+  EXPECT_NEAR(MedianGaussianNorm(R * diagonal * R.transpose()), median, 1e-6 * median);
+  // Nearly one-dimensional: just above 100 · 0.6745.
+  EXPECT_GT(median, 100.0 * 0.6744897502);
+  EXPECT_LT(median, 100.0 * 0.6744897502 * 1.001);
+}
+
+TEST(PoseCrlbTest, BlurredDiskCentreMatchesTheClosedForm) {
+  // crlb.md: sd(x0) = (σ_n/c)·sqrt(2σ_b/(√π R)), the exact value 1-4 % above it.
+  constexpr double kFocal = 600.0, kDistance = 1.0, kNoiseVar = 0.02;
+  for (const double radius_px : {25.0, 40.0}) {
+    for (const double blur : {2.0, 4.0, 6.0}) {
+      const MarkerSpec disk = BlackDiskMarker(radius_px * kDistance / kFocal);
+      const Matrix6d F =
+          PoseFisherInformation(Request(disk, TiltedView(kDistance, 0.0, 0.0), kNoiseVar, blur, 1));
+      // t_x shifts a fronto-parallel marker's image rigidly by f/z per metre.
+      const double sd_px = kFocal / kDistance / std::sqrt(F(3, 3));
+      const double closed =
+          std::sqrt(kNoiseVar) * std::sqrt(2.0 * blur / (std::sqrt(kPi) * radius_px));
+      EXPECT_GE(sd_px, closed) << "R " << radius_px << " blur " << blur;
+      EXPECT_LE(sd_px, 1.05 * closed) << "R " << radius_px << " blur " << blur;
+    }
+  }
+}
+
+TEST(PoseCrlbTest, ScalesWithTheNoiseAndRisesWithBlur) {
+  const MarkerSpec marker = CrlbCirclesA();
+  const Rigid3 pose = LookAt(marker.InkBounds().center(), 0.8, 25.0, 40.0, 10.0);
+  const PoseBound low = PoseCrlb(Request(marker, pose, 0.02, 0.0, 3));
+  const PoseBound high = PoseCrlb(Request(marker, pose, 0.18, 0.0, 3));
+  const double expected =
+      std::sqrt((0.18 + kQuantisationVariance) / (0.02 + kQuantisationVariance));
+  EXPECT_NEAR(high.position_rms_m / low.position_rms_m, expected, 1e-9 * expected);
+  EXPECT_NEAR(high.rotation_median_deg / low.rotation_median_deg, expected, 1e-6 * expected);
+  double previous = 0.0;
+  for (const double blur : {0.0, 0.5, 1.0, 2.0, 4.0, 8.0}) {
+    const PoseBound b = PoseCrlb(Request(marker, pose, 0.02, blur, 3));
+    EXPECT_GT(b.position_rms_m, previous) << "blur " << blur;
+    previous = b.position_rms_m;
+  }
+}
+
+TEST(PoseCrlbTest, DoesNotChangeWhenTheEdgesAreSampledFiner) {
+  constexpr double kTol = 1e-3;  // relative
+  const MarkerSpec circles = CrlbCirclesA();
+  const MarkerSpec square = BlackSquareMarker(-0.05, -0.05, 0.1);
+  for (const MarkerSpec* marker : {&circles, &square}) {
+    for (const double blur : {0.0, 3.0}) {
+      const FrameRequest request = Request(
+          *marker, LookAt(marker->InkBounds().center(), 1.0, 30.0, 60.0, 20.0), 0.02, blur, 3);
+      const PoseBound coarse = PoseCrlb(request, {0.25});
+      const PoseBound fine = PoseCrlb(request, {0.05});
+      EXPECT_NEAR(coarse.position_rms_m, fine.position_rms_m, kTol * fine.position_rms_m);
+      EXPECT_NEAR(coarse.rotation_rms_deg, fine.rotation_rms_deg, kTol * fine.rotation_rms_deg);
+    }
+  }
+}
+
+// ∇θI against central differences of the renderer itself, for a square (exact straight
+// edges in the rasteriser) and a disk (chords within 1/255).
+TEST(PoseCrlbTest, FisherMatchesFiniteDifferencesOfTheRenderer) {
+  constexpr double kTol = 0.01;  // of sqrt(F_kk F_ll); central differences of 0.2 px steps
+  const MarkerSpec square = BlackSquareMarker(-0.05, -0.05, 0.1);
+  const MarkerSpec disk = BlackDiskMarker(0.04);
+  for (const MarkerSpec* marker : {&square, &disk}) {
+    const Rigid3 pose = LookAt(marker->InkBounds().center(), 0.6, 30.0, 75.0, 20.0);
+    FrameRequest request = Request(*marker, pose, 0.0, 1.5, 1);
+    request.keep_linear = true;
+    const Matrix6d F = PoseFisherInformation(request);
+    // Steps of about 0.2 px in the image.
+    const double steps[6] = {3e-4, 3e-4, 3e-4, 2e-4, 2e-4, 2e-4};
+    std::vector<Eigen::VectorXd> gradients;
+    for (int k = 0; k < 6; ++k) {
+      Eigen::VectorXd images[2];
+      for (int side = 0; side < 2; ++side) {
+        Eigen::Matrix<double, 6, 1> theta = Eigen::Matrix<double, 6, 1>::Zero();
+        theta[k] = side == 0 ? steps[k] : -steps[k];
+        Rigid3 moved = pose;
+        if (k < 3) {
+          moved.rotation =
+              Eigen::AngleAxisd(theta[k], Eigen::Vector3d::Unit(k)).toRotationMatrix() *
+              pose.rotation;
+        }
+        moved.translation += theta.tail<3>();
+        FrameRequest r = request;
+        r.scene.cam_from_marker = moved;
+        const RenderedFrame frame = RenderFrame(r);
+        images[side] =
+            Eigen::Map<const Eigen::VectorXf>(frame.linear.data.data(),
+                                              static_cast<Eigen::Index>(frame.linear.data.size()))
+                .cast<double>();
+      }
+      gradients.push_back((images[0] - images[1]) / (2.0 * steps[k]));
+    }
+    // Every entry, so the correlations that make the bound are checked too.
+    Matrix6d numeric;
+    for (int k = 0; k < 6; ++k) {
+      for (int l = 0; l < 6; ++l) {
+        numeric(k, l) = gradients[static_cast<size_t>(k)].dot(gradients[static_cast<size_t>(l)]) /
+                        kQuantisationVariance;
+      }
+    }
+    for (int k = 0; k < 6; ++k) {
+      for (int l = 0; l < 6; ++l) {
+        const double scale = std::sqrt(numeric(k, k) * numeric(l, l));
+        EXPECT_NEAR(F(k, l), numeric(k, l), kTol * scale) << "entry " << k << ", " << l;
+      }
+    }
+  }
+}
+
+TEST(PoseCrlbTest, ReproducesTheReferenceValues) {
+  constexpr double kTol = 0.05;  // the 5 %; measured: within 4.6 % on all 15 rows
+  constexpr int kPoses = 100;
+  struct Reference {
+    const MarkerSpec* marker;
+    int channels;
+    double distance_m, blur, noise_var, rms_mm, median_mm, rotation_deg;
+  };
+  const MarkerSpec circles = CrlbCirclesA();
+  const MarkerSpec square = BlackSquareMarker(-0.05, -0.05, 0.1);
+  // crlb.md's tables: RMS, med|e| and rotation, each the median over the poses.
+  for (const Reference& r : {Reference{&circles, 3, 0.6, 0.0, 0.02, 0.82, 0.67, 0.080},
+                             Reference{&circles, 3, 0.6, 0.0, 0.3, 3.18, 2.60, 0.31},
+                             Reference{&circles, 3, 1.0, 5.0, 0.02, 14.2, 11.5, 0.83},
+                             Reference{&circles, 3, 2.5, 0.0, 0.02, 32.8, 26.9, 0.76},
+                             Reference{&square, 1, 1.0, 0.0, 0.02, 3.53, 2.82, 0.20},
+                             Reference{&square, 1, 1.0, 10.0, 0.02, 25.0, 20.5, 1.52}}) {
+    const Eigen::Vector3d b =
+        MedianBounds(*r.marker, r.distance_m, r.noise_var, r.blur, r.channels, kPoses);
+    const std::string where = (r.marker == &circles ? "circles_a" : "square") +
+                              std::string(" at ") + std::to_string(r.distance_m) + " m, blur " +
+                              std::to_string(r.blur) + ", noise " + std::to_string(r.noise_var);
+    EXPECT_NEAR(1e3 * b[0], r.rms_mm, kTol * r.rms_mm) << where;
+    EXPECT_NEAR(1e3 * b[1], r.median_mm, kTol * r.median_mm) << where;
+    EXPECT_NEAR(b[2], r.rotation_deg, kTol * r.rotation_deg) << where;
+  }
+}
+
+TEST(PoseCrlbTest, IsLargestFaceOn) {
+  // crlb.md: circles_a at 0.6 m, σ² 0.02: RMS 3.68 mm at tilt 0, 0.60 mm at tilt 30.
+  constexpr double kTol = 0.05;
+  const MarkerSpec circles = CrlbCirclesA();
+  const Eigen::Vector2d center = circles.InkBounds().center();
+  const PoseBound face_on =
+      PoseCrlb(Request(circles, LookAt(center, 0.6, 0.0, 0.0, 30.0), 0.02, 0.0, 3));
+  EXPECT_NEAR(1e3 * face_on.position_rms_m, 3.68, kTol * 3.68);
+  std::vector<double> tilted;
+  for (int i = 0; i < 12; ++i) {
+    tilted.push_back(
+        PoseCrlb(Request(circles, LookAt(center, 0.6, 30.0, 30.0 * i, 77.0 * i), 0.02, 0.0, 3))
+            .position_rms_m);
+  }
+  std::sort(tilted.begin(), tilted.end());
+  EXPECT_NEAR(1e3 * 0.5 * (tilted[5] + tilted[6]), 0.60, kTol * 0.60);
+}
+
+TEST(PoseCrlbTest, AMarkerOutOfViewHasNoBound) {
+  const MarkerSpec disk = BlackDiskMarker(0.03);
+  Rigid3 pose = TiltedView(1.0, 20.0, 0.0);
+  pose.translation.x() = 5.0;  // far to the side of the image
+  const PoseBound b = PoseCrlb(Request(disk, pose, 0.02, 2.0, 1));
+  EXPECT_FALSE(b.observable);
+  EXPECT_TRUE(std::isinf(b.position_rms_m));
+  EXPECT_TRUE(std::isinf(b.rotation_median_deg));
+}
+
+}  // namespace
+}  // namespace markerbench
