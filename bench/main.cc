@@ -5,6 +5,7 @@
 #include <filesystem>
 #include <iostream>
 
+#include "bench/crlb_command.h"
 #include "bench/marker_sheets.h"
 #include "bench/render_command.h"
 #include "bench/report.h"
@@ -92,6 +93,21 @@ int main(int argc, char** argv) {
       ->check(CLI::Range(0.0, 10.0));
   report->add_flag("!--no-plots", report_options.plots, "Skip scripts/plot_sweep.py");
 
+  CLI::App* crlb = app.add_subcommand(
+      "crlb", "The Cramér-Rao bound on the camera pose for a marker, camera and poses");
+  CrlbCommandOptions crlb_options;
+  std::string crlb_channels = "auto";
+  crlb->add_option("--marker", crlb_options.marker_path, "Marker YAML")->required();
+  crlb->add_option("--camera", crlb_options.camera_path, "Camera YAML (ROS camera_info)")
+      ->required();
+  crlb->add_option("--poses", crlb_options.poses_path, "POSES.csv (r11..r33, tx, ty, tz)")
+      ->required();
+  crlb->add_option("--noise-var", crlb_options.noise_var, "imnoise variance on [0, 1]");
+  crlb->add_option("--blur-sigma", crlb_options.blur_sigma_px, "Gaussian blur sigma (px)");
+  crlb->add_option("--channels", crlb_channels, "auto (RGB for coloured markers), grey or rgb")
+      ->check(CLI::IsMember({"auto", "grey", "rgb"}));
+  crlb->add_option("--out", crlb_options.out_csv, "Output CSV (default: standard output)");
+
   CLI11_PARSE(app, argc, argv);
   try {
     if (render->parsed()) {
@@ -118,6 +134,11 @@ int main(int argc, char** argv) {
       RunSweeps(sweep_scenarios, sweep_options);
     } else if (report->parsed()) {
       WriteReport(report_dir, report_options);
+    } else if (crlb->parsed()) {
+      crlb_options.channels = crlb_channels == "grey"  ? Channels::kGrey
+                              : crlb_channels == "rgb" ? Channels::kRgb
+                                                       : Channels::kAuto;
+      std::cerr << RunCrlbCommand(crlb_options) << '\n';
     } else if (markers->parsed()) {
       if (marker_files.empty()) marker_files = YamlFilesIn(markers_dir);
       for (const std::string& path : WriteMarkerSheets(marker_files, markers_out)) {

@@ -55,6 +55,12 @@ TEST(Scenario, LoadsEveryField) {
   EXPECT_EQ(s.example_value, 2.0);  // default: the last value
   EXPECT_FALSE(s.equal_ink_area_m2.has_value());
   EXPECT_EQ(s.input_files.size(), 3u);
+  EXPECT_TRUE(s.crlb);  // default: every frame gets its Cramér-Rao bound
+}
+
+TEST(Scenario, TheBoundCanBeTurnedOff) {
+  EXPECT_FALSE(LoadScenario(WriteTestFile("scenario.yaml", GoodScenario() + "crlb: false\n")).crlb);
+  EXPECT_THAT(ErrorOf(GoodScenario() + "crlb: sometimes\n"), HasSubstr("key 'crlb'"));
 }
 
 TEST(Scenario, EqualAreaScalesEveryMarker) {

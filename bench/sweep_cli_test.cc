@@ -11,6 +11,7 @@
 #include <chrono>
 #include <filesystem>
 #include <fstream>
+#include <map>
 #include <sstream>
 #include <thread>
 
@@ -119,6 +120,73 @@ TEST_F(SweepCliTest, FramesCsvIsByteIdenticalAcrossThreadCountsAndRuns) {
   EXPECT_EQ(Read(two + "/det/frames.csv"), frames);
   EXPECT_EQ(Read(again + "/det/frames.csv"), frames);
   EXPECT_EQ(Read(two + "/det/examples/aruco.png"), Read(one + "/det/examples/aruco.png"));
+}
+
+// The columns of frames.csv, by name, for every data row.
+std::vector<std::map<std::string, std::string>> FramesTable(const std::string& text) {
+  std::istringstream in(text);
+  std::string line;
+  std::getline(in, line);
+  std::vector<std::string> header;
+  std::stringstream names(line);
+  for (std::string name; std::getline(names, name, ',');) header.push_back(name);
+  std::vector<std::map<std::string, std::string>> rows;
+  while (std::getline(in, line)) {
+    std::stringstream fields(line);
+    std::map<std::string, std::string> row;
+    for (size_t i = 0; i < header.size(); ++i) std::getline(fields, row[header[i]], ',');
+    rows.push_back(row);
+  }
+  return rows;
+}
+
+TEST_F(SweepCliTest, EveryFrameCarriesItsBoundUnlessTurnedOff) {
+  const std::string with = Scenario("bound", 2);
+  ASSERT_EQ(Run({"sweep", with, "--out", (work_ / "on").string()}).status, 0);
+  const auto rows = FramesTable(Read(work_ / "on/bound/frames.csv"));
+  ASSERT_EQ(rows.size(), 3u * 2 * 3);
+  std::map<std::string, std::string> bound_of_frame;
+  for (const auto& row : rows) {
+    const double rms = std::stod(row.at("crlb_position_m"));
+    const double median = std::stod(row.at("crlb_position_med_m"));
+    // A 0.1 m tag at 0.8 m: a fraction of a millimetre to a few centimetres, depending on noise.
+    EXPECT_GT(median, 1e-6);
+    EXPECT_LT(median, 0.1);
+    EXPECT_LT(median, rms);  // for a 3-D Gaussian, 0.67-0.89 of the RMS
+    EXPECT_GT(median, 0.6 * rms);
+    EXPECT_GT(std::stod(row.at("crlb_rotation_med_deg")), 0.0);
+    // One frame, one bound, whichever tracker the row belongs to.
+    auto [it, inserted] = bound_of_frame.try_emplace(row.at("frame"), row.at("crlb_position_m"));
+    if (!inserted) {
+      EXPECT_EQ(it->second, row.at("crlb_position_m"));
+    }
+  }
+  const std::string without = WriteTestFile("nobound.yaml", Read(with) + "crlb: false\n");
+  ASSERT_EQ(Run({"sweep", without, "--out", (work_ / "off").string()}).status, 0);
+  for (const auto& row : FramesTable(Read(work_ / "off/bound/frames.csv"))) {
+    EXPECT_EQ(row.at("crlb_position_m"), "");
+    EXPECT_EQ(row.at("crlb_rotation_med_deg"), "");
+  }
+}
+
+TEST_F(SweepCliTest, CrlbCommandPrintsTheBoundOfEachPose) {
+  const std::string poses = WriteTestFile("poses.csv",
+                                          "r11,r12,r13,r21,r22,r23,r31,r32,r33,tx,ty,tz\n"
+                                          "1,0,0,0,-1,0,0,0,-1,0,0,0.6\n"
+                                          "1,0,0,0,-1,0,0,0,-1,0,0,1.2\n");
+  const std::string marker = kRoot + "/scenarios/markers/apriltag.yaml";
+  const std::string camera = kRoot + "/scenarios/cameras/default.yaml";
+  const Finished f = Run(
+      {"crlb", "--marker", marker, "--camera", camera, "--poses", poses, "--noise-var", "0.02"});
+  ASSERT_EQ(f.status, 0) << f.error;
+  EXPECT_THAT(f.error, HasSubstr("median over 2 poses"));
+  const auto rows = FramesTable(Read(work_ / "stdout.txt"));
+  ASSERT_EQ(rows.size(), 2u);
+  // Twice as far, the bound is several times larger (about D^2.5, crlb.md).
+  EXPECT_GT(std::stod(rows[1].at("crlb_position_m")),
+            4.0 * std::stod(rows[0].at("crlb_position_m")));
+  EXPECT_EQ(rows[0].at("noise_var"), "0.02");
+  EXPECT_EQ(Run({"crlb", "--marker", marker, "--camera", camera, "--poses", marker}).status, 2);
 }
 
 TEST_F(SweepCliTest, KilledRunResumesToTheSameFile) {

@@ -1,18 +1,22 @@
 // Renderer speed (issue goals: tag36h11 grey frame at 0.6 m with blur σ = 2 and noise
-// ≤ 3 ms; colour circles_a frame ≤ 5 ms; memory flat over many frames). Run from the
+// ≤ 3 ms; colour circles_a frame ≤ 5 ms; memory flat over many frames) and the cost of the
+// frames' Cramér-Rao bound beside it. Run from the
 // project root so the marker files are found. Figures go to results/speed.md.
 #include <benchmark/benchmark.h>
 #include <sys/resource.h>
 
 #include "core/marker_yaml.h"
 #include "core/random.h"
+#include "renderer/pose_crlb.h"
 #include "renderer/render_frame.h"
 #include "renderer/test_scenes.h"
 
 namespace markerbench {
 namespace {
 
-void RenderMarker(benchmark::State& state, const char* file, int channels) {
+// Calls work(request) on a fresh paired-protocol frame of `file` per iteration.
+template <typename Work>
+void EachFrame(benchmark::State& state, const char* file, int channels, Work work) {
   const MarkerSpec marker = LoadMarkerYaml(file);
   FrameRequest request;
   request.scene.marker = &marker;
@@ -27,8 +31,14 @@ void RenderMarker(benchmark::State& state, const char* file, int channels) {
     request.scene.cam_from_marker = TiltedView(0.6, rng.Uniform(0, 40), rng.Uniform(0, 360));
     request.scene.cam_from_marker.translation -= request.scene.cam_from_marker.rotation * center;
     request.noise_seed = SeedFor(1, 0, frame++, SeedPurpose::kNoise);
-    benchmark::DoNotOptimize(RenderFrame(request));
+    work(request);
   }
+}
+
+void RenderMarker(benchmark::State& state, const char* file, int channels) {
+  EachFrame(state, file, channels, [](const FrameRequest& request) {
+    benchmark::DoNotOptimize(RenderFrame(request));
+  });
 }
 
 void BM_RenderTag36h11Grey(benchmark::State& state) {
@@ -37,6 +47,27 @@ void BM_RenderTag36h11Grey(benchmark::State& state) {
 void BM_RenderCirclesAColour(benchmark::State& state) {
   RenderMarker(state, "scenarios/markers/circles_a.yaml", 3);
 }
+
+// The Cramér-Rao bound of the same frames (computed once per frame in sweeps): its cost
+// against the render's is what it adds to a sweep.
+void BoundOfMarker(benchmark::State& state, const char* file, int channels) {
+  EachFrame(state, file, channels, [](const FrameRequest& request) {
+    benchmark::DoNotOptimize(PoseCrlb(request));
+  });
+}
+void BM_CrlbTag36h11Grey(benchmark::State& state) {
+  BoundOfMarker(state, "scenarios/markers/apriltag.yaml", 1);
+}
+void BM_CrlbCirclesAColour(benchmark::State& state) {
+  BoundOfMarker(state, "scenarios/markers/circles_a.yaml", 3);
+}
+void BM_CrlbRuneTagGrey(benchmark::State& state) {
+  BoundOfMarker(state, "scenarios/markers/runetag.yaml", 1);
+}
+BENCHMARK(BM_CrlbTag36h11Grey)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_CrlbCirclesAColour)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_CrlbRuneTagGrey)->Unit(benchmark::kMillisecond);
+
 // Stages of the grey tag frame, to see where the time goes.
 void BM_StageRasterizeTag(benchmark::State& state) {
   const MarkerSpec marker = LoadMarkerYaml("scenarios/markers/apriltag.yaml");
