@@ -16,27 +16,37 @@ constexpr double kPi = 3.14159265358979323846;
 // F is singular when its smallest eigenvalue, after scaling its diagonal to 1, is below this.
 constexpr double kSingularEigenvalue = 1e-12;
 
-// Calls add(x, y, fraction) for every pixel that the segment a → b crosses, with the
-// fraction of the segment inside it (pixel (x, y) covers [x ± ½] × [y ± ½]).
-template <typename Add>
-void ForEachPixelPart(const Eigen::Vector2d& a, const Eigen::Vector2d& b, Add add) {
-  std::vector<double> cuts = {0.0, 1.0};
+// The part of a boundary piece inside one pixel (pixel (x, y) covers [x ± ½] × [y ± ½]).
+struct PixelPart {
+  int x = 0, y = 0;
+  double fraction = 0.0;  // of the piece's length
+  size_t piece = 0;
+};
+
+// Appends the parts of the segment a → b, split at pixel borders; `cuts` is scratch space.
+void AppendPixelParts(const Eigen::Vector2d& a,
+                      const Eigen::Vector2d& b,
+                      size_t piece,
+                      std::vector<double>* cuts,
+                      std::vector<PixelPart>* parts) {
+  cuts->assign({0.0, 1.0});
   const Eigen::Vector2d d = b - a;
   for (int axis = 0; axis < 2; ++axis) {
     if (d[axis] == 0.0) continue;
     const double lo = std::min(a[axis], b[axis]), hi = std::max(a[axis], b[axis]);
     for (double border = std::floor(lo - 0.5) + 1.5; border < hi; border += 1.0) {
-      cuts.push_back((border - a[axis]) / d[axis]);
+      cuts->push_back((border - a[axis]) / d[axis]);
     }
   }
-  std::sort(cuts.begin(), cuts.end());
-  for (size_t i = 0; i + 1 < cuts.size(); ++i) {
-    const double fraction = cuts[i + 1] - cuts[i];
+  std::sort(cuts->begin(), cuts->end());
+  for (size_t i = 0; i + 1 < cuts->size(); ++i) {
+    const double fraction = (*cuts)[i + 1] - (*cuts)[i];
     if (!(fraction > 0.0)) continue;
-    const Eigen::Vector2d mid = a + 0.5 * (cuts[i] + cuts[i + 1]) * d;
-    add(static_cast<int>(std::floor(mid.x() + 0.5)),
-        static_cast<int>(std::floor(mid.y() + 0.5)),
-        fraction);
+    const Eigen::Vector2d mid = a + 0.5 * ((*cuts)[i] + (*cuts)[i + 1]) * d;
+    parts->push_back({static_cast<int>(std::floor(mid.x() + 0.5)),
+                      static_cast<int>(std::floor(mid.y() + 0.5)),
+                      fraction,
+                      piece});
   }
 }
 
@@ -159,15 +169,18 @@ Matrix6d PoseFisherInformation(const FrameRequest& request, const CrlbOptions& o
   // dI/dθ_k of each piece, per unit jump: -(image velocity · normal) × length.
   const Eigen::Vector3d& t = request.scene.cam_from_marker.translation;
   std::vector<Eigen::Matrix<double, 6, 1>> rates;
+  std::vector<PixelPart> parts;
+  std::vector<double> cuts;
+  for (size_t i = 0; i < pieces.size(); ++i) {
+    rates.push_back(-ImageVelocity(camera, pieces[i].mid_cam, t).transpose() * pieces[i].normal_px);
+    AppendPixelParts(pieces[i].a_px, pieces[i].b_px, i, &cuts, &parts);
+  }
   PixelRect deposits{camera.width + margin, camera.height + margin, -margin, -margin};
-  for (const BoundaryPiece& piece : pieces) {
-    rates.push_back(-ImageVelocity(camera, piece.mid_cam, t).transpose() * piece.normal_px);
-    ForEachPixelPart(piece.a_px, piece.b_px, [&](int x, int y, double) {
-      deposits.x0 = std::min(deposits.x0, x);
-      deposits.y0 = std::min(deposits.y0, y);
-      deposits.x1 = std::max(deposits.x1, x + 1);
-      deposits.y1 = std::max(deposits.y1, y + 1);
-    });
+  for (const PixelPart& part : parts) {
+    deposits.x0 = std::min(deposits.x0, part.x);
+    deposits.y0 = std::min(deposits.y0, part.y);
+    deposits.x1 = std::max(deposits.x1, part.x + 1);
+    deposits.y1 = std::max(deposits.y1, part.y + 1);
   }
   // Clip to the canvas, then leave room for the blur around the deposits.
   deposits = {std::max(deposits.x0, -margin),
@@ -182,18 +195,17 @@ Matrix6d PoseFisherInformation(const FrameRequest& request, const CrlbOptions& o
                        std::min(deposits.y1 + pad, camera.height + margin)};
   // Planes k · channels + c hold dI_c/dθ_k over `area`.
   ImageF derivative(area.x1 - area.x0, area.y1 - area.y0, 6 * channels);
-  for (size_t i = 0; i < pieces.size(); ++i) {
-    const BoundaryPiece& piece = pieces[i];
-    ForEachPixelPart(piece.a_px, piece.b_px, [&](int x, int y, double fraction) {
-      if (x < area.x0 || y < area.y0 || x >= area.x1 || y >= area.y1) return;
-      const size_t at = static_cast<size_t>(y - area.y0) * derivative.width + (x - area.x0);
-      for (int k = 0; k < 6; ++k) {
-        for (int c = 0; c < channels; ++c) {
-          derivative.plane(k * channels + c)[at] +=
-              static_cast<float>(fraction * rates[i][k] * piece.jump[static_cast<size_t>(c)]);
-        }
+  for (const PixelPart& part : parts) {
+    if (part.x < area.x0 || part.y < area.y0 || part.x >= area.x1 || part.y >= area.y1) continue;
+    const size_t at = static_cast<size_t>(part.y - area.y0) * derivative.width + (part.x - area.x0);
+    const std::array<double, 3>& jump = pieces[part.piece].jump;
+    for (int k = 0; k < 6; ++k) {
+      const double rate = part.fraction * rates[part.piece][k];
+      for (int c = 0; c < channels; ++c) {
+        derivative.plane(k * channels + c)[at] +=
+            static_cast<float>(rate * jump[static_cast<size_t>(c)]);
       }
-    });
+    }
   }
   const PixelRect local{
       deposits.x0 - area.x0, deposits.y0 - area.y0, deposits.x1 - area.x0, deposits.y1 - area.y0};
