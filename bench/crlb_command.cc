@@ -6,8 +6,6 @@
 
 #include "bench/metrics.h"
 #include "bench/render_command.h"
-#include "core/camera_yaml.h"
-#include "core/marker_yaml.h"
 #include "core/number_text.h"
 #include "core/yaml_reader.h"
 #include "renderer/pose_crlb.h"
@@ -15,18 +13,9 @@
 namespace markerbench {
 
 std::string RunCrlbCommand(const CrlbCommandOptions& o) {
-  const MarkerSpec marker = LoadMarkerYaml(o.marker_path);
-  const Camera camera = LoadCameraYaml(o.camera_path);
-  const std::vector<Rigid3> poses = LoadPosesCsv(o.poses_path);
-  FrameRequest request;
-  request.scene.marker = &marker;
-  request.scene.camera = camera;
-  request.degradations.noise_var = o.noise_var;
-  request.degradations.blur_sigma_px = o.blur_sigma_px;
-  std::string error;
-  if (!request.degradations.IsValid(&error)) throw ConfigError("option: " + error);
-  request.channels = ChannelsFor(o.channels, marker);
-
+  const ExplicitFrames frames = LoadExplicitFrames(
+      o.marker_path, o.camera_path, o.poses_path, o.noise_var, o.blur_sigma_px, o.channels);
+  const MarkerSpec& marker = frames.marker;
   std::ofstream file;
   if (!o.out_csv.empty()) {
     file.open(o.out_csv);
@@ -37,13 +26,13 @@ std::string RunCrlbCommand(const CrlbCommandOptions& o) {
          "crlb_position_med_m,crlb_rotation_deg,crlb_rotation_med_deg\n";
   const Eigen::Vector2d center = marker.InkBounds().center();
   std::vector<double> position, rotation;
-  for (size_t i = 0; i < poses.size(); ++i) {
-    request.scene.cam_from_marker = poses[i];
-    const PoseBound bound = PoseCrlb(request);
-    const GroundTruth truth = ComputeGroundTruth(marker, camera, poses[i]);
-    out << i << ',' << NumberText((poses[i] * Eigen::Vector3d(center.x(), center.y(), 0.0)).norm())
+  for (size_t i = 0; i < frames.poses.size(); ++i) {
+    const Rigid3& pose = frames.poses[i];
+    const PoseBound bound = PoseCrlb(frames.Request(i));
+    const GroundTruth truth = ComputeGroundTruth(marker, frames.camera, pose);
+    out << i << ',' << NumberText((pose * Eigen::Vector3d(center.x(), center.y(), 0.0)).norm())
         << ',' << NumberText(truth.apparent_size_px) << ',' << NumberText(o.noise_var) << ','
-        << NumberText(o.blur_sigma_px) << ',' << request.channels << ','
+        << NumberText(o.blur_sigma_px) << ',' << frames.channels << ','
         << NumberText(bound.position_rms_m) << ',' << NumberText(bound.position_median_m) << ','
         << NumberText(bound.rotation_rms_deg) << ',' << NumberText(bound.rotation_median_deg)
         << '\n';
@@ -52,7 +41,7 @@ std::string RunCrlbCommand(const CrlbCommandOptions& o) {
   }
   out.flush();
   if (!out) throw std::runtime_error((o.out_csv.empty() ? "stdout" : o.out_csv) + ": write failed");
-  return marker.name + ": median over " + std::to_string(poses.size()) +
+  return marker.name + ": median over " + std::to_string(frames.poses.size()) +
          " poses of the median error at the physical limit: position " +
          FormattedOrDash(1e3 * Median(position), "%.4g") + " mm, rotation " +
          FormattedOrDash(Median(rotation), "%.4g") + " deg (noise_var " + NumberText(o.noise_var) +

@@ -162,28 +162,55 @@ std::vector<Rigid3> LoadPosesCsv(const std::string& path) {
   return poses;
 }
 
-void RenderPoses(const ExplicitRenderOptions& o) {
-  const MarkerSpec marker = LoadMarkerYaml(o.marker_path);
-  const Camera camera = LoadCameraYaml(o.camera_path);
-  const std::vector<Rigid3> poses = LoadPosesCsv(o.poses_path);
+FrameRequest ExplicitFrames::Request(size_t i) const {
   FrameRequest request;
   request.scene.marker = &marker;
   request.scene.camera = camera;
-  request.degradations.noise_var = o.noise_var;
-  request.degradations.blur_sigma_px = o.blur_sigma_px;
+  request.scene.cam_from_marker = poses.at(i);
+  request.degradations = degradations;
+  request.channels = channels;
+  return request;
+}
+
+ExplicitFrames LoadExplicitFrames(const std::string& marker_path,
+                                  const std::string& camera_path,
+                                  const std::string& poses_path,
+                                  double noise_var,
+                                  double blur_sigma_px,
+                                  Channels channels) {
+  ExplicitFrames frames;
+  frames.marker = LoadMarkerYaml(marker_path);
+  frames.camera = LoadCameraYaml(camera_path);
+  frames.poses = LoadPosesCsv(poses_path);
+  frames.degradations.noise_var = noise_var;
+  frames.degradations.blur_sigma_px = blur_sigma_px;
   std::string error;
-  if (!request.degradations.IsValid(&error)) throw ConfigError("option: " + error);
-  request.channels = ChannelsFor(Channels::kAuto, marker);
-  request.keep_linear = o.write_float;
+  if (!frames.degradations.IsValid(&error)) throw ConfigError("option: " + error);
+  frames.channels = ChannelsFor(channels, frames.marker);
+  return frames;
+}
+
+void RenderPoses(const ExplicitRenderOptions& o) {
+  const ExplicitFrames frames = LoadExplicitFrames(
+      o.marker_path, o.camera_path, o.poses_path, o.noise_var, o.blur_sigma_px, Channels::kAuto);
   MakeDir(o.out_dir);
   GroundTruthCsv csv(o.out_dir);
-  for (size_t i = 0; i < poses.size(); ++i) {
-    request.scene.cam_from_marker = poses[i];
+  for (size_t i = 0; i < frames.poses.size(); ++i) {
+    FrameRequest request = frames.Request(i);
+    request.keep_linear = o.write_float;
     request.noise_seed = SeedFor(o.seed, 0, i, SeedPurpose::kNoise);
     const RenderedFrame frame = RenderFrame(request);
     const std::string image = WriteFrame(o.out_dir, static_cast<int>(i), frame);
-    csv.Write(
-        static_cast<int>(i), image, marker.name, "", "", "", o.seed, camera, request, frame.truth);
+    csv.Write(static_cast<int>(i),
+              image,
+              frames.marker.name,
+              "",
+              "",
+              "",
+              o.seed,
+              frames.camera,
+              request,
+              frame.truth);
   }
 }
 

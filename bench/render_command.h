@@ -6,7 +6,9 @@
 #include <string>
 #include <vector>
 
+#include "bench/scenario.h"
 #include "core/rigid3.h"
+#include "renderer/render_frame.h"
 
 namespace markerbench {
 
@@ -29,6 +31,25 @@ struct ExplicitRenderOptions {
 };
 
 void RenderPoses(const ExplicitRenderOptions& options);
+
+// The explicit form's inputs (render, crlb): a marker, a camera and poses, and what every
+// frame of them shares. Throws ConfigError naming the bad file or option.
+struct ExplicitFrames {
+  MarkerSpec marker;
+  Camera camera;
+  std::vector<Rigid3> poses;
+  Degradations degradations;
+  int channels = 1;
+
+  // The frame of poses[i]; refers to `marker`, so keep this alive while it is used.
+  FrameRequest Request(size_t i) const;
+};
+ExplicitFrames LoadExplicitFrames(const std::string& marker_path,
+                                  const std::string& camera_path,
+                                  const std::string& poses_path,
+                                  double noise_var,
+                                  double blur_sigma_px,
+                                  Channels channels);
 
 // POSES.csv: header r11,r12,r13,r21,r22,r23,r31,r32,r33,tx,ty,tz, then one cam_from_marker
 // per row. Throws ConfigError naming the file, line and column.

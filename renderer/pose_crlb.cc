@@ -16,19 +16,16 @@ constexpr double kPi = 3.14159265358979323846;
 // F is singular when its smallest eigenvalue, after scaling its diagonal to 1, is below this.
 constexpr double kSingularEigenvalue = 1e-12;
 
-// The part of a boundary piece inside one pixel (pixel (x, y) covers [x ± ½] × [y ± ½]).
-struct PixelPart {
-  int x = 0, y = 0;
-  double fraction = 0.0;  // of the piece's length
-  size_t piece = 0;
-};
+// Pixel (x, y) covers [x ± ½] × [y ± ½].
+int PixelIndex(double coordinate) { return static_cast<int>(std::floor(coordinate + 0.5)); }
 
-// Appends the parts of the segment a → b, split at pixel borders; `cuts` is scratch space.
-void AppendPixelParts(const Eigen::Vector2d& a,
+// Calls add(x, y, fraction) for every pixel that the segment a → b crosses, with the
+// fraction of the segment inside it; `cuts` is scratch space.
+template <typename Add>
+void ForEachPixelPart(const Eigen::Vector2d& a,
                       const Eigen::Vector2d& b,
-                      size_t piece,
                       std::vector<double>* cuts,
-                      std::vector<PixelPart>* parts) {
+                      Add add) {
   cuts->assign({0.0, 1.0});
   const Eigen::Vector2d d = b - a;
   for (int axis = 0; axis < 2; ++axis) {
@@ -43,10 +40,7 @@ void AppendPixelParts(const Eigen::Vector2d& a,
     const double fraction = (*cuts)[i + 1] - (*cuts)[i];
     if (!(fraction > 0.0)) continue;
     const Eigen::Vector2d mid = a + 0.5 * ((*cuts)[i] + (*cuts)[i + 1]) * d;
-    parts->push_back({static_cast<int>(std::floor(mid.x() + 0.5)),
-                      static_cast<int>(std::floor(mid.y() + 0.5)),
-                      fraction,
-                      piece});
+    add(PixelIndex(mid.x()), PixelIndex(mid.y()), fraction);
   }
 }
 
@@ -166,21 +160,15 @@ Matrix6d PoseFisherInformation(const FrameRequest& request, const CrlbOptions& o
   const std::vector<BoundaryPiece> pieces =
       ImageBoundaryPieces(request.scene, channels, window, options.max_piece_px);
 
-  // dI/dθ_k of each piece, per unit jump: -(image velocity · normal) × length.
-  const Eigen::Vector3d& t = request.scene.cam_from_marker.translation;
-  std::vector<Eigen::Matrix<double, 6, 1>> rates;
-  std::vector<PixelPart> parts;
-  std::vector<double> cuts;
-  for (size_t i = 0; i < pieces.size(); ++i) {
-    rates.push_back(-ImageVelocity(camera, pieces[i].mid_cam, t).transpose() * pieces[i].normal_px);
-    AppendPixelParts(pieces[i].a_px, pieces[i].b_px, i, &cuts, &parts);
-  }
+  // The pixels a piece crosses lie between the pixels of its ends.
   PixelRect deposits{camera.width + margin, camera.height + margin, -margin, -margin};
-  for (const PixelPart& part : parts) {
-    deposits.x0 = std::min(deposits.x0, part.x);
-    deposits.y0 = std::min(deposits.y0, part.y);
-    deposits.x1 = std::max(deposits.x1, part.x + 1);
-    deposits.y1 = std::max(deposits.y1, part.y + 1);
+  for (const BoundaryPiece& piece : pieces) {
+    for (const Eigen::Vector2d& end : {piece.a_px, piece.b_px}) {
+      deposits.x0 = std::min(deposits.x0, PixelIndex(end.x()));
+      deposits.y0 = std::min(deposits.y0, PixelIndex(end.y()));
+      deposits.x1 = std::max(deposits.x1, PixelIndex(end.x()) + 1);
+      deposits.y1 = std::max(deposits.y1, PixelIndex(end.y()) + 1);
+    }
   }
   // Clip to the canvas, then leave room for the blur around the deposits.
   deposits = {std::max(deposits.x0, -margin),
@@ -195,17 +183,22 @@ Matrix6d PoseFisherInformation(const FrameRequest& request, const CrlbOptions& o
                        std::min(deposits.y1 + pad, camera.height + margin)};
   // Planes k · channels + c hold dI_c/dθ_k over `area`.
   ImageF derivative(area.x1 - area.x0, area.y1 - area.y0, 6 * channels);
-  for (const PixelPart& part : parts) {
-    if (part.x < area.x0 || part.y < area.y0 || part.x >= area.x1 || part.y >= area.y1) continue;
-    const size_t at = static_cast<size_t>(part.y - area.y0) * derivative.width + (part.x - area.x0);
-    const std::array<double, 3>& jump = pieces[part.piece].jump;
-    for (int k = 0; k < 6; ++k) {
-      const double rate = part.fraction * rates[part.piece][k];
-      for (int c = 0; c < channels; ++c) {
-        derivative.plane(k * channels + c)[at] +=
-            static_cast<float>(rate * jump[static_cast<size_t>(c)]);
+  const Eigen::Vector3d& t = request.scene.cam_from_marker.translation;
+  std::vector<double> cuts;
+  for (const BoundaryPiece& piece : pieces) {
+    // dI/dθ_k per unit jump: -(image velocity · normal) × length.
+    const Eigen::Matrix<double, 6, 1> rate =
+        -ImageVelocity(camera, piece.mid_cam, t).transpose() * piece.normal_px;
+    ForEachPixelPart(piece.a_px, piece.b_px, &cuts, [&](int x, int y, double fraction) {
+      if (x < area.x0 || y < area.y0 || x >= area.x1 || y >= area.y1) return;
+      const size_t at = static_cast<size_t>(y - area.y0) * derivative.width + (x - area.x0);
+      for (int k = 0; k < 6; ++k) {
+        for (int c = 0; c < channels; ++c) {
+          derivative.plane(k * channels + c)[at] +=
+              static_cast<float>(fraction * rate[k] * piece.jump[static_cast<size_t>(c)]);
+        }
       }
-    }
+    });
   }
   const PixelRect local{
       deposits.x0 - area.x0, deposits.y0 - area.y0, deposits.x1 - area.x0, deposits.y1 - area.y0};
