@@ -27,7 +27,7 @@ struct Curve {
   double radius = 0.0;
   size_t layer = 0;  // the painted layer whose edge it is
   // The layer's colours on either side are the same all along (a disk's circle, a grid cell's
-  // side): unless a higher layer reaches it, one probe decides the whole curve.
+  // side): unless another layer reaches it, one probe decides the whole curve.
   bool uniform = false;
 
   Eigen::Vector2d At(double s) const {
@@ -127,7 +127,7 @@ class EdgeWalker {
   }
 
   void Walk(const Curve& curve, double max_piece_px, std::vector<BoundaryPiece>* pieces) const {
-    if (curve.uniform && !Covered(curve)) {
+    if (curve.uniform && !Overlapped(curve)) {
       // One probe for the whole curve: most grid sides lie between cells of one colour.
       const Sides sides = Probe(curve, 0.5);
       if (!OwnsEdge(curve.layer, sides) || IsZero(Jump(sides))) return;
@@ -175,11 +175,12 @@ class EdgeWalker {
     return marker_.background;
   }
 
-  // Whether a layer above the curve's reaches its bounds.
-  bool Covered(const Curve& curve) const {
+  // Whether another layer reaches the curve's bounds: above it, it may hide the edge; below
+  // it, it may show through where the curve's own layer is transparent.
+  bool Overlapped(const Curve& curve) const {
     const Eigen::AlignedBox2d box = curve.Bounds();
-    for (size_t i = curve.layer + 1; i < bounds_.size(); ++i) {
-      if (bounds_[i].intersects(box)) return true;
+    for (size_t i = 0; i < bounds_.size(); ++i) {
+      if (i != curve.layer && bounds_[i].intersects(box)) return true;
     }
     return false;
   }

@@ -43,7 +43,8 @@ TEST(BoundaryPiecesTest, HiddenAndSharedEdgesCountOnce) {
   MarkerSpec marker = BlackDiskMarker(0.05);
   // The same disk again on top (shared edge), and a small black disk inside it (hidden).
   marker.layers.push_back(marker.layers.front());
-  marker.layers.push_back({DiskShape{Eigen::Vector2d(0.01, 0.0), 0.02}, Rgb::Zero()});
+  const PaintedShape hidden{DiskShape{Eigen::Vector2d(0.01, 0.0), 0.02}, Rgb::Zero()};
+  marker.layers.push_back(hidden);
   const std::vector<BoundaryPiece> pieces =
       ImageBoundaryPieces(FaceOn(marker), 1, kWholeImage, 0.25);
   EXPECT_NEAR(TotalLengthPx(pieces), 2.0 * kPi * 30.0, kLengthTol * 2.0 * kPi * 30.0);
@@ -64,6 +65,27 @@ TEST(BoundaryPiecesTest, AGridKeepsOnlyTheEdgesBetweenInkAndPaper) {
     // The paper (the brighter side) lies outside the rectangle.
     EXPECT_GT(p.jump[0] * p.normal_px.dot(0.5 * (p.a_px + p.b_px) - center), 0.0);
   }
+}
+
+TEST(BoundaryPiecesTest, ALowerLayerShowingThroughMakesAnEdgeOfAnUpperOne) {
+  // A white 0.1 m cell over the corner of a black disk of radius 5 cm: the cell's top side
+  // (y = 2 cm) is an edge only where the disk lies above it, x in [0, sqrt(5² - 2²) cm], and
+  // its midpoint (x = 5 cm) is not there.
+  MarkerSpec marker = BlackDiskMarker(0.05);
+  MarkerSpec cell = BlackSquareMarker(0.0, -0.08, 0.1);
+  std::get<GridShape>(cell.layers.front().shape).ink = {0};
+  marker.layers.push_back(cell.layers.front());
+  const std::vector<BoundaryPiece> pieces =
+      ImageBoundaryPieces(FaceOn(marker), 1, kWholeImage, 0.25);
+  const double top_row_px = 239.5 - 600.0 * 0.02;
+  double top_side_px = 0.0;
+  for (const BoundaryPiece& p : pieces) {
+    if (std::abs(p.a_px.y() - top_row_px) < 1e-6 && std::abs(p.b_px.y() - top_row_px) < 1e-6) {
+      top_side_px += (p.b_px - p.a_px).norm();
+    }
+  }
+  const double expected_px = 600.0 * std::sqrt(0.05 * 0.05 - 0.02 * 0.02);
+  EXPECT_NEAR(top_side_px, expected_px, 0.25);  // one piece at the disk's crossing
 }
 
 TEST(BoundaryPiecesTest, KeepsOnlyPiecesInTheWindow) {
