@@ -5,6 +5,7 @@
 #include <filesystem>
 #include <iostream>
 
+#include "bench/check_command.h"
 #include "bench/crlb_command.h"
 #include "bench/marker_sheets.h"
 #include "bench/render_command.h"
@@ -108,6 +109,41 @@ int main(int argc, char** argv) {
       ->check(CLI::IsMember({"auto", "grey", "rgb"}));
   crlb->add_option("--out", crlb_options.out_csv, "Output CSV (default: standard output)");
 
+  CLI::App* check = app.add_subcommand(
+      "check", "Regression gate: compare a sweep's RUN_DIR with an accepted --reference");
+  CheckCommandOptions check_options;
+  CheckOptions& gate = check_options.check;
+  check->add_option("run", check_options.run_dir, "The sweep's output folder")->required();
+  check->add_option("--reference", check_options.reference_dir, "The reference sweep's folder")
+      ->required();
+  check->add_option("--alpha", gate.alpha, "Family-wise error rate (Holm)")
+      ->check(CLI::Range(1e-12, 0.5));
+  check
+      ->add_option("--min-effect-error",
+                   gate.min_error_change,
+                   "A regression's median error ratio must exceed 1 + this")
+      ->check(CLI::Range(0.0, 100.0));
+  check
+      ->add_option("--min-effect-success",
+                   gate.min_success_change,
+                   "A regression's success rate must drop by at least this (fraction)")
+      ->check(CLI::Range(0.0, 1.0));
+  check
+      ->add_option("--success-fraction",
+                   gate.success_fraction,
+                   "Success: position error <= this fraction of the true distance")
+      ->check(CLI::Range(0.0, 10.0));
+  check->add_option(
+      "--speed", gate.speed_tracker, "Also compare times as ratios to this tracker's");
+  check
+      ->add_option("--speed-tolerance",
+                   gate.speed_tolerance,
+                   "A speed regression's median time ratio must grow by more than this")
+      ->check(CLI::Range(0.0, 100.0));
+  check->add_option("--markdown", check_options.markdown_path, "Write a Markdown summary");
+  check->add_option("--junit", check_options.junit_path, "Write JUnit XML");
+  check->add_flag("--bless", check_options.bless, "Accept the run as the new reference");
+
   CLI11_PARSE(app, argc, argv);
   try {
     if (render->parsed()) {
@@ -134,6 +170,8 @@ int main(int argc, char** argv) {
       RunSweeps(sweep_scenarios, sweep_options);
     } else if (report->parsed()) {
       WriteReport(report_dir, report_options);
+    } else if (check->parsed()) {
+      return RunCheckCommand(check_options, std::cout);
     } else if (crlb->parsed()) {
       crlb_options.channels = crlb_channels == "grey"  ? Channels::kGrey
                               : crlb_channels == "rgb" ? Channels::kRgb

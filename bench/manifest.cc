@@ -7,6 +7,7 @@
 #include <stdexcept>
 #include <thread>
 
+#include "bench/atomic_file.h"
 #include "bench/build_info.h"
 #include "core/yaml_reader.h"
 
@@ -63,13 +64,7 @@ nlohmann::json ReadManifest(const std::string& path) {
 }
 
 void WriteManifest(const std::string& path, const nlohmann::json& manifest) {
-  const std::string temporary = path + ".tmp";
-  {
-    std::ofstream out(temporary);
-    out << manifest.dump(2) << '\n';
-    if (!out) throw std::runtime_error(temporary + ": cannot write");
-  }
-  std::filesystem::rename(temporary, path);
+  WriteFileAtomically(path, manifest.dump(2) + "\n");
 }
 
 void UpdateManifest(const std::string& path,

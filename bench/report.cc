@@ -3,12 +3,13 @@
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
-#include <fstream>
 #include <map>
 
+#include "bench/atomic_file.h"
 #include "bench/manifest.h"
 #include "bench/progress.h"
 #include "bench/reproduction_table.h"
+#include "bench/run_results.h"
 #include "core/number_text.h"
 #include "core/yaml_reader.h"
 
@@ -16,50 +17,6 @@ namespace fs = std::filesystem;
 
 namespace markerbench {
 namespace {
-
-struct ScenarioResults {
-  std::string name;
-  std::vector<FrameRow> rows;
-  std::vector<double> time_ms;  // per row; NaN when timing.csv is missing or short
-};
-
-// timing.csv rows follow frames.csv rows one for one.
-std::vector<double> ReadTimes(const std::string& path, const std::vector<FrameRow>& rows) {
-  std::vector<double> times(rows.size(), NAN);
-  std::ifstream in(path);
-  if (!in) return times;
-  std::string line;
-  std::getline(in, line);
-  for (size_t i = 0; i < rows.size() && std::getline(in, line); ++i) {
-    const std::vector<std::string> f = SplitCsvLine(line);
-    if (f.size() != 3 || f[0] != std::to_string(rows[i].frame) || f[1] != rows[i].tracker) {
-      throw ConfigError(path + ":" + std::to_string(i + 2) +
-                        ": expected the timing of frames.csv's row " + std::to_string(i + 2));
-    }
-    times[i] = std::strtod(f[2].c_str(), nullptr);
-  }
-  return times;
-}
-
-std::vector<ScenarioResults> ReadResults(const std::string& dir) {
-  std::vector<std::string> folders;
-  for (const auto& entry : fs::directory_iterator(dir)) {
-    if (entry.is_directory() && fs::exists(entry.path() / "frames.csv")) {
-      folders.push_back(entry.path().string());
-    }
-  }
-  std::sort(folders.begin(), folders.end());
-  if (folders.empty()) throw ConfigError(dir + ": no <scenario>/frames.csv to report on");
-  std::vector<ScenarioResults> results;
-  for (const std::string& folder : folders) {
-    ScenarioResults r;
-    r.name = fs::path(folder).filename().string();
-    r.rows = ReadFramesCsv(folder + "/frames.csv");
-    r.time_ms = ReadTimes(folder + "/timing.csv", r.rows);
-    results.push_back(std::move(r));
-  }
-  return results;
-}
 
 std::string Percent(double rate) { return FormattedOrDash(100.0 * rate, "%.0f%%"); }
 
@@ -169,8 +126,7 @@ void RunPlots(const std::string& dir) {
 }  // namespace
 
 void WriteReport(const std::string& dir, const ReportOptions& options) {
-  if (!fs::is_directory(dir)) throw ConfigError(dir + ": no such results folder");
-  const std::vector<ScenarioResults> results = ReadResults(dir);
+  const std::vector<ScenarioResults> results = ReadRunResults(dir);
   std::vector<FrameRow> rows;
   std::vector<double> times;
   for (const ScenarioResults& r : results) {
@@ -178,11 +134,7 @@ void WriteReport(const std::string& dir, const ReportOptions& options) {
     times.insert(times.end(), r.time_ms.begin(), r.time_ms.end());
   }
   const std::vector<SummaryRow> summary = Summarize(rows, times, options.summary);
-  {
-    std::ofstream out(dir + "/summary.csv");
-    out << SummaryCsv(summary);
-    if (!out) throw std::runtime_error(dir + "/summary.csv: cannot write");
-  }
+  WriteFileAtomically(dir + "/summary.csv", SummaryCsv(summary));
   nlohmann::json manifest = ReadManifest(dir + "/manifest.json");
   manifest["report"] = {{"success_position_fraction_of_distance", options.summary.success_fraction},
                         {"breakdown_success_rate", options.summary.breakdown_rate}};
@@ -212,9 +164,7 @@ void WriteReport(const std::string& dir, const ReportOptions& options) {
             : nlohmann::json::object();
     md += ScenarioSection(r.name, summary, entry, options.summary, dir);
   }
-  std::ofstream out(dir + "/report.md");
-  out << md;
-  if (!out) throw std::runtime_error(dir + "/report.md: cannot write");
+  WriteFileAtomically(dir + "/report.md", md);
 }
 
 }  // namespace markerbench
