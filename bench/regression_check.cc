@@ -250,7 +250,7 @@ std::vector<CellCheck> SpeedChecks(const std::vector<ScenarioResults>& run,
       m.n = static_cast<int>(std::min(ratios.size(), now->second.size()));
       m.p_worse = MannWhitneyPValue(now->second, ratios);
       m.p_better = MannWhitneyPValue(ratios, now->second);
-      m.verdict = Verdict::kWithinTolerance;  // times always differ
+      m.verdict = ratios == now->second ? Verdict::kSame : Verdict::kWithinTolerance;
       c.metrics.push_back(m);
       checks.push_back(std::move(c));
     }
