@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <functional>
 #include <map>
+#include <set>
 #include <tuple>
 
 #include "bench/metrics.h"
@@ -44,8 +45,6 @@ bool SameTruth(const Rigid3& a, const Rigid3& b) {
 struct Pair {
   const FrameRow* reference;
   const FrameRow* now;
-  double reference_ms;
-  double now_ms;
 };
 
 struct Cell {
@@ -58,11 +57,9 @@ struct Cell {
 std::vector<Cell> PairFrames(const std::vector<ScenarioResults>& run,
                              const std::vector<ScenarioResults>& reference,
                              CheckReport* report) {
-  std::map<FrameId, std::pair<const FrameRow*, double>> run_frames;
+  std::map<FrameId, const FrameRow*> run_frames;
   for (const ScenarioResults& s : run) {
-    for (size_t i = 0; i < s.rows.size(); ++i) {
-      run_frames[FrameOf(s.name, s.rows[i])] = {&s.rows[i], s.time_ms[i]};
-    }
+    for (const FrameRow& r : s.rows) run_frames[FrameOf(s.name, r)] = &r;
   }
   std::vector<Cell> cells;
   std::map<CellId, size_t> index;
@@ -79,10 +76,9 @@ std::vector<Cell> PairFrames(const std::vector<ScenarioResults>& run,
     }
     return cells[it->second];
   };
-  std::map<FrameId, bool> paired;
+  std::set<FrameId> paired;
   for (const ScenarioResults& s : reference) {
-    for (size_t i = 0; i < s.rows.size(); ++i) {
-      const FrameRow& r = s.rows[i];
+    for (const FrameRow& r : s.rows) {
       Cell& cell = cell_of(s.name, r);
       cell.in_reference = true;
       const auto found = run_frames.find(FrameOf(s.name, r));
@@ -90,14 +86,14 @@ std::vector<Cell> PairFrames(const std::vector<ScenarioResults>& run,
         report->reference_only.push_back(FrameText(s.name, r));
         continue;
       }
-      const FrameRow& now = *found->second.first;
+      const FrameRow& now = *found->second;
       if (!SameTruth(r.truth, now.truth)) {
         throw ConfigError(s.name + ": the ground truth of " + FrameText(s.name, r) +
                           " differs from the reference's (another scenario, seed or pose "
                           "protocol); bless a new reference if the protocol changed on purpose");
       }
-      cell.pairs.push_back({&r, &now, s.time_ms[i], found->second.second});
-      paired[found->first] = true;
+      cell.pairs.push_back({&r, &now});
+      paired.insert(found->first);
     }
   }
   for (const ScenarioResults& s : run) {
