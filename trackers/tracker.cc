@@ -1,5 +1,6 @@
 #include "trackers/tracker.h"
 
+#include <algorithm>
 #include <array>
 #include <utility>
 
@@ -31,6 +32,34 @@ TrackResult CannotTrack(const std::string& tracker,
   result.message =
       tracker + " cannot track marker '" + marker.name + "'" + (why.empty() ? "" : ": " + why);
   return result;
+}
+
+std::optional<TrackResult> UnusableImage(const Observation& observation) {
+  TrackResult result;
+  result.status = TrackStatus::kError;
+  const Image8* image = observation.image;
+  if (!image || !observation.camera || !observation.marker) {
+    result.message = "observation without an image, camera or marker";
+    return result;
+  }
+  const std::string size = std::to_string(image->width) + "x" + std::to_string(image->height) +
+                           "x" + std::to_string(image->channels);
+  const bool shape_ok =
+      image->width > 0 && image->height > 0 && (image->channels == 1 || image->channels == 3);
+  if (!shape_ok || image->pixels.size() != static_cast<size_t>(image->width) *
+                                               static_cast<size_t>(image->height) *
+                                               static_cast<size_t>(image->channels)) {
+    result.message =
+        "malformed image " + size + " with " + std::to_string(image->pixels.size()) + " bytes";
+    return result;
+  }
+  if (std::min(image->width, image->height) < kMinImageSide) {
+    result.status = TrackStatus::kNotDetected;
+    result.message =
+        "image " + size + " is under " + std::to_string(kMinImageSide) + " px on a side";
+    return result;
+  }
+  return std::nullopt;
 }
 
 std::optional<TrackStatus> TrackStatusFromString(const std::string& text) {

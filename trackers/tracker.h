@@ -43,6 +43,16 @@ TrackResult CannotTrack(const std::string& tracker,
                         const MarkerSpec& marker,
                         const std::string& why = "");
 
+// Images under this many pixels on a side hold no readable marker (and libapriltag crashes
+// on images 4 px tall or less).
+constexpr int kMinImageSide = 8;
+
+// What a tracker returns, before looking at it, for an image it must not read: `error` for a
+// malformed observation (a null pointer, a side <= 0, channels other than 1 or 3, a pixel
+// count that is not width * height * channels), `not_detected` for a side under
+// kMinImageSide. nullopt for a usable image. Every Track() starts with it.
+std::optional<TrackResult> UnusableImage(const Observation& observation);
+
 class Tracker {
  public:
   virtual ~Tracker() = default;

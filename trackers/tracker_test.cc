@@ -2,6 +2,7 @@
 
 #include <gtest/gtest.h>
 
+#include "core/camera_yaml.h"
 #include "core/marker_yaml.h"
 #include "trackers/tracker_factory.h"
 
@@ -47,6 +48,50 @@ TEST(TrackerFactory, TrackersCanTrackTheirOwnMarkersOnly) {
       const MarkerSpec other = LoadMarkerYaml(std::string("scenarios/markers/") + kind + ".yaml");
       EXPECT_FALSE(tracker->CanTrack(other)) << name << " " << kind;
     }
+  }
+}
+
+// Images a camera cannot give a marker in (1x1, a 4 px strip, an empty image) are frames like
+// any other: a status, never a crash. libapriltag dies on images 4 px tall or less.
+TEST(TrackerFactory, EveryTrackerSurvivesDegenerateImages) {
+  for (const std::string& name : TrackerNames()) {
+    const auto tracker = MakeTracker(name, nullptr);
+    std::vector<MarkerSpec> markers;
+    for (const char* kind : {"apriltag", "aruco", "artkplus", "runetag", "circles_a", "circle_d"}) {
+      markers.push_back(LoadMarkerYaml(std::string("scenarios/markers/") + kind + ".yaml"));
+    }
+    const Camera camera = LoadCameraYaml("scenarios/cameras/default.yaml");
+    for (const auto& [width, height] : std::vector<std::pair<int, int>>{{0, 0},
+                                                                        {1, 1},
+                                                                        {2, 2},
+                                                                        {640, 4},
+                                                                        {4, 480},
+                                                                        {640, 1},
+                                                                        {7, 7},
+                                                                        {640, 8},
+                                                                        {8, 480},
+                                                                        {9, 9}}) {
+      for (const int channels : {1, 3}) {
+        Image8 image;
+        image.width = width;
+        image.height = height;
+        image.channels = channels;
+        image.pixels.assign(static_cast<size_t>(width) * height * channels, 128);
+        for (const MarkerSpec& marker : markers) {
+          if (!tracker->CanTrack(marker)) continue;
+          tracker->Reset();
+          const TrackResult result = tracker->Track({&image, &camera, &marker});
+          EXPECT_NE(result.status, TrackStatus::kOk)
+              << name << " " << width << "x" << height << "x" << channels;
+        }
+      }
+    }
+    Image8 short_buffer;
+    short_buffer.width = short_buffer.height = 64;
+    short_buffer.pixels.assign(100, 0);
+    const TrackResult result = tracker->Track({&short_buffer, &camera, &markers.front()});
+    EXPECT_EQ(result.status, TrackStatus::kError) << name;
+    EXPECT_EQ(result.message, "malformed image 64x64x1 with 100 bytes") << name;
   }
 }
 

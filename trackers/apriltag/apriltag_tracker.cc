@@ -50,6 +50,7 @@ class AprilTagTracker final : public Tracker {
   }
 
   TrackResult Track(const Observation& obs) override {
+    if (auto unusable = UnusableImage(obs)) return *unusable;
     const MarkerSpec& marker = *obs.marker;
     if (!CanTrack(marker)) {
       return CannotTrack("the apriltag tracker (family " + options_.family + ")", marker);

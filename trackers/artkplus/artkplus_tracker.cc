@@ -34,6 +34,7 @@ class ArtkPlusTracker final : public Tracker {
   }
 
   TrackResult Track(const Observation& obs) override {
+    if (auto unusable = UnusableImage(obs)) return *unusable;
     const MarkerSpec& marker = *obs.marker;
     if (!CanTrack(marker)) return CannotTrack("the artkplus tracker", marker);
     const std::optional<ArtkPlusIdMode> mode = ArtkPlusIdModeFromString(marker.family);

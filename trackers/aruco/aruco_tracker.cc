@@ -59,6 +59,7 @@ class ArucoTracker final : public Tracker {
   }
 
   TrackResult Track(const Observation& obs) override {
+    if (auto unusable = UnusableImage(obs)) return *unusable;
     const MarkerSpec& marker = *obs.marker;
     if (!CanTrack(marker)) {
       return CannotTrack("the aruco tracker (" + options_.dictionary + ")", marker);

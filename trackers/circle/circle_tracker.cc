@@ -100,6 +100,7 @@ std::vector<std::pair<std::string, std::string>> CircleTracker::Parameters() con
 }
 
 TrackResult CircleTracker::Track(const Observation& observation) {
+  if (auto unusable = UnusableImage(observation)) return *unusable;
   const MarkerSpec& marker = *observation.marker;
   std::string error;
   const std::optional<CircleGeometry> geometry = CircleGeometryOf(marker, &error);

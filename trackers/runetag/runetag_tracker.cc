@@ -15,6 +15,7 @@ bool RuneTagTracker::CanTrack(const MarkerSpec& marker) const {
 }
 
 TrackResult RuneTagTracker::Track(const Observation& obs) {
+  if (auto unusable = UnusableImage(obs)) return *unusable;
   const MarkerSpec& marker = *obs.marker;
   if (!CanTrack(marker)) return CannotTrack("the runetag tracker", marker);
   diagnostics_ = {};
