@@ -1,24 +1,39 @@
 #include "bench/frame_plan.h"
 
 #include <cmath>
+#include <sstream>
 #include <stdexcept>
 
 #include "bench/pose_sampler.h"
 #include "core/random.h"
+#include "core/yaml_reader.h"
 
 namespace markerbench {
+
+ValueRange SweepRange(const std::string& parameter) {
+  if (parameter == "distance_m") return {YamlMap::kMinLengthM, YamlMap::kMaxLengthM};
+  if (parameter == "tilt_deg") return {0.0, 89.0};
+  if (parameter == "noise_var") return {0.0, 10.0};
+  if (parameter == "blur_sigma_px") return {0.0, 100.0};
+  if (parameter == "motion_blur_px") return {0.0, 200.0};
+  if (parameter == "gain") return {0.0, 100.0};
+  if (parameter == "jpeg_quality") return {0.0, 100.0};
+  throw std::invalid_argument("unknown sweep parameter " + parameter);
+}
 
 void ApplySweepValue(const std::string& parameter,
                      double value,
                      PoseSamplerOptions* poses,
                      Degradations* d) {
+  const ValueRange range = SweepRange(parameter);
+  if (!(value >= range.lo && value <= range.hi)) {
+    std::ostringstream message;
+    message << parameter << " values must be in [" << range.lo << ", " << range.hi << "]";
+    throw std::invalid_argument(message.str());
+  }
   if (parameter == "distance_m") {
-    if (!(value > 0.0)) throw std::invalid_argument("distance_m values must be > 0");
     poses->distance_m = value;
   } else if (parameter == "tilt_deg") {
-    if (!(value >= 0.0 && value <= 89.0)) {
-      throw std::invalid_argument("tilt_deg values must be in [0, 89]");
-    }
     poses->tilt_min_deg = poses->tilt_max_deg = value;
   } else if (parameter == "noise_var") {
     d->noise_var = value;
@@ -28,14 +43,10 @@ void ApplySweepValue(const std::string& parameter,
     d->motion_blur_px = value;
   } else if (parameter == "gain") {
     d->gain = value;
-  } else if (parameter == "jpeg_quality") {
+  } else {
     if (value != std::round(value)) throw std::invalid_argument("jpeg_quality must be whole");
     d->jpeg_quality = static_cast<int>(value);
-  } else {
-    throw std::invalid_argument("unknown sweep parameter " + parameter);
   }
-  std::string error;
-  if (!d->IsValid(&error)) throw std::invalid_argument(error);
 }
 
 std::vector<PlannedFrame> PlanFrames(const Scenario& s, int limit) {

@@ -22,6 +22,13 @@ struct PlannedFrame {
   uint64_t noise_seed = 0;
 };
 
+// The closed range of a sweep parameter's values, the same as its render or poses key's.
+struct ValueRange {
+  double lo;
+  double hi;
+};
+ValueRange SweepRange(const std::string& parameter);
+
 // Sets the sweep parameter to `value`; throws std::invalid_argument when out of range.
 void ApplySweepValue(const std::string& parameter,
                      double value,

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cctype>
+#include <cmath>
 #include <filesystem>
 
 #include "bench/frame_plan.h"
@@ -31,7 +32,7 @@ PoseSamplerOptions ReadPoses(const YamlMap& map) {
   PoseSamplerOptions poses;
   const std::string sampler = map.Get<std::string>("sampler");
   if (sampler != "look_at") map.Fail("sampler", "'look_at' (the paper's protocol)");
-  poses.distance_m = map.GetPositive("distance_m");
+  poses.distance_m = map.GetLength("distance_m");
   ReadRange(map, "tilt_deg", 0.0, 89.0, &poses.tilt_min_deg, &poses.tilt_max_deg);
   ReadRange(map, "azimuth_deg", -360.0, 720.0, &poses.azimuth_min_deg, &poses.azimuth_max_deg);
   ReadRange(map, "roll_deg", -360.0, 720.0, &poses.roll_min_deg, &poses.roll_max_deg);
@@ -41,19 +42,30 @@ PoseSamplerOptions ReadPoses(const YamlMap& map) {
   return poses;
 }
 
+// A render key that may also be swept: the sweep's range.
+double GetSwept(const YamlMap& map, const std::string& key) {
+  const ValueRange range = SweepRange(key);
+  const double value = map.GetDouble(key, range.lo, range.hi);
+  if (key == "jpeg_quality" && value != std::round(value)) map.Fail(key, "a whole number");
+  return value;
+}
+
 RenderDefaults ReadRender(const YamlMap& map) {
   RenderDefaults render;
   Degradations& d = render.degradations;
-  if (map.Has("noise_var")) d.noise_var = map.GetDouble("noise_var", 0.0, 10.0);
-  if (map.Has("blur_sigma_px")) d.blur_sigma_px = map.GetDouble("blur_sigma_px", 0.0, 100.0);
-  if (map.Has("motion_blur_px")) d.motion_blur_px = map.GetDouble("motion_blur_px", 0.0, 200.0);
+  if (map.Has("noise_var")) d.noise_var = GetSwept(map, "noise_var");
+  if (map.Has("blur_sigma_px")) d.blur_sigma_px = GetSwept(map, "blur_sigma_px");
+  if (map.Has("motion_blur_px")) d.motion_blur_px = GetSwept(map, "motion_blur_px");
   if (map.Has("motion_blur_angle_deg")) {
     d.motion_blur_angle_deg = map.GetDouble("motion_blur_angle_deg", -360.0, 360.0);
   }
-  if (map.Has("gain")) d.gain = map.GetDouble("gain", 0.0, 100.0);
+  if (map.Has("gain")) d.gain = GetSwept(map, "gain");
   if (map.Has("offset")) d.offset = map.GetDouble("offset", -1.0, 1.0);
-  if (map.Has("gradient")) d.gradient = map.Get<Eigen::Vector2d>("gradient");
-  if (map.Has("jpeg_quality")) d.jpeg_quality = map.GetInt("jpeg_quality", 0, 100);
+  if (map.Has("gradient")) {
+    d.gradient = map.Get<Eigen::Vector2d>("gradient");
+    if (!(d.gradient.cwiseAbs().maxCoeff() <= 10.0)) map.Fail("gradient", "[gx, gy] in [-10, 10]");
+  }
+  if (map.Has("jpeg_quality")) d.jpeg_quality = static_cast<int>(GetSwept(map, "jpeg_quality"));
   if (map.Has("channels")) {
     const std::string c = map.Get<std::string>("channels");
     if (c == "auto") {
@@ -68,7 +80,9 @@ RenderDefaults ReadRender(const YamlMap& map) {
   }
   if (map.Has("sheet_size_m")) {
     const Eigen::Vector2d size = map.Get<Eigen::Vector2d>("sheet_size_m");
-    if (!(size.minCoeff() > 0.0)) map.Fail("sheet_size_m", "[width, height] > 0 in metres");
+    if (!(size.minCoeff() >= YamlMap::kMinLengthM && size.maxCoeff() <= YamlMap::kMaxLengthM)) {
+      map.Fail("sheet_size_m", "[width, height] in metres, each in [1e-06, 10000]");
+    }
     render.sheet_size_m = size;
   }
   if (map.Has("backdrop")) render.backdrop = map.GetColor("backdrop");
@@ -112,9 +126,11 @@ Scenario LoadScenario(const std::string& path) {
   s.path = path;
   s.input_files.push_back(path);
   s.name = root.GetOr<std::string>("name", std::filesystem::path(path).stem().string());
-  const bool safe_name = !s.name.empty() && std::all_of(s.name.begin(), s.name.end(), [](char c) {
-    return std::isalnum(static_cast<unsigned char>(c)) || c == '_' || c == '-' || c == '.';
-  });
+  const bool safe_name =
+      s.name != "." && s.name != ".." && !s.name.empty() &&
+      std::all_of(s.name.begin(), s.name.end(), [](char c) {
+        return std::isalnum(static_cast<unsigned char>(c)) || c == '_' || c == '-' || c == '.';
+      });
   if (!safe_name) root.Fail("name", "letters, digits, '_', '-' or '.' (it names a folder)");
   s.input_files.push_back(ResolveRelativeTo(path, root.Get<std::string>("camera")));
   s.camera = LoadCameraYaml(s.input_files.back());

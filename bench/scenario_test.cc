@@ -115,6 +115,12 @@ TEST(Scenario, MarkerThatCanNeverBeInView) {
 TEST(Scenario, NameMustBeAFolderName) {
   EXPECT_THAT(ErrorOf(Replace(GoodScenario(), "name: t", "name: a/b")),
               HasSubstr("key 'name': expected letters, digits"));
+  // `..` and `.` are made of allowed letters but name no folder of their own (out/..).
+  for (const char* name : {"name: ..", "name: ."}) {
+    EXPECT_THAT(ErrorOf(Replace(GoodScenario(), "name: t", name)),
+                HasSubstr("key 'name': expected letters, digits"))
+        << name;
+  }
 }
 
 TEST(Scenario, ShippedScenariosLoad) {
@@ -153,6 +159,19 @@ TEST(Scenario, OutOfRange) {
               HasSubstr("key 'sweep.values': expected a non-empty list"));
   EXPECT_THAT(ErrorOf(Replace(GoodScenario(), "tilt_deg: [0, 40]", "tilt_deg: [0, 95]")),
               HasSubstr("key 'poses.tilt_deg'"));
+  // Values the renderer cannot draw are refused at load, never rendered.
+  EXPECT_THAT(ErrorOf(Replace(GoodScenario(), "distance_m: 0.6", "distance_m: 1e6")),
+              HasSubstr("key 'poses.distance_m': expected a number in [1e-06, 10000]"));
+  EXPECT_THAT(ErrorOf(Replace(GoodScenario(), "values: [0, 1, 2]", "values: [0, 1e300]")),
+              HasSubstr("key 'sweep.values': expected values valid for blur_sigma_px "
+                        "(blur_sigma_px values must be in [0, 100])"));
+  EXPECT_THAT(ErrorOf(Replace(Replace(GoodScenario(),
+                                      "parameter: blur_sigma_px",
+                                      "parameter: "
+                                      "noise_var"),
+                              "values: [0, 1, 2]",
+                              "values: [0, .nan]")),
+              HasSubstr("key 'sweep.values'"));
 }
 
 TEST(Scenario, UnknownSweepParameter) {

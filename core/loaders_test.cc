@@ -148,7 +148,14 @@ TEST(MarkerYaml, OutOfRange) {
               HasSubstr("key 'disks[1].color': expected an RGB colour"));
   EXPECT_THAT(MarkerError(Replace(
                   kGoodCirclesA, "radius: 0.03, color: [1.0", "radius: -0.03, color: [1.0")),
-              HasSubstr("key 'disks[0].radius': expected a positive number"));
+              HasSubstr("key 'disks[0].radius': expected a number in [1e-06, 10000]"));
+  // Sizes the renderer cannot draw in doubles are refused at load, never looped over.
+  EXPECT_THAT(MarkerError(Replace(
+                  kGoodCirclesA, "radius: 0.03, color: [1.0", "radius: 1e300, color: [1.0")),
+              HasSubstr("key 'disks[0].radius': expected a number in [1e-06, 10000]"));
+  EXPECT_THAT(MarkerError(Replace(kGoodCirclesA, "[0.08, 0.0]", "[1e300, 0.0]")),
+              HasSubstr("key 'disks[1].center': expected [x, y] in metres, each in [-10000, "
+                        "10000]"));
 }
 
 TEST(MarkerYaml, BrokenGeometry) {

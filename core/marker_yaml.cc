@@ -16,8 +16,8 @@ constexpr double kPi = 3.14159265358979323846;
 
 Disk ReadDisk(const YamlMap& map) {
   Disk disk;
-  disk.center = map.Get<Eigen::Vector2d>("center");
-  disk.radius_m = map.GetPositive("radius");
+  disk.center = map.GetPoint("center");
+  disk.radius_m = map.GetLength("radius");
   disk.color = map.GetColor("color");
   map.RejectUnknownKeys();
   return disk;
@@ -137,8 +137,8 @@ void LoadCircleMarker(const YamlMap& root, MarkerSpec* spec) {
       const Eigen::Vector2d tip0(tip_coords[0], tip_coords[1]);
       const Eigen::Vector2d tip1(tip_coords[2], tip_coords[3]);
       RequireOnXAxis(mouth, "tips", tip0);
-      const double outer = mouth.GetPositive("outer_sagitta");
-      const double inner = mouth.GetPositive("inner_sagitta");
+      const double outer = mouth.GetLength("outer_sagitta");
+      const double inner = mouth.GetLength("inner_sagitta");
       if (inner >= outer) mouth.Fail("inner_sagitta", "a sagitta smaller than outer_sagitta");
       const Rgb color = mouth.GetColor("color");
       mouth.RejectUnknownKeys();
@@ -210,7 +210,7 @@ GridShape BorderedGrid(const YamlMap& root, double size_m) {
 }
 
 void LoadSquareMarker(const YamlMap& root, MarkerSpec* spec) {
-  spec->size_m = root.GetPositive("size_m");
+  spec->size_m = root.GetLength("size_m");
   GridShape grid;
   if (spec->kind == MarkerKind::kBitGrid) {
     grid = BorderedGrid(root, spec->size_m);
@@ -269,7 +269,7 @@ void PaintDotRings(double radius_m,
 }
 
 void LoadDotRings(const YamlMap& root, MarkerSpec* spec) {
-  const double radius_m = root.GetPositive("radius_m");
+  const double radius_m = root.GetLength("radius_m");
   const std::vector<double> rings = root.Get<std::vector<double>>("ring_radii");
   const int sectors = root.GetInt("sectors", 3, 1000);
   const double ratio = root.GetDouble("dot_radius_ratio", 2.0, 1000.0);
@@ -300,7 +300,7 @@ void LoadDotRings(const YamlMap& root, MarkerSpec* spec) {
 // baselines.md: the rings and dots of kRuneRingFractions and kRuneDotRadiusRatio, sector s
 // holding the symbol of RuneCodeword(id) with the inner ring as its most significant bit.
 void LoadRuneTag(const YamlMap& root, MarkerSpec* spec) {
-  const double radius_m = root.GetPositive("radius_m");
+  const double radius_m = root.GetLength("radius_m");
   spec->id = root.Get<int>("id");
   if (spec->id < 0 || spec->id >= kRuneIds) {
     root.Fail("id", "an id in [0, " + std::to_string(kRuneIds - 1) + "]");

@@ -157,10 +157,18 @@ int YamlMap::GetInt(const std::string& key, int lo, int hi) const {
   return value;
 }
 
-double YamlMap::GetPositive(const std::string& key) const {
-  const double value = Get<double>(key);
-  if (!(value > 0.0)) Fail(key, "a positive number");
-  return value;
+double YamlMap::GetLength(const std::string& key) const {
+  return GetDouble(key, kMinLengthM, kMaxLengthM);
+}
+
+Eigen::Vector2d YamlMap::GetPoint(const std::string& key) const {
+  const Eigen::Vector2d point = Get<Eigen::Vector2d>(key);
+  if (!(point.cwiseAbs().maxCoeff() <= kMaxLengthM)) {
+    std::ostringstream expected;
+    expected << "[x, y] in metres, each in [" << -kMaxLengthM << ", " << kMaxLengthM << "]";
+    Fail(key, expected.str());
+  }
+  return point;
 }
 
 Eigen::Vector3d YamlMap::GetColor(const std::string& key) const {

@@ -43,8 +43,13 @@ class YamlMap {
   // Required numbers with a closed range [lo, hi].
   double GetDouble(const std::string& key, double lo, double hi) const;
   int GetInt(const std::string& key, int lo, int hi) const;
-  // Required number > 0 (finite).
-  double GetPositive(const std::string& key) const;
+  // Lengths and coordinates in metres: what the renderer can draw in doubles without
+  // overflow at any camera (a length in [kMinLengthM, kMaxLengthM], a point with every
+  // coordinate in [-kMaxLengthM, kMaxLengthM]).
+  static constexpr double kMinLengthM = 1e-6;
+  static constexpr double kMaxLengthM = 1e4;
+  double GetLength(const std::string& key) const;
+  Eigen::Vector2d GetPoint(const std::string& key) const;
   // Colour: three numbers in [0, 1].
   Eigen::Vector3d GetColor(const std::string& key) const;
 
