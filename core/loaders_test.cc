@@ -92,6 +92,35 @@ TEST(CameraYaml, OutOfRange) {
               HasSubstr("key 'image_width': expected an integer in [1"));
 }
 
+// A camera that cannot be drawn is the camera file's error, named there, never blamed on the
+// scenario's poses (fx = 1e300 once failed as "poses.distance_m: markers in view").
+TEST(CameraYaml, ImpossibleCamerasNameTheirKey) {
+  const std::string focal =
+      "key 'camera_matrix': expected focal lengths data[0] (fx) and "
+      "data[4] (fy) in [0.001, 1e7] px";
+  EXPECT_THAT(CameraError(Replace(kGoodCamera, "[600, 0, 319.5", "[1e300, 0, 319.5")),
+              HasSubstr(focal));
+  EXPECT_THAT(CameraError(Replace(kGoodCamera,
+                                  "[600, 0, 319.5, 0, 600",
+                                  "[1e-300, 0, 319.5, 0, "
+                                  "1e-300")),
+              HasSubstr(focal));
+  EXPECT_THAT(CameraError(Replace(kGoodCamera, "[600, 0, 319.5", "[600, 0, 1e300")),
+              HasSubstr("key 'camera_matrix': expected a principal point data[2] (cx), data[5] "
+                        "(cy) inside the image"));
+  EXPECT_THAT(CameraError(Replace(kGoodCamera, "[-0.1, 0.01, 0, 0, 0]", "[1e6, 0, 0, 0, 0]")),
+              HasSubstr("key 'distortion_coefficients': expected |k1|, |k2|, |k3| <= 100"));
+  // k1 = -1 folds the image back on itself before its corners (r_d peaks at r = 1/√3).
+  EXPECT_THAT(CameraError(Replace(Replace(kGoodCamera, "[-0.1, 0.01, 0, 0, 0]", "[-1, 0, 0, 0, 0]"),
+                                  "[600, 0, 319.5, 0, 600",
+                                  "[300, 0, 319.5, 0, 300")),
+              HasSubstr("key 'distortion_coefficients': expected distortion that is one to one"));
+  EXPECT_THAT(CameraError(Replace(Replace(kGoodCamera, "image_width: 640", "image_width: 100000"),
+                                  "image_height: 480",
+                                  "image_height: 100000")),
+              HasSubstr("key 'image_height': expected an image of at most 67108864 pixels"));
+}
+
 TEST(CameraYaml, WrongMatrixShape) {
   EXPECT_THAT(CameraError(Replace(kGoodCamera, "data: [-0.1, 0.01, 0, 0, 0]", "data: [-0.1]")),
               HasSubstr("key 'distortion_coefficients.data'"));
