@@ -3,7 +3,10 @@
 #include <CLI/CLI.hpp>
 #include <algorithm>
 #include <filesystem>
+#include <iomanip>
 #include <iostream>
+#include <optional>
+#include <sstream>
 
 #include "bench/check_command.h"
 #include "bench/crlb_command.h"
@@ -12,11 +15,26 @@
 #include "bench/report.h"
 #include "bench/sweep_runner.h"
 #include "bench/track_command.h"
+#include "core/number_text.h"
 #include "core/yaml_reader.h"
 
 namespace {
 
 constexpr int kBadInput = 2;
+
+// A number in [lo, hi]; NaN is outside every range (CLI::Range lets it through).
+CLI::Validator FiniteRange(double lo, double hi) {
+  return CLI::Validator(
+      [lo, hi](std::string& text) -> std::string {
+        const std::optional<double> value = markerbench::ParseFiniteNumber(text);
+        if (value && *value >= lo && *value <= hi) return "";
+        std::ostringstream expected;
+        expected << std::setprecision(12) << "expected a number in [" << lo << ", " << hi
+                 << "], got '" << text << "'";
+        return expected.str();
+      },
+      "");
+}
 
 std::vector<std::string> YamlFilesIn(const std::string& dir) {
   std::vector<std::string> files;
@@ -46,9 +64,12 @@ int main(int argc, char** argv) {
   render->add_option("--marker", explicit_options.marker_path, "Marker YAML");
   render->add_option("--camera", explicit_options.camera_path, "Camera YAML (ROS camera_info)");
   render->add_option("--poses", explicit_options.poses_path, "POSES.csv (r11..r33, tx, ty, tz)");
-  render->add_option("--noise-var", explicit_options.noise_var, "imnoise variance on [0, 1]");
-  render->add_option("--blur-sigma", explicit_options.blur_sigma_px, "Gaussian blur sigma (px)");
-  render->add_option("--seed", explicit_options.seed, "Noise seed");
+  render->add_option("--noise-var", explicit_options.noise_var, "imnoise variance on [0, 1]")
+      ->check(FiniteRange(0.0, 10.0));
+  render->add_option("--blur-sigma", explicit_options.blur_sigma_px, "Gaussian blur sigma (px)")
+      ->check(FiniteRange(0.0, 100.0));
+  render->add_option("--seed", explicit_options.seed, "Noise seed")
+      ->check(FiniteRange(0.0, 2147483647.0));
   render->add_flag("--float",
                    explicit_options.write_float,
                    "Also write frame_NNNNNN.exr (linear float, after noise and clipping)");
@@ -77,7 +98,7 @@ int main(int argc, char** argv) {
   sweep->add_option("scenarios", sweep_scenarios, "Scenario YAML files")->required();
   sweep->add_option("--out", sweep_options.out_dir, "Output folder")->required();
   sweep->add_option("--threads", sweep_options.threads, "Worker threads (default: all cores)")
-      ->check(CLI::PositiveNumber);
+      ->check(FiniteRange(1.0, kMaxThreads));
   sweep->add_flag("--resume", sweep_options.resume, "Continue a killed run of the same scenarios");
   sweep->add_flag("--overwrite", sweep_options.overwrite, "Start again over an earlier run");
   sweep->get_option("--resume")->excludes("--overwrite");
@@ -91,7 +112,7 @@ int main(int argc, char** argv) {
       ->add_option("--success-fraction",
                    report_options.summary.success_fraction,
                    "Success: position error <= this fraction of the true distance")
-      ->check(CLI::Range(0.0, 10.0));
+      ->check(FiniteRange(0.0, 10.0));
   report->add_flag("!--no-plots", report_options.plots, "Skip scripts/plot_sweep.py");
 
   CLI::App* crlb = app.add_subcommand(
@@ -103,8 +124,10 @@ int main(int argc, char** argv) {
       ->required();
   crlb->add_option("--poses", crlb_options.poses_path, "POSES.csv (r11..r33, tx, ty, tz)")
       ->required();
-  crlb->add_option("--noise-var", crlb_options.noise_var, "imnoise variance on [0, 1]");
-  crlb->add_option("--blur-sigma", crlb_options.blur_sigma_px, "Gaussian blur sigma (px)");
+  crlb->add_option("--noise-var", crlb_options.noise_var, "imnoise variance on [0, 1]")
+      ->check(FiniteRange(0.0, 10.0));
+  crlb->add_option("--blur-sigma", crlb_options.blur_sigma_px, "Gaussian blur sigma (px)")
+      ->check(FiniteRange(0.0, 100.0));
   crlb->add_option("--channels", crlb_channels, "auto (RGB for coloured markers), grey or rgb")
       ->check(CLI::IsMember({"auto", "grey", "rgb"}));
   crlb->add_option("--out", crlb_options.out_csv, "Output CSV (default: standard output)");
@@ -117,34 +140,40 @@ int main(int argc, char** argv) {
   check->add_option("--reference", check_options.reference_dir, "The reference sweep's folder")
       ->required();
   check->add_option("--alpha", gate.alpha, "Family-wise error rate (Holm)")
-      ->check(CLI::Range(1e-12, 0.5));
+      ->check(FiniteRange(1e-12, 0.5));
   check
       ->add_option("--min-effect-error",
                    gate.min_error_change,
                    "A regression's median error ratio must exceed 1 + this")
-      ->check(CLI::Range(0.0, 100.0));
+      ->check(FiniteRange(0.0, 100.0));
   check
       ->add_option("--min-effect-success",
                    gate.min_success_change,
                    "A regression's success rate must drop by at least this (fraction)")
-      ->check(CLI::Range(0.0, 1.0));
+      ->check(FiniteRange(0.0, 1.0));
   check
       ->add_option("--success-fraction",
                    gate.success_fraction,
                    "Success: position error <= this fraction of the true distance")
-      ->check(CLI::Range(0.0, 10.0));
+      ->check(FiniteRange(0.0, 10.0));
   check->add_option(
       "--speed", gate.speed_tracker, "Also compare times as ratios to this tracker's");
   check
       ->add_option("--speed-tolerance",
                    gate.speed_tolerance,
                    "A speed regression's median time ratio must grow by more than this")
-      ->check(CLI::Range(0.0, 100.0));
+      ->check(FiniteRange(0.0, 100.0));
   check->add_option("--markdown", check_options.markdown_path, "Write a Markdown summary");
   check->add_option("--junit", check_options.junit_path, "Write JUnit XML");
   check->add_flag("--bless", check_options.bless, "Accept the run as the new reference");
 
-  CLI11_PARSE(app, argc, argv);
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    // --help is exit 0; every usage error (unknown flag, missing argument, a bad number) is
+    // bad input.
+    return app.exit(e) == 0 ? 0 : kBadInput;
+  }
   try {
     if (render->parsed()) {
       const bool explicit_form = !explicit_options.marker_path.empty() ||

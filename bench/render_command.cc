@@ -135,9 +135,9 @@ std::vector<Rigid3> LoadPosesCsv(const std::string& path) {
     for (int i = 0; i < 12; ++i) {
       std::string field;
       const bool have = static_cast<bool>(std::getline(fields, field, ','));
-      char* end = nullptr;
-      v[i] = have ? std::strtod(field.c_str(), &end) : NAN;
-      if (!have || end == field.c_str() || !std::isfinite(v[i])) {
+      const std::optional<double> number = ParseFiniteNumber(field);
+      v[i] = number.value_or(NAN);
+      if (!have || !number) {
         throw ConfigError(path + ":" + std::to_string(line_number) + ": column '" +
                           kPoseColumns[i] + "': expected a number, got '" + field + "'");
       }

@@ -1,7 +1,12 @@
 #include "bench/report.h"
 
+#include <spawn.h>
+#include <sys/wait.h>
+
+#include <cerrno>
 #include <cmath>
 #include <cstdlib>
+#include <cstring>
 #include <filesystem>
 #include <map>
 
@@ -14,6 +19,8 @@
 #include "core/yaml_reader.h"
 
 namespace fs = std::filesystem;
+
+extern char** environ;
 
 namespace markerbench {
 namespace {
@@ -117,9 +124,21 @@ void RunPlots(const std::string& dir) {
   const std::string script = std::string(MARKERBENCH_SOURCE_DIR) + "/scripts/plot_sweep.py";
   // Debian's interpreter has python3-matplotlib; another python3 on PATH may not.
   const std::string python = fs::exists("/usr/bin/python3") ? "/usr/bin/python3" : "python3";
-  const std::string command = python + " '" + script + "' '" + dir + "'";
-  if (std::system(command.c_str()) != 0) {
-    throw std::runtime_error("plotting failed: " + command);
+  // An argument vector, never a shell: a folder name is data, whatever its characters.
+  std::vector<std::string> args = {python, script, dir};
+  std::vector<char*> argv;
+  for (std::string& a : args) argv.push_back(a.data());
+  argv.push_back(nullptr);
+  pid_t pid = -1;
+  if (const int error = ::posix_spawnp(&pid, argv[0], nullptr, nullptr, argv.data(), environ)) {
+    throw std::runtime_error("plotting failed: cannot start " + python + ": " +
+                             std::strerror(error));
+  }
+  int status = 0;
+  while (::waitpid(pid, &status, 0) < 0 && errno == EINTR) {
+  }
+  if (!WIFEXITED(status) || WEXITSTATUS(status) != 0) {
+    throw std::runtime_error("plotting failed: " + python + " " + script + " " + dir);
   }
 }
 

@@ -6,6 +6,7 @@
 #include <filesystem>
 #include <fstream>
 
+#include "core/number_text.h"
 #include "core/yaml_reader.h"
 
 namespace fs = std::filesystem;
@@ -22,11 +23,12 @@ std::vector<double> ReadTimes(const std::string& path, const std::vector<FrameRo
   std::getline(in, line);
   for (size_t i = 0; i < rows.size() && std::getline(in, line); ++i) {
     const std::vector<std::string> f = SplitCsvLine(line);
-    if (f.size() != 3 || f[0] != std::to_string(rows[i].frame) || f[1] != rows[i].tracker) {
+    const std::optional<double> time_ms = f.size() == 3 ? ParseFiniteNumber(f[2]) : std::nullopt;
+    if (!time_ms || f[0] != std::to_string(rows[i].frame) || f[1] != rows[i].tracker) {
       throw ConfigError(path + ":" + std::to_string(i + 2) +
                         ": expected the timing of frames.csv's row " + std::to_string(i + 2));
     }
-    times[i] = std::strtod(f[2].c_str(), nullptr);
+    times[i] = *time_ms;
   }
   return times;
 }

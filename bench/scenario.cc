@@ -139,6 +139,14 @@ Scenario LoadScenario(const std::string& path) {
   for (const std::string& m : markers) {
     s.input_files.push_back(ResolveRelativeTo(path, m));
     s.markers.push_back(LoadMarkerYaml(s.input_files.back()));
+    // A marker's name (its file stem) names its rows and its example image.
+    for (size_t i = 0; i + 1 < s.markers.size(); ++i) {
+      if (s.markers[i].name == s.markers.back().name) {
+        root.Fail("markers",
+                  "markers with distinct file names (" + s.input_files[i + 2] + " and " +
+                      s.input_files.back() + " are both '" + s.markers[i].name + "')");
+      }
+    }
   }
   if (root.Has("equal_ink_area_m2")) {
     s.equal_ink_area_m2 = root.GetDouble("equal_ink_area_m2", 1e-6, 100.0);

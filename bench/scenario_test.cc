@@ -3,6 +3,7 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include "core/file_bytes.h"
 #include "core/test_files.h"
 #include "core/yaml_reader.h"
 
@@ -121,6 +122,20 @@ TEST(Scenario, NameMustBeAFolderName) {
                 HasSubstr("key 'name': expected letters, digits"))
         << name;
   }
+}
+
+// Two marker files with one stem once shared an example image path and aborted at 2 threads.
+TEST(Scenario, MarkersNeedDistinctNames) {
+  std::filesystem::create_directories(
+      std::filesystem::path(WriteTestFile("placeholder", "")).parent_path() / "other");
+  const std::string copy =
+      WriteTestFile("other/apriltag.yaml", ReadFileBytes("scenarios/markers/apriltag.yaml"));
+  const std::string error =
+      ErrorOf(Replace(GoodScenario(),
+                      "/scenarios/markers/apriltag.yaml\n",
+                      "/scenarios/markers/apriltag.yaml\n  - " + copy + "\n"));
+  EXPECT_THAT(error, HasSubstr("key 'markers': expected markers with distinct file names ("));
+  EXPECT_THAT(error, HasSubstr("scenarios/markers/apriltag.yaml and " + copy));
 }
 
 TEST(Scenario, ShippedScenariosLoad) {

@@ -290,6 +290,70 @@ TEST_F(SweepCliTest, BadInputIsRejectedBeforeAnythingIsWritten) {
   }
 }
 
+// Usage errors are bad input (exit 2 with CLI11's message), not CLI11's own codes 105-108.
+TEST_F(SweepCliTest, UsageErrorsAreExitTwo) {
+  const std::string scenario = Scenario("usage", 1);
+  const std::string out = (work_ / "out").string();
+  const struct {
+    std::vector<std::string> args;
+    std::string message;
+  } cases[] = {
+      {{"sweep", scenario, "--out", out, "--bogus"}, "--bogus"},
+      {{"sweep", scenario}, "--out is required"},
+      {{"sweep", scenario, "--out", out, "--threads", "many"}, "--threads"},
+      {{"sweep", scenario, "--out", out, "--threads", "100000"},
+       "--threads: expected a number in [1, 1024], got '100000'"},
+      {{"render", scenario, "--out", out, "--seed", "-1"},
+       "--seed: expected a number in [0, 2147483647], got '-1'"},
+      {{"report", out, "--success-fraction", "nan"},
+       "--success-fraction: expected a number in [0, 10], got 'nan'"},
+  };
+  for (const auto& c : cases) {
+    const Finished f = Run(c.args);
+    EXPECT_EQ(f.status, 2) << c.message;
+    EXPECT_THAT(f.error, HasSubstr(c.message));
+    EXPECT_FALSE(fs::exists(out)) << c.message;
+  }
+}
+
+// A second sweep into a folder that one is writing gets exit 2 naming the lock file, and the
+// first run's frames.csv is what it would have been alone.
+TEST_F(SweepCliTest, ASecondWriterIsRefused) {
+  const std::string scenario = Scenario("locked", 30);
+  const std::string reference = (work_ / "reference").string(), out = (work_ / "out").string();
+  ASSERT_EQ(Run({"sweep", scenario, "--out", reference, "--threads", "2"}).status, 0);
+  const pid_t first = Start({"sweep", scenario, "--out", out, "--threads", "2"});
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(60);
+  while (!fs::exists(out + "/locked/frames.csv") && std::chrono::steady_clock::now() < deadline) {
+    std::this_thread::sleep_for(std::chrono::milliseconds(5));
+  }
+  const Finished second = Run({"sweep", scenario, "--out", out, "--resume"});
+  EXPECT_EQ(second.status, 2);
+  EXPECT_THAT(second.error, HasSubstr(out + "/markerbench.lock: another markerbench sweep"));
+  ASSERT_EQ(Wait(first).status, 0);
+  EXPECT_EQ(Read(out + "/locked/frames.csv"), Read(reference + "/locked/frames.csv"));
+}
+
+// --overwrite starts from an empty folder: nothing of the earlier run stays.
+TEST_F(SweepCliTest, OverwriteLeavesNothingOfTheEarlierRun) {
+  const std::string out = (work_ / "out").string();
+  ASSERT_EQ(Run({"sweep", Scenario("again", 1), "--out", out}).status, 0);
+  std::ofstream(out + "/again/examples/stale.png") << "old";
+  ASSERT_EQ(Run({"sweep", Scenario("again", 1), "--out", out, "--overwrite"}).status, 0);
+  EXPECT_FALSE(fs::exists(out + "/again/examples/stale.png"));
+  EXPECT_TRUE(fs::exists(out + "/again/examples/apriltag.png"));
+}
+
+// The plotting script gets the folder as an argument, never through a shell.
+TEST_F(SweepCliTest, ReportRunsNoShell) {
+  const std::string out = (work_ / "x';touch PWNED;'").string();
+  ASSERT_EQ(Run({"sweep", Scenario("plots", 1), "--out", out}).status, 0);
+  EXPECT_EQ(Run({"report", out}).status, 0) << Read(work_ / "stderr.txt");
+  EXPECT_FALSE(fs::exists("PWNED"));
+  fs::remove("PWNED");
+  EXPECT_TRUE(fs::exists(out + "/report.md"));
+}
+
 // The apriltag tracker at 0.8 m, with tracker options `options`.
 std::string TagScenario(const std::string& file, const std::string& options, int seed) {
   return WriteTestFile(file,

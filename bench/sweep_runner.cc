@@ -1,6 +1,7 @@
 #include "bench/sweep_runner.h"
 
 #include <fcntl.h>
+#include <sys/file.h>
 #include <unistd.h>
 
 #include <atomic>
@@ -132,14 +133,25 @@ PreparedSweep Prepare(const std::string& path, const SweepOptions& options) {
     if (!trackers.empty() || example) p.jobs.push_back({f, trackers});
   }
 
+  return p;
+}
+
+// What an earlier run left in the scenario's folder: refused, started again (--overwrite:
+// every file of it removed) or continued (--resume). Called under the folder's lock.
+void TakeOverEarlierRun(PreparedSweep& p, const SweepOptions& options) {
+  const Scenario& s = p.scenario;
+  const std::string& path = s.path;
   const std::string frames = p.dir + "/frames.csv";
-  if (!fs::exists(frames)) return p;
+  if (!fs::exists(frames)) return;
   if (!options.resume && !options.overwrite) {
     throw ConfigError(frames +
                       ": exists; pass --resume to continue that run or --overwrite to "
                       "start again");
   }
-  if (options.overwrite) return p;
+  if (options.overwrite) {
+    fs::remove_all(p.dir);  // stale example images and logs of another plan must not stay
+    return;
+  }
   const std::string run_json = p.dir + "/run.json";
   const nlohmann::json run = ReadManifest(run_json);
   if (run.value("fingerprint", "") != p.fingerprint) {
@@ -156,7 +168,25 @@ PreparedSweep Prepare(const std::string& path, const SweepOptions& options) {
   p.done = std::min(in_frames.complete, in_timing.complete);
   p.frames_bytes = in_frames.offsets[p.done];
   p.timing_bytes = in_timing.offsets[p.done];
-  return p;
+}
+
+// An advisory lock on the output folder, held until the process ends: a second sweep into
+// the same folder is refused instead of interleaving rows with this one.
+void LockOutputFolder(const std::string& out_dir) {
+  fs::create_directories(out_dir);
+  const std::string path = out_dir + "/markerbench.lock";
+  const int fd = ::open(path.c_str(), O_RDWR | O_CREAT | O_CLOEXEC, 0644);
+  if (fd < 0) throw std::system_error(errno, std::generic_category(), path + ": cannot open");
+  if (::flock(fd, LOCK_EX | LOCK_NB) != 0) {
+    const int error = errno;
+    ::close(fd);
+    if (error == EWOULDBLOCK) {
+      throw ConfigError(path + ": another markerbench sweep is writing into " + out_dir +
+                        "; wait for it or choose another --out");
+    }
+    throw std::system_error(error, std::generic_category(), path + ": cannot lock");
+  }
+  // The descriptor stays open (and the lock held) for the life of the process.
 }
 
 void WriteAll(int fd, const std::string& text, const std::string& path) {
@@ -401,13 +431,24 @@ void RunSweeps(const std::vector<std::string>& scenario_paths, const SweepOption
       }
     }
   }
-  const int threads = options.threads > 0
-                          ? options.threads
-                          : std::max(1, static_cast<int>(std::thread::hardware_concurrency()));
+  if (options.threads < 0 || options.threads > kMaxThreads) {
+    throw ConfigError("--threads: expected a number in [1, " + std::to_string(kMaxThreads) +
+                      "], got " + std::to_string(options.threads));
+  }
+  const int requested = options.threads > 0
+                            ? options.threads
+                            : std::max(1, static_cast<int>(std::thread::hardware_concurrency()));
+  LockOutputFolder(options.out_dir);
+  for (PreparedSweep& p : sweeps) TakeOverEarlierRun(p, options);
   // Parallelism comes from the pool; OpenCV's own threads would oversubscribe the cores and
   // make time_ms depend on what the other workers do.
   cv::setNumThreads(1);
-  for (PreparedSweep& p : sweeps) Run(p, threads, options.out_dir + "/manifest.json");
+  for (PreparedSweep& p : sweeps) {
+    // No more workers than frames left to run.
+    const int threads = static_cast<int>(
+        std::clamp<size_t>(p.jobs.size() - p.done, 1, static_cast<size_t>(requested)));
+    Run(p, threads, options.out_dir + "/manifest.json");
+  }
 }
 
 }  // namespace markerbench

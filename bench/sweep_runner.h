@@ -10,15 +10,18 @@
 
 namespace markerbench {
 
+constexpr int kMaxThreads = 1024;
+
 struct SweepOptions {
   std::string out_dir;
-  int threads = 0;         // 0: every hardware thread
+  int threads = 0;         // 0: every hardware thread; at most kMaxThreads
   bool resume = false;     // continue a killed run of the same scenario
   bool overwrite = false;  // start again over an earlier run
 };
 
-// Loads and checks every scenario and output folder before writing anything (bad input:
-// ConfigError), then runs them one after another. Writes, per scenario, frames.csv,
+// Loads and checks every scenario before writing anything (bad input: ConfigError), locks
+// DIR (DIR/markerbench.lock: a second sweep into DIR is a ConfigError), then runs them one
+// after another. Writes, per scenario, frames.csv,
 // timing.csv, run.json and examples/<marker>.png (trial 0 at the example value), and
 // updates DIR/manifest.json.
 void RunSweeps(const std::vector<std::string>& scenario_paths, const SweepOptions& options);

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <optional>
 #include <string>
 
 namespace markerbench {
@@ -30,6 +31,17 @@ inline std::string FormattedOrDash(double value, const char* format) {
   char buffer[64];
   std::snprintf(buffer, sizeof(buffer), format, value);
   return buffer;
+}
+
+// `text` read whole as a finite number (a trailing CR of a CRLF line aside): "0.6abc", "",
+// "nan" and "1e999" are nullopt.
+inline std::optional<double> ParseFiniteNumber(std::string text) {
+  if (!text.empty() && text.back() == '\r') text.pop_back();
+  if (text.empty()) return std::nullopt;
+  char* end = nullptr;
+  const double value = std::strtod(text.c_str(), &end);
+  if (*end != '\0' || !std::isfinite(value)) return std::nullopt;
+  return value;
 }
 
 }  // namespace markerbench

@@ -25,5 +25,13 @@ TEST(NumberText, ReadsBackExactly) {
   }
 }
 
+TEST(ParseFiniteNumber, ReadsWholeFieldsOnly) {
+  EXPECT_EQ(ParseFiniteNumber("0.6"), 0.6);
+  EXPECT_EQ(ParseFiniteNumber("-1e-3\r"), -1e-3);
+  for (const char* bad : {"0.6abc", "", " ", "nan", "inf", "1e999", "0.6 ", "\r", "--1"}) {
+    EXPECT_FALSE(ParseFiniteNumber(bad).has_value()) << bad;
+  }
+}
+
 }  // namespace
 }  // namespace markerbench
