@@ -76,7 +76,7 @@ TEST(TrackerFactory, EveryTrackerSurvivesDegenerateImages) {
         image.width = width;
         image.height = height;
         image.channels = channels;
-        image.pixels.assign(static_cast<size_t>(width) * height * channels, 128);
+        image.pixels = std::vector<uint8_t>(static_cast<size_t>(width) * height * channels, 128);
         for (const MarkerSpec& marker : markers) {
           if (!tracker->CanTrack(marker)) continue;
           tracker->Reset();
@@ -88,7 +88,7 @@ TEST(TrackerFactory, EveryTrackerSurvivesDegenerateImages) {
     }
     Image8 short_buffer;
     short_buffer.width = short_buffer.height = 64;
-    short_buffer.pixels.assign(100, 0);
+    short_buffer.pixels = std::vector<uint8_t>(100, 0);
     const TrackResult result = tracker->Track({&short_buffer, &camera, &markers.front()});
     EXPECT_EQ(result.status, TrackStatus::kError) << name;
     EXPECT_EQ(result.message, "malformed image 64x64x1 with 100 bytes") << name;
