@@ -256,22 +256,6 @@ void WriteImageAtomically(const std::string& path, const Image8& image) {
   fs::rename(temporary, path);
 }
 
-TrackResult TrackSafely(Tracker* tracker, const Observation& observation) {
-  try {
-    return tracker->Track(observation);
-  } catch (const std::exception& e) {
-    TrackResult r;
-    r.status = TrackStatus::kError;
-    r.message = std::string("exception: ") + e.what();
-    return r;
-  } catch (...) {
-    TrackResult r;
-    r.status = TrackStatus::kError;
-    r.message = "exception of unknown type";
-    return r;
-  }
-}
-
 // Renders one job and runs its trackers; returns the frames.csv and timing.csv rows.
 std::pair<std::string, std::string> RunJob(const PreparedSweep& p,
                                            const Job& job,
@@ -309,7 +293,7 @@ std::pair<std::string, std::string> RunJob(const PreparedSweep& p,
     Tracker* tracker = (*trackers)[t].get();
     tracker->Reset();  // frames are independent: no state may leak between them
     const auto start = std::chrono::steady_clock::now();
-    const TrackResult result = TrackSafely(tracker, {&frame.image, &s.camera, &marker});
+    const TrackResult result = TrackCatchingExceptions(tracker, {&frame.image, &s.camera, &marker});
     const double time_ms = result.time_ms.value_or(
         std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start)
             .count());

@@ -10,7 +10,6 @@
 #include <chrono>
 #include <cmath>
 #include <cstring>
-#include <exception>
 #include <stdexcept>
 #include <system_error>
 
@@ -193,14 +192,8 @@ TrackResult ErrorResult(const std::string& message) {
     image.pixels.assign(pixels.begin(), pixels.end());
     if (reset) tracker->Reset();
     const auto start = Clock::now();
-    TrackResult result;
-    try {
-      result = tracker->Track({&image, camera, &(*markers)[marker]});
-    } catch (const std::exception& e) {
-      result = ErrorResult(std::string("exception: ") + e.what());
-    } catch (...) {
-      result = ErrorResult("exception of unknown type");
-    }
+    const TrackResult result =
+        TrackCatchingExceptions(tracker.get(), {&image, camera, &(*markers)[marker]});
     const double time_ms = std::chrono::duration<double, std::milli>(Clock::now() - start).count();
     if (SendMessage(kWorkerFd, EncodeResult(result, time_ms), Clock::time_point::max()) !=
         Io::kDone) {

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <array>
+#include <exception>
 #include <utility>
 
 namespace markerbench {
@@ -60,6 +61,19 @@ std::optional<TrackResult> UnusableImage(const Observation& observation) {
     return result;
   }
   return std::nullopt;
+}
+
+TrackResult TrackCatchingExceptions(Tracker* tracker, const Observation& observation) {
+  TrackResult result;
+  result.status = TrackStatus::kError;
+  try {
+    return tracker->Track(observation);
+  } catch (const std::exception& e) {
+    result.message = std::string("exception: ") + e.what();
+  } catch (...) {
+    result.message = "exception of unknown type";
+  }
+  return result;
 }
 
 std::optional<TrackStatus> TrackStatusFromString(const std::string& text) {

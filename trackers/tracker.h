@@ -56,6 +56,12 @@ constexpr int kMinImageSide = 8;
 // kMinImageSide. nullopt for a usable image. Every Track() starts with it.
 std::optional<TrackResult> UnusableImage(const Observation& observation);
 
+class Tracker;
+
+// tracker->Track(observation), with anything it throws as an `error` result whose message is
+// "exception: <what>" (or "exception of unknown type").
+TrackResult TrackCatchingExceptions(Tracker* tracker, const Observation& observation);
+
 class Tracker {
  public:
   virtual ~Tracker() = default;
