@@ -161,7 +161,6 @@ Scenario LoadScenario(const std::string& path) {
         entry.options = t.GetNode("options");
         if (!entry.options.IsMap()) t.Fail("options", "a mapping of tracker options");
       }
-      if (t.Has("timeout_s")) entry.timeout_s = t.GetDouble("timeout_s", 0.001, 86400.0);
       t.RejectUnknownKeys();
       const std::vector<std::string> names = TrackerNames();
       if (std::find(names.begin(), names.end(), entry.name) == names.end()) {

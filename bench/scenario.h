@@ -47,7 +47,6 @@ struct TrackerEntry {
   std::string name;
   YAML::Node options;       // validated by the tracker factory when the scenario loads
   std::string options_key;  // "trackers[i].options", for errors
-  double timeout_s = 60.0;  // per frame: past it the tracker's worker is killed (an error row)
   // Found at load by building the tracker once: the indices of the scenario's markers it can
   // track (never empty), and every parameter in effect (Tracker::Parameters).
   std::vector<size_t> markers;

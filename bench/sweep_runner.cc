@@ -26,7 +26,6 @@
 #include "core/yaml_reader.h"
 #include "renderer/image_io.h"
 #include "renderer/pose_crlb.h"
-#include "trackers/isolated_tracker.h"
 
 namespace fs = std::filesystem;
 
@@ -294,9 +293,8 @@ std::pair<std::string, std::string> RunJob(const PreparedSweep& p,
     tracker->Reset();  // frames are independent: no state may leak between them
     const auto start = std::chrono::steady_clock::now();
     const TrackResult result = TrackCatchingExceptions(tracker, {&frame.image, &s.camera, &marker});
-    const double time_ms = result.time_ms.value_or(
-        std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start)
-            .count());
+    const double time_ms =
+        std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
     const bool has_pose = result.status == TrackStatus::kOk && !result.hypotheses.empty();
     row.tracker = s.trackers[t].name;
     row.status = result.status;
@@ -369,14 +367,9 @@ void Run(PreparedSweep& p, int threads, const std::string& manifest_path) {
   for (int i = 0; i < threads; ++i) {
     pool.emplace_back([&] {
       try {
-        // Each tracker runs in a worker process of this thread: a crash or a hang is a row.
         std::vector<std::unique_ptr<Tracker>> trackers;
         for (const TrackerEntry& t : p.scenario.trackers) {
-          trackers.push_back(std::make_unique<IsolatedTracker>(
-              [&p, &t] { return MakeScenarioTracker(p.scenario, t); },
-              &p.scenario.camera,
-              &p.scenario.markers,
-              IsolatedTrackerOptions{t.timeout_s}));
+          trackers.push_back(MakeScenarioTracker(p.scenario, t));
         }
         for (size_t j = next++; j < p.jobs.size() && !failed; j = next++) {
           auto [frame_rows, timing_rows] = RunJob(p, p.jobs[j], &trackers);

@@ -35,9 +35,6 @@ struct TrackResult {
   // Detected MarkerSpec::keypoints in pixels, same order; empty when not measured.
   std::vector<Eigen::Vector2d> keypoints_px;
   std::string message;  // why it failed, for error rows
-  // The tracker's own time for the call when it runs elsewhere (IsolatedTracker's worker);
-  // else the harness times the call.
-  std::optional<double> time_ms;
 };
 
 // The `error` result of a tracker handed a marker it cannot track: "<tracker> cannot track
