@@ -57,6 +57,25 @@ if(NOT EXISTS ${WORK_DIR}/sheets/apriltag.png)
   message(FATAL_ERROR "marker sheet missing")
 endif()
 
+# markers reads every file before it writes a sheet.
+run(2 markers --out ${WORK_DIR}/no_sheets --marker scenarios/markers/apriltag.yaml
+    --marker ${WORK_DIR}/bad.yaml)
+if(NOT last_error MATCHES "bad.yaml" OR EXISTS ${WORK_DIR}/no_sheets)
+  message(FATAL_ERROR "markers wrote before it had read every file: ${last_error}")
+endif()
+
+# Devices, folders and FIFOs are not files: a device would read as empty, a FIFO would block.
+run(2 render --marker scenarios/markers/circle_d.yaml --camera scenarios/cameras/default.yaml
+    --poses /dev/null --out ${WORK_DIR}/bad)
+if(NOT last_error MATCHES "/dev/null: expected a regular file, got a character device")
+  message(FATAL_ERROR "unexpected message: ${last_error}")
+endif()
+run(2 render --marker scenarios/markers/circle_d.yaml --camera scenarios/cameras
+    --poses ${WORK_DIR}/poses.csv --out ${WORK_DIR}/bad)
+if(NOT last_error MATCHES "scenarios/cameras: expected a regular file, got a directory")
+  message(FATAL_ERROR "unexpected message: ${last_error}")
+endif()
+
 # track: the smoke scenario's frame 1 is the apriltag at a paired pose.
 execute_process(COMMAND ${MARKERBENCH} track --tracker apriltag --marker scenarios/markers/apriltag.yaml
                 --camera scenarios/cameras/default.yaml ${WORK_DIR}/smoke/frame_000001.png

@@ -6,6 +6,7 @@
 
 #include "bench/pose_columns.h"
 #include "core/number_text.h"
+#include "core/regular_file.h"
 #include "core/yaml_reader.h"
 
 namespace markerbench {
@@ -42,17 +43,6 @@ const std::vector<std::string>& Columns() {
   return kColumns;
 }
 
-// Quoted when it holds a comma or a quote; line breaks become spaces (one row per line).
-std::string CsvField(std::string text) {
-  for (char& ch : text) {
-    if (ch == '\n' || ch == '\r') ch = ' ';
-  }
-  if (text.find_first_of(",\"") == std::string::npos) return text;
-  std::string quoted = "\"";
-  for (char ch : text) quoted += ch == '"' ? std::string("\"\"") : std::string(1, ch);
-  return quoted + '"';
-}
-
 double ParseNumber(const std::vector<std::string>& f, size_t i, bool optional) {
   if (optional && f[i].empty()) return NAN;
   char* end = nullptr;
@@ -72,6 +62,16 @@ Rigid3 ParsePose(const std::vector<std::string>& f, size_t first) {
 }
 
 }  // namespace
+
+std::string CsvField(std::string text) {
+  for (char& ch : text) {
+    if (ch == '\n' || ch == '\r') ch = ' ';
+  }
+  if (text.find_first_of(",\"") == std::string::npos) return text;
+  std::string quoted = "\"";
+  for (char ch : text) quoted += ch == '"' ? std::string("\"\"") : std::string(1, ch);
+  return quoted + '"';
+}
 
 std::vector<std::string> SplitCsvLine(const std::string& line) {
   std::vector<std::string> fields(1);
@@ -158,6 +158,7 @@ FrameRow ParseFrameRow(const std::string& line) {
 }
 
 std::vector<FrameRow> ReadFramesCsv(const std::string& path) {
+  RequireRegularFile(path);
   std::ifstream in(path);
   if (!in) throw ConfigError(path + ": cannot read");
   std::string line;

@@ -55,6 +55,10 @@ std::vector<FrameRow> ReadFramesCsv(const std::string& path);
 std::string TimingCsvHeader();
 std::string FormatTimingRow(int frame, const std::string& tracker, double time_ms);
 
+// One field, in RFC 4180 quotes when it holds a comma or a quote; line breaks become spaces
+// (one row per line).
+std::string CsvField(std::string text);
+
 // Fields of one CSV line, with RFC 4180 quotes.
 std::vector<std::string> SplitCsvLine(const std::string& line);
 

@@ -9,6 +9,7 @@
 
 #include "bench/atomic_file.h"
 #include "bench/build_info.h"
+#include "core/regular_file.h"
 #include "core/yaml_reader.h"
 
 namespace markerbench {
@@ -55,6 +56,7 @@ nlohmann::json EnvironmentManifest(int threads) {
 
 nlohmann::json ReadManifest(const std::string& path) {
   if (!std::filesystem::exists(path)) return nlohmann::json::object();
+  RequireRegularFile(path);
   std::ifstream in(path);
   try {
     return nlohmann::json::parse(in);

@@ -2,8 +2,10 @@
 
 #include <cstdio>
 #include <filesystem>
+#include <map>
 #include <opencv2/imgproc.hpp>
 
+#include "core/config_error.h"
 #include "core/marker_yaml.h"
 #include "renderer/image_io.h"
 #include "renderer/render_frame.h"
@@ -40,10 +42,20 @@ std::string SizeText(const MarkerSpec& marker) {
 
 std::vector<std::string> WriteMarkerSheets(const std::vector<std::string>& marker_files,
                                            const std::string& out_dir) {
+  // Every file is read and checked before the first sheet is written.
+  std::vector<MarkerSpec> markers;
+  std::map<std::string, std::string> file_of_name;
+  for (const std::string& file : marker_files) {
+    markers.push_back(LoadMarkerYaml(file));
+    const auto [earlier, inserted] = file_of_name.emplace(markers.back().name, file);
+    if (!inserted) {
+      throw ConfigError(file + " and " + earlier->second + " both name their marker '" +
+                        earlier->first + "': their sheets would overwrite each other");
+    }
+  }
   std::filesystem::create_directories(out_dir);
   std::vector<std::string> written;
-  for (const std::string& file : marker_files) {
-    const MarkerSpec marker = LoadMarkerYaml(file);
+  for (const MarkerSpec& marker : markers) {
     // Fronto-parallel at 1 m with f = px/m: an exact orthographic scale of 300 dpi.
     FrameRequest request;
     request.scene.marker = &marker;

@@ -12,6 +12,7 @@
 #include "core/marker_yaml.h"
 #include "core/number_text.h"
 #include "core/random.h"
+#include "core/regular_file.h"
 #include "core/yaml_reader.h"
 #include "renderer/image_io.h"
 #include "renderer/render_frame.h"
@@ -115,6 +116,7 @@ void RenderScenario(const std::string& scenario_path,
 }
 
 std::vector<Rigid3> LoadPosesCsv(const std::string& path) {
+  RequireRegularFile(path);
   std::ifstream in(path);
   if (!in) throw ConfigError(path + ": cannot open the file");
   std::string line;

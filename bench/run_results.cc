@@ -7,6 +7,7 @@
 #include <fstream>
 
 #include "core/number_text.h"
+#include "core/regular_file.h"
 #include "core/yaml_reader.h"
 
 namespace fs = std::filesystem;
@@ -17,8 +18,9 @@ namespace {
 // timing.csv rows follow frames.csv rows one for one.
 std::vector<double> ReadTimes(const std::string& path, const std::vector<FrameRow>& rows) {
   std::vector<double> times(rows.size(), NAN);
+  if (!fs::exists(path)) return times;
+  RequireRegularFile(path);
   std::ifstream in(path);
-  if (!in) return times;
   std::string line;
   std::getline(in, line);
   for (size_t i = 0; i < rows.size() && std::getline(in, line); ++i) {

@@ -1,8 +1,10 @@
 #include "bench/track_command.h"
 
+#include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <filesystem>
 #include <fstream>
 #include <opencv2/imgproc.hpp>
 #include <opencv2/videoio.hpp>
@@ -10,13 +12,18 @@
 #include <vector>
 
 #include "bench/frames_csv.h"
+#include "core/config_error.h"
+#include "core/file_bytes.h"
 #include "core/marker_yaml.h"
 #include "core/test_files.h"
+#include "renderer/image_io.h"
 #include "renderer/render_frame.h"
 #include "renderer/test_scenes.h"
 
 namespace markerbench {
 namespace {
+
+using ::testing::HasSubstr;
 
 std::vector<std::string> ReadLines(const std::string& path) {
   std::ifstream in(path);
@@ -127,6 +134,106 @@ TEST(TrackCommand, TracksAnArtkPlusMarkerThroughAVideo) {
 TEST(TrackCommand, TracksARuneTagMarkerThroughAVideo) {
   ExpectCentresThroughVideo(
       "runetag", "scenarios/markers/runetag.yaml", MovingView(kVideoDistanceM), kVideoCenterTolM);
+}
+
+// A PNG of the AprilTag seen at 0.6 m, at the default camera's size.
+std::string WriteTagImage(const std::string& name) {
+  const MarkerSpec marker = LoadMarkerYaml("scenarios/markers/apriltag.yaml");
+  FrameRequest request;
+  request.scene.marker = &marker;
+  request.scene.cam_from_marker = TiltedView(0.6, 20.0, 0.0);
+  const std::string path = WriteTestFile(name, "");
+  WriteImage(path, RenderFrame(request).image);
+  return path;
+}
+
+TrackCommandOptions TagOptions(const std::string& out_name) {
+  TrackCommandOptions options;
+  options.tracker = "apriltag";
+  options.marker_path = "scenarios/markers/apriltag.yaml";
+  options.camera_path = "scenarios/cameras/default.yaml";
+  options.out_csv = out_name.empty() ? "" : WriteTestFile(out_name, "");
+  return options;
+}
+
+std::string ConfigErrorOf(const TrackCommandOptions& options) {
+  try {
+    RunTrackCommand(options);
+  } catch (const ConfigError& e) {
+    return e.what();
+  }
+  return "";
+}
+
+TEST(TrackCommand, RefusesAnOutputThatIsAlsoAnInput) {
+  const std::string image = WriteTagImage("own.png");
+  const std::string bytes = ReadFileBytes(image);
+  TrackCommandOptions options = TagOptions("");
+  options.inputs = {image};
+  const std::filesystem::path path(image);
+  for (const std::string& out :
+       {image, (path.parent_path() / "." / path.filename()).string(), options.camera_path}) {
+    options.out_csv = out;
+    EXPECT_THAT(ConfigErrorOf(options), HasSubstr("--out " + out + " is also an input"));
+  }
+  EXPECT_EQ(ReadFileBytes(image), bytes);
+}
+
+TEST(TrackCommand, RefusesInputsThatAreNotFiles) {
+  TrackCommandOptions options = TagOptions("not_a_file.csv");
+  const std::string folder = WriteTestFile("folder.png", "") + ".d.png";
+  std::filesystem::create_directories(folder);
+  options.inputs = {WriteTagImage("fine.png"), folder};
+  EXPECT_THAT(ConfigErrorOf(options), HasSubstr(folder + ": expected a regular file"));
+}
+
+// Unreadable inputs are error rows naming the file; the readable ones are still tracked.
+TEST(TrackCommand, BadImagesAreRowsAndTheRestIsTracked) {
+  TrackCommandOptions options = TagOptions("mixed.csv");
+  const std::string good = WriteTagImage("good.png");
+  std::string truncated = ReadFileBytes(good);
+  truncated.resize(truncated.size() / 2);
+  Image8 small;
+  small.width = 320;
+  small.height = 240;
+  small.channels = 1;
+  small.pixels.assign(320 * 240, 128);
+  const std::string wrong_size = WriteTestFile("small.png", "");
+  WriteImage(wrong_size, small);
+  options.inputs = {WriteTestFile("garbage.png", "not an image"),
+                    WriteTestFile("truncated.png", truncated),
+                    "/nonexistent/missing.png",
+                    wrong_size,
+                    WriteTestFile("garbage.avi", "not a video"),
+                    good};
+  RunTrackCommand(options);
+  const std::vector<std::string> rows = ReadLines(options.out_csv);
+  ASSERT_EQ(rows.size(), options.inputs.size() + 1);
+  for (size_t i = 0; i + 1 < options.inputs.size(); ++i) {
+    const std::vector<std::string> row = SplitCsvLine(rows[i + 1]);
+    EXPECT_EQ(row[0], options.inputs[i]);
+    EXPECT_EQ(row[2], "error") << rows[i + 1];
+    EXPECT_FALSE(row.back().empty()) << "the message says why: " << rows[i + 1];
+  }
+  EXPECT_THAT(rows[4], HasSubstr("image is 320x240 but"));
+  EXPECT_EQ(SplitCsvLine(rows.back())[2], "ok") << rows.back();
+
+  options.inputs = {options.inputs[0], options.inputs[1], options.inputs[2], options.inputs[4]};
+  EXPECT_THAT(ConfigErrorOf(options), HasSubstr("none of the 4 inputs could be read"));
+}
+
+TEST(TrackCommand, FileNamesAreQuoted) {
+  TrackCommandOptions options = TagOptions("quoted.csv");
+  const std::string image = WriteTagImage("a,\"b\".png");
+  options.inputs = {image};
+  RunTrackCommand(options);
+  const std::vector<std::string> rows = ReadLines(options.out_csv);
+  ASSERT_EQ(rows.size(), 2u);
+  const std::vector<std::string> header = SplitCsvLine(rows[0]);
+  const std::vector<std::string> row = SplitCsvLine(rows[1]);
+  ASSERT_EQ(row.size(), header.size()) << rows[1];
+  EXPECT_EQ(row[0], image);
+  EXPECT_EQ(row[2], "ok");
 }
 
 }  // namespace

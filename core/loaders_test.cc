@@ -1,8 +1,10 @@
 // Every loader rejects each kind of bad input with a message that names the file and the key.
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
+#include <sys/stat.h>
 
 #include <bitset>
+#include <filesystem>
 
 #include "core/camera_yaml.h"
 #include "core/file_bytes.h"
@@ -139,6 +141,57 @@ TEST(CameraYaml, MissingFileAndBadYaml) {
     EXPECT_THAT(e.what(), HasSubstr("/nonexistent/camera.yaml: cannot open"));
   }
   EXPECT_THAT(CameraError("image_width: [1, 2\n"), HasSubstr("not valid YAML"));
+}
+
+TEST(YamlFiles, DuplicateKeysNameBothLines) {
+  // yaml-cpp would keep the first image_width silently.
+  EXPECT_THAT(CameraError(std::string(kGoodCamera) + "image_width: 1280\n"),
+              HasSubstr(":9: key 'image_width' is given twice, first on line 1"));
+  EXPECT_THAT(MarkerError(Replace(kGoodCirclesA, "radius: 0.03,", "radius: 0.03, radius: 0.04,")),
+              HasSubstr(":3: key 'radius' is given twice, first on line 3"));
+}
+
+TEST(YamlFiles, ComplexKeysAreRefused) {
+  EXPECT_THAT(CameraError(std::string(kGoodCamera) + "? [a, b]\n: 1\n"),
+              HasSubstr(":9: a key must be a plain name, got a list of 2"));
+  EXPECT_THAT(MarkerError(std::string(kGoodCirclesA) + "? {a: 1}\n: 1\n"),
+              HasSubstr("a key must be a plain name, got a mapping"));
+}
+
+TEST(YamlFiles, AliasesThatExpandTooFarAreRefused) {
+  // Nine levels of ten aliases each: a billion values from ten lines.
+  std::string text = "l0: &l0 [x, x, x, x, x, x, x, x, x, x]\n";
+  for (int level = 1; level <= 9; ++level) {
+    const std::string name = "l" + std::to_string(level);
+    const std::string alias = "*l" + std::to_string(level - 1);
+    text += name + ": &" + name + " [" + alias;
+    for (int i = 1; i < 10; ++i) text += ", " + alias;
+    text += "]\n";
+  }
+  EXPECT_THAT(CameraError(text), HasSubstr("more than 1000000 values"));
+}
+
+TEST(YamlFiles, OnlyRegularFilesAreRead) {
+  const std::filesystem::path folder = WriteTestFile("folder.yaml", "") + ".d";
+  std::filesystem::create_directories(folder);
+  for (const auto& [path, kind] : std::vector<std::pair<std::string, std::string>>{
+           {folder.string(), "a directory"}, {"/dev/null", "a character device"}}) {
+    try {
+      LoadCameraYaml(path);
+      ADD_FAILURE() << path;
+    } catch (const ConfigError& e) {
+      EXPECT_THAT(e.what(), HasSubstr(path + ": expected a regular file, got " + kind));
+    }
+  }
+  // A FIFO would block the reader until someone writes to it.
+  const std::string fifo = WriteTestFile("fifo.yaml", "") + ".fifo";
+  ASSERT_EQ(mkfifo(fifo.c_str(), 0600), 0);
+  try {
+    LoadMarkerYaml(fifo);
+    ADD_FAILURE() << fifo;
+  } catch (const ConfigError& e) {
+    EXPECT_THAT(e.what(), HasSubstr(fifo + ": expected a regular file, got a FIFO"));
+  }
 }
 
 TEST(MarkerYaml, LoadsCirclesA) {

@@ -2,7 +2,10 @@
 
 #include <cmath>
 #include <filesystem>
+#include <map>
 #include <sstream>
+
+#include "core/regular_file.h"
 
 namespace markerbench {
 namespace {
@@ -45,20 +48,55 @@ bool Convert(const YAML::Node& node, T* out) {
   return true;
 }
 
+std::string Line(const YAML::Node& node) { return std::to_string(node.Mark().line + 1); }
+
+// Mappings anywhere in the file must have distinct plain keys: yaml-cpp keeps the first of
+// two equal keys silently, and a complex key (`? [a, b]`) matches no getter. Aliases can make
+// a small file expand to a huge tree, so at most kMaxValues nodes are visited.
+void CheckKeys(const YAML::Node& node, const std::string& path, size_t* visited) {
+  constexpr size_t kMaxValues = 1'000'000;
+  if (++*visited > kMaxValues) {
+    throw ConfigError(path + ": more than " + std::to_string(kMaxValues) +
+                      " values (aliases expand to copies)");
+  }
+  if (node.IsSequence()) {
+    for (const YAML::Node& item : node) CheckKeys(item, path, visited);
+  }
+  if (!node.IsMap()) return;
+  std::map<std::string, YAML::Node> keys;
+  for (const auto& entry : node) {
+    const YAML::Node& key = entry.first;
+    if (!key.IsScalar()) {
+      throw ConfigError(path + ":" + Line(key) + ": a key must be a plain name, got " +
+                        Describe(key));
+    }
+    const auto [earlier, inserted] = keys.emplace(key.Scalar(), key);
+    if (!inserted) {
+      throw ConfigError(path + ":" + Line(key) + ": key '" + key.Scalar() +
+                        "' is given twice, first on line " + Line(earlier->second));
+    }
+    CheckKeys(entry.second, path, visited);
+  }
+}
+
 }  // namespace
 
 YamlMap YamlMap::LoadFile(const std::string& path) {
+  RequireRegularFile(path);
   YAML::Node root;
   try {
     root = YAML::LoadFile(path);
   } catch (const YAML::BadFile&) {
     throw ConfigError(path + ": cannot open the file");
-  } catch (const YAML::ParserException& e) {
-    throw ConfigError(path + ":" + std::to_string(e.mark.line + 1) + ": not valid YAML: " + e.msg);
+  } catch (const YAML::Exception& e) {
+    const std::string line = e.mark.is_null() ? "" : ":" + std::to_string(e.mark.line + 1);
+    throw ConfigError(path + line + ": not valid YAML: " + e.msg);
   }
   if (!root.IsMap()) {
     throw ConfigError(path + ": expected a YAML mapping at the top level, got " + Describe(root));
   }
+  size_t visited = 0;
+  CheckKeys(root, path, &visited);
   return YamlMap(root, path, "");
 }
 

@@ -7,17 +7,12 @@
 
 #include <Eigen/Core>
 #include <set>
-#include <stdexcept>
 #include <string>
 #include <vector>
 
-namespace markerbench {
+#include "core/config_error.h"
 
-// Bad file or option: main prints what() and exits with status 2.
-class ConfigError : public std::runtime_error {
- public:
-  using std::runtime_error::runtime_error;
-};
+namespace markerbench {
 
 class YamlMap {
  public:

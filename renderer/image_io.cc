@@ -5,6 +5,8 @@
 #include <stdexcept>
 #include <vector>
 
+#include "core/camera_yaml.h"
+
 namespace markerbench {
 namespace {
 
@@ -46,6 +48,13 @@ Image8 ReadImage(const std::string& path) {
   auto in = OIIO::ImageInput::open(path);
   if (!in) throw std::runtime_error(path + ": cannot read image: " + OIIO::geterror());
   const OIIO::ImageSpec& spec = in->spec();
+  if (spec.width < 1 || spec.height < 1 || spec.nchannels < 1 ||
+      static_cast<int64_t>(spec.width) * spec.height > kMaxImagePixels) {
+    throw std::runtime_error(path + ": cannot read image: its header says " +
+                             std::to_string(spec.width) + "x" + std::to_string(spec.height) +
+                             " pixels; markerbench reads 1 to " + std::to_string(kMaxImagePixels) +
+                             " pixels");
+  }
   Image8 image;
   image.width = spec.width;
   image.height = spec.height;

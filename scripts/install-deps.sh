@@ -5,6 +5,7 @@ set -euo pipefail
 
 packages=(
   build-essential cmake ninja-build pkg-config git clang-format
+  clang libclang-rt-14-dev
   libeigen3-dev
   libopencv-dev libopencv-contrib-dev
   libapriltag-dev
