@@ -15,6 +15,7 @@
 #include "bench/report.h"
 #include "bench/sweep_runner.h"
 #include "bench/track_command.h"
+#include "bench/tracker_worker_command.h"
 #include "core/number_text.h"
 #include "core/yaml_reader.h"
 
@@ -102,6 +103,13 @@ int main(int argc, char** argv) {
   sweep->add_flag("--resume", sweep_options.resume, "Continue a killed run of the same scenarios");
   sweep->add_flag("--overwrite", sweep_options.overwrite, "Start again over an earlier run");
   sweep->get_option("--resume")->excludes("--overwrite");
+
+  // Started by sweep for each isolated tracker; hidden from --help (an empty group).
+  CLI::App* worker = app.add_subcommand("tracker-worker", "")->group("");
+  std::string worker_scenario;
+  size_t worker_tracker_index = 0;
+  worker->add_option("scenario", worker_scenario)->required();
+  worker->add_option("--tracker-index", worker_tracker_index)->required();
 
   CLI::App* report =
       app.add_subcommand("report", "summary.csv, report.md and plots from a sweep's DIR");
@@ -197,6 +205,8 @@ int main(int argc, char** argv) {
       RunTrackCommand(track_options);
     } else if (sweep->parsed()) {
       RunSweeps(sweep_scenarios, sweep_options);
+    } else if (worker->parsed()) {
+      return RunTrackerWorker(worker_scenario, worker_tracker_index);
     } else if (report->parsed()) {
       WriteReport(report_dir, report_options);
     } else if (check->parsed()) {

@@ -10,6 +10,7 @@
 #include "core/marker_scaling.h"
 #include "core/marker_yaml.h"
 #include "core/yaml_reader.h"
+#include "trackers/isolated/isolated_tracker.h"
 #include "trackers/tracker_factory.h"
 
 namespace markerbench {
@@ -161,6 +162,8 @@ Scenario LoadScenario(const std::string& path) {
         entry.options = t.GetNode("options");
         if (!entry.options.IsMap()) t.Fail("options", "a mapping of tracker options");
       }
+      entry.isolated = t.GetOr<bool>("isolated", RunsThirdPartyCCode(entry.name));
+      if (t.Has("timeout_s")) entry.timeout_s = t.GetDouble("timeout_s", 1e-3, 86400.0);
       t.RejectUnknownKeys();
       const std::vector<std::string> names = TrackerNames();
       if (std::find(names.begin(), names.end(), entry.name) == names.end()) {
@@ -174,6 +177,10 @@ Scenario LoadScenario(const std::string& path) {
       }
       if (entry.markers.empty()) t.Fail("name", "a tracker for one of the scenario's markers");
       entry.parameters = tracker->Parameters();
+      if (entry.isolated) {
+        for (auto& parameter : IsolationParameters(entry.timeout_s))
+          entry.parameters.push_back(parameter);
+      }
       s.trackers.push_back(entry);
     }
   }

@@ -47,6 +47,10 @@ struct TrackerEntry {
   std::string name;
   YAML::Node options;       // validated by the tracker factory when the scenario loads
   std::string options_key;  // "trackers[i].options", for errors
+  // Run in a worker process, so that a crash or hang is an error row (default: for trackers
+  // that run third-party C code), with `timeout_s` per frame.
+  bool isolated = false;
+  double timeout_s = 60.0;
   // Found at load by building the tracker once: the indices of the scenario's markers it can
   // track (never empty), and every parameter in effect (Tracker::Parameters).
   std::vector<size_t> markers;

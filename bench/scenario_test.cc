@@ -95,6 +95,29 @@ TEST(Scenario, TrackerOptionsAreCheckedWithTheirKey) {
               HasSubstr("key 'trackers[0].options.quad_decimat': unknown key"));
 }
 
+// Trackers that run third-party C code run in worker processes unless told otherwise.
+TEST(Scenario, TrackersOfThirdPartyCCodeAreIsolated) {
+  auto with_second = [](const std::string& entry) {
+    return Replace(GoodScenario(), "poses:", "  - {name: apriltag-ippe" + entry + "}\nposes:");
+  };
+  const Scenario s = LoadScenario(WriteTestFile("scenario.yaml", with_second("")));
+  ASSERT_EQ(s.trackers.size(), 2u);
+  EXPECT_TRUE(s.trackers[0].isolated);
+  EXPECT_EQ(s.trackers[0].timeout_s, 60.0);
+  EXPECT_THAT(s.trackers[0].parameters, testing::Contains(testing::Pair("isolated", "true")));
+  const Scenario chosen =
+      LoadScenario(WriteTestFile("scenario.yaml", with_second(", isolated: false")));
+  EXPECT_FALSE(chosen.trackers[1].isolated);
+  EXPECT_THAT(chosen.trackers[1].parameters,
+              testing::Not(testing::Contains(testing::Pair("isolated", "true"))));
+  EXPECT_EQ(LoadScenario(WriteTestFile("scenario.yaml", with_second(", timeout_s: 2.5")))
+                .trackers[1]
+                .timeout_s,
+            2.5);
+  EXPECT_THAT(ErrorOf(with_second(", timeout_s: 0")), HasSubstr("key 'trackers[1].timeout_s'"));
+  EXPECT_THAT(ErrorOf(with_second(", isolated: maybe")), HasSubstr("key 'trackers[1].isolated'"));
+}
+
 TEST(Scenario, TrackerMustTrackOneOfTheMarkers) {
   EXPECT_THAT(
       ErrorOf(Replace(

@@ -222,6 +222,64 @@ TEST_F(SweepCliTest, KilledRunResumesToTheSameFile) {
   EXPECT_EQ(Lines(killed + "/resume/timing.csv"), total);
 }
 
+// The processes whose parent is `parent` and whose command line holds `word`.
+std::vector<pid_t> ChildrenRunning(pid_t parent, const std::string& word) {
+  std::vector<pid_t> children;
+  for (const auto& entry : fs::directory_iterator("/proc")) {
+    const std::string name = entry.path().filename().string();
+    if (name.find_first_not_of("0123456789") != std::string::npos) continue;
+    std::ifstream stat(entry.path() / "stat");
+    std::string line;
+    std::getline(stat, line);
+    // pid (comm) state ppid ...: the command may hold spaces, so read after the last ')'.
+    const size_t close = line.rfind(')');
+    if (close == std::string::npos) continue;
+    std::istringstream rest(line.substr(close + 1));
+    std::string state;
+    pid_t ppid = 0;
+    rest >> state >> ppid;
+    std::ifstream cmdline_file(entry.path() / "cmdline");
+    const std::string cmdline((std::istreambuf_iterator<char>(cmdline_file)), {});
+    if (ppid == parent && cmdline.find(word) != std::string::npos) {
+      children.push_back(std::stoi(name));
+    }
+  }
+  return children;
+}
+
+// apriltag runs in worker processes (libapriltag is C code that can crash): a worker killed
+// mid-sweep costs an error row, and the sweep completes with every other row unchanged.
+TEST_F(SweepCliTest, AKilledTrackerWorkerIsAnErrorRowAndTheSweepGoesOn) {
+  const std::string scenario = Scenario("worker", 40);
+  const std::string reference = (work_ / "reference").string(), hit = (work_ / "hit").string();
+  ASSERT_EQ(Run({"sweep", scenario, "--out", reference, "--threads", "2"}).status, 0);
+  const pid_t pid = Start({"sweep", scenario, "--out", hit, "--threads", "2"});
+  std::vector<pid_t> workers;
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(60);
+  while ((workers.empty() || Lines(hit + "/worker/frames.csv") < 10) &&
+         std::chrono::steady_clock::now() < deadline) {
+    workers = ChildrenRunning(pid, "tracker-worker");
+    std::this_thread::sleep_for(std::chrono::milliseconds(2));
+  }
+  ASSERT_FALSE(workers.empty());
+  ASSERT_EQ(::kill(workers.front(), SIGKILL), 0);
+  ASSERT_EQ(Wait(pid).status, 0);
+
+  std::istringstream expected(Read(reference + "/worker/frames.csv"));
+  std::istringstream got(Read(hit + "/worker/frames.csv"));
+  int errors = 0, rows = 0;
+  for (std::string want, line; std::getline(expected, want);) {
+    ASSERT_TRUE(std::getline(got, line)) << "row " << rows << " is missing";
+    ++rows;
+    if (line == want) continue;
+    ++errors;
+    EXPECT_THAT(line, HasSubstr(",error,"));
+    EXPECT_THAT(line, HasSubstr("the worker was killed by signal SIGKILL on this frame"));
+  }
+  EXPECT_EQ(errors, 1) << "one frame was in the killed worker";
+  EXPECT_EQ(rows, 1 + 3 * 40 * 3);
+}
+
 TEST_F(SweepCliTest, TornTailIsCutOnResume) {
   const std::string scenario = Scenario("torn", 2);
   const std::string out = (work_ / "out").string();

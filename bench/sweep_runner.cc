@@ -21,6 +21,7 @@
 #include "bench/manifest.h"
 #include "bench/progress.h"
 #include "bench/scenario.h"
+#include "bench/tracker_worker_command.h"
 #include "core/file_bytes.h"
 #include "core/sha256.h"
 #include "core/yaml_reader.h"
@@ -293,8 +294,10 @@ std::pair<std::string, std::string> RunJob(const PreparedSweep& p,
     tracker->Reset();  // frames are independent: no state may leak between them
     const auto start = std::chrono::steady_clock::now();
     const TrackResult result = TrackCatchingExceptions(tracker, {&frame.image, &s.camera, &marker});
-    const double time_ms =
-        std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+    // An isolated tracker's own time, without the trip to its worker process.
+    const double time_ms = result.time_ms.value_or(
+        std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start)
+            .count());
     const bool has_pose = result.status == TrackStatus::kOk && !result.hypotheses.empty();
     row.tracker = s.trackers[t].name;
     row.status = result.status;
@@ -368,8 +371,8 @@ void Run(PreparedSweep& p, int threads, const std::string& manifest_path) {
     pool.emplace_back([&] {
       try {
         std::vector<std::unique_ptr<Tracker>> trackers;
-        for (const TrackerEntry& t : p.scenario.trackers) {
-          trackers.push_back(MakeScenarioTracker(p.scenario, t));
+        for (size_t t = 0; t < p.scenario.trackers.size(); ++t) {
+          trackers.push_back(MakeSweepTracker(p.scenario, t));
         }
         for (size_t j = next++; j < p.jobs.size() && !failed; j = next++) {
           auto [frame_rows, timing_rows] = RunJob(p, p.jobs[j], &trackers);

@@ -35,6 +35,9 @@ struct TrackResult {
   // Detected MarkerSpec::keypoints in pixels, same order; empty when not measured.
   std::vector<Eigen::Vector2d> keypoints_px;
   std::string message;  // why it failed, for error rows
+  // Time spent in Track() where it ran, set by trackers that run in another process; the
+  // harness times in-process trackers itself.
+  std::optional<double> time_ms;
 };
 
 // The `error` result of a tracker handed a marker it cannot track: "<tracker> cannot track

@@ -22,6 +22,10 @@ std::vector<std::string> TrackerNames() {
   return {"apriltag", "apriltag-ippe", "artkplus", "aruco", "circle", "runetag"};
 }
 
+bool RunsThirdPartyCCode(const std::string& name) {
+  return name == "apriltag" || name == "apriltag-ippe";
+}
+
 std::unique_ptr<Tracker> MakeTracker(const std::string& name, const YamlMap* options) {
   if (name == "apriltag" || name == "apriltag-ippe") {
     return MakeAprilTagTracker(ReadOptions<AprilTagOptions>(options),
