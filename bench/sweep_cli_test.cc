@@ -44,7 +44,11 @@ class SweepCliTest : public ::testing::Test {
 
   // Starts markerbench with `args`; standard error goes to work_/stderr.txt.
   pid_t Start(const std::vector<std::string>& args) {
-    std::vector<std::string> argv_text = {MARKERBENCH_BINARY};
+    return StartProgram(MARKERBENCH_BINARY, args);
+  }
+
+  pid_t StartProgram(const std::string& program, const std::vector<std::string>& args) {
+    std::vector<std::string> argv_text = {program};
     argv_text.insert(argv_text.end(), args.begin(), args.end());
     std::vector<char*> argv;
     for (std::string& a : argv_text) argv.push_back(a.data());
@@ -77,6 +81,9 @@ class SweepCliTest : public ::testing::Test {
   }
 
   Finished Run(const std::vector<std::string>& args) { return Wait(Start(args)); }
+  Finished RunProgram(const std::string& program, const std::vector<std::string>& args) {
+    return Wait(StartProgram(program, args));
+  }
 
   static std::string Read(const fs::path& path) {
     std::ifstream in(path, std::ios::binary);
@@ -278,6 +285,32 @@ TEST_F(SweepCliTest, AKilledTrackerWorkerIsAnErrorRowAndTheSweepGoesOn) {
   }
   EXPECT_EQ(errors, 1) << "one frame was in the killed worker";
   EXPECT_EQ(rows, 1 + 3 * 40 * 3);
+}
+
+// A full disk, made by a file size limit (RLIMIT_FSIZE, SIGXFSZ ignored so that writes fail
+// with EFBIG): exit 1 naming the file and the error, run.json intact, and once there is room
+// again --resume completes to the bytes of an uninterrupted run.
+TEST_F(SweepCliTest, AFullDiskIsExitOneAndTheRunStaysResumable) {
+  const std::string scenario = Scenario("full", 10);
+  const std::string reference = (work_ / "reference").string(), full = (work_ / "full").string();
+  ASSERT_EQ(Run({"sweep", scenario, "--out", reference, "--threads", "2"}).status, 0);
+  const uintmax_t size = fs::file_size(reference + "/full/frames.csv");
+  // bash's ulimit -f counts 1024-byte blocks; the limit falls in the middle of frames.csv.
+  const std::string limit = std::to_string(size / 2 / 1024);
+  const std::string limited = "ulimit -f " + limit + "; trap '' XFSZ; exec \"$0\" \"$@\"";
+  for (int attempt = 0; attempt < 2; ++attempt) {
+    std::vector<std::string> args = {
+        "-c", limited, MARKERBENCH_BINARY, "sweep", scenario, "--out", full, "--threads", "2"};
+    if (attempt == 1) args.push_back("--resume");
+    const Finished filled = RunProgram("/bin/bash", args);
+    EXPECT_EQ(filled.status, 1) << filled.error;
+    EXPECT_THAT(filled.error, HasSubstr("full/frames.csv: write failed: File too large"));
+    EXPECT_THAT(Read(full + "/full/run.json"), HasSubstr("\"fingerprint\""));
+    EXPECT_LT(fs::file_size(full + "/full/frames.csv"), size);
+  }
+  ASSERT_EQ(Run({"sweep", scenario, "--out", full, "--threads", "2", "--resume"}).status, 0);
+  EXPECT_EQ(Read(full + "/full/frames.csv"), Read(reference + "/full/frames.csv"));
+  EXPECT_EQ(Lines(full + "/full/timing.csv"), Lines(reference + "/full/timing.csv"));
 }
 
 TEST_F(SweepCliTest, TornTailIsCutOnResume) {
