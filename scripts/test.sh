@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # The whole test suite from a clean clone: install dependencies, check formatting, build
 # with warnings as errors (Release), run every test with ctest, then run the unit,
-# synthetic and tracker tests again under AddressSanitizer (with LeakSanitizer) + UBSan.
+# synthetic and tracker tests again under AddressSanitizer (with LeakSanitizer) + UBSan, and
+# fuzz the file loaders and the trackers for 45 s each.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 bash scripts/install-deps.sh
@@ -19,3 +20,6 @@ cmake -S . -B build-sanitize -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -DMARKER
   -DMARKERBENCH_ASAN=ON -DMARKERBENCH_UBSAN=ON -DMARKERBENCH_BENCHMARKS=OFF
 cmake --build build-sanitize --parallel "$(nproc)"
 (cd build-sanitize && ctest --output-on-failure --parallel "$(nproc)" -L 'unit|synthetic|tracker')
+
+echo "== fuzzing (libFuzzer, ASan + UBSan)"
+bash scripts/fuzz.sh 45

@@ -1,0 +1,41 @@
+#!/usr/bin/env python3
+"""Writes the fuzz targets' seed corpora (committed; re-run after a format change).
+
+bench/fuzz_corpus/loaders_fuzz: a selector byte (0 camera, 1 marker, 2 scenario, 3 POSES.csv)
+and a shipped file. trackers/fuzz_corpus/track_fuzz: for each tracker, a 64x48 image in the
+target's input format with a marker-like shape (a black square, or a red and a blue disk).
+"""
+import pathlib
+
+root = pathlib.Path(__file__).resolve().parent.parent
+
+
+def write(path, data):
+    path.parent.mkdir(parents=True, exist_ok=True)
+    path.write_bytes(data)
+
+
+loaders = root / "bench/fuzz_corpus/loaders_fuzz"
+write(loaders / "camera", b"\x00" + (root / "scenarios/cameras/default.yaml").read_bytes())
+for marker in sorted((root / "scenarios/markers").glob("*.yaml")):
+    write(loaders / ("marker_" + marker.stem), b"\x01" + marker.read_bytes())
+write(loaders / "scenario", b"\x02" + (root / "scenarios/smoke.yaml").read_bytes())
+write(loaders / "poses", b"\x03r11,r12,r13,r21,r22,r23,r31,r32,r33,tx,ty,tz\n"
+      b"1,0,0,0,-1,0,0,0,-1,0,0,0.5\n0.9,0,0.43,0,-1,0,0.43,0,-0.9,0.01,0,0.8\n")
+
+width, height = 64, 48
+trackers = ["apriltag", "apriltag-ippe", "artkplus", "aruco", "circle", "runetag"]
+for index, name in enumerate(trackers):
+    colour = name == "circle"
+    pixels = bytearray()
+    for y in range(height):
+        for x in range(width):
+            if colour:
+                red = (x - 20) ** 2 + (y - 24) ** 2 < 64
+                blue = (x - 44) ** 2 + (y - 24) ** 2 < 64
+                pixels += bytes([40, 40, 220] if blue else [220, 40, 40] if red else [240, 240, 240])
+            else:
+                inside = 16 <= x < 48 and 8 <= y < 40
+                pixels.append(20 if inside else 235)
+    header = bytes([index, width - 1, height - 1, 3 if colour else 1])
+    write(root / "trackers/fuzz_corpus/track_fuzz" / name, header + bytes(pixels))
