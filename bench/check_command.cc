@@ -5,6 +5,7 @@
 
 #include "bench/atomic_file.h"
 #include "bench/check_output.h"
+#include "bench/output_folder.h"
 #include "core/file_bytes.h"
 #include "core/yaml_reader.h"
 
@@ -17,7 +18,7 @@ namespace {
 const char* const kReferenceFiles[] = {"frames.csv", "timing.csv", "run.json"};
 
 void Bless(const std::string& run_dir, const std::string& reference_dir, std::ostream& out) {
-  fs::create_directories(reference_dir);
+  CreateOutputFolder(reference_dir);
   std::set<std::string> scenarios;
   for (const ScenarioResults& s : ReadRunResults(run_dir)) {
     scenarios.insert(s.name);

@@ -76,6 +76,20 @@ if(NOT last_error MATCHES "scenarios/cameras: expected a regular file, got a dir
   message(FATAL_ERROR "unexpected message: ${last_error}")
 endif()
 
+# An output folder that is a file, or an output file that is a folder.
+foreach(command "sweep;scenarios/smoke.yaml" "render;scenarios/smoke.yaml"
+        "markers;--marker;scenarios/markers/apriltag.yaml")
+  run(2 ${command} --out ${WORK_DIR}/poses.csv)
+  if(NOT last_error MATCHES "poses.csv: expected an output folder, but it is a file")
+    message(FATAL_ERROR "${command}: unexpected message: ${last_error}")
+  endif()
+endforeach()
+run(2 track --tracker apriltag --marker scenarios/markers/apriltag.yaml
+    --camera scenarios/cameras/default.yaml --out ${WORK_DIR} ${WORK_DIR}/smoke/frame_000001.png)
+if(NOT last_error MATCHES "expected a file, but it is a folder")
+  message(FATAL_ERROR "unexpected message: ${last_error}")
+endif()
+
 # track: the smoke scenario's frame 1 is the apriltag at a paired pose.
 execute_process(COMMAND ${MARKERBENCH} track --tracker apriltag --marker scenarios/markers/apriltag.yaml
                 --camera scenarios/cameras/default.yaml ${WORK_DIR}/smoke/frame_000001.png

@@ -5,6 +5,7 @@
 #include <map>
 #include <opencv2/imgproc.hpp>
 
+#include "bench/output_folder.h"
 #include "core/config_error.h"
 #include "core/marker_yaml.h"
 #include "renderer/image_io.h"
@@ -53,7 +54,7 @@ std::vector<std::string> WriteMarkerSheets(const std::vector<std::string>& marke
                         earlier->first + "': their sheets would overwrite each other");
     }
   }
-  std::filesystem::create_directories(out_dir);
+  CreateOutputFolder(out_dir);
   std::vector<std::string> written;
   for (const MarkerSpec& marker : markers) {
     // Fronto-parallel at 1 m with f = px/m: an exact orthographic scale of 300 dpi.

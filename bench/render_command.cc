@@ -7,6 +7,8 @@
 #include <sstream>
 
 #include "bench/frame_plan.h"
+#include "bench/frames_csv.h"
+#include "bench/output_folder.h"
 #include "bench/pose_columns.h"
 #include "core/camera_yaml.h"
 #include "core/marker_yaml.h"
@@ -43,8 +45,8 @@ class GroundTruthCsv {
              const Camera& camera,
              const FrameRequest& request,
              const GroundTruth& truth) {
-    out_ << frame << ',' << image << ',' << marker << ',' << sweep_parameter << ',' << sweep_value
-         << ',' << trial << ',' << seed << ',' << NumberText(camera.fx) << ','
+    out_ << frame << ',' << CsvField(image) << ',' << CsvField(marker) << ',' << sweep_parameter
+         << ',' << sweep_value << ',' << trial << ',' << seed << ',' << NumberText(camera.fx) << ','
          << NumberText(camera.fy) << ',' << NumberText(camera.cx) << ',' << NumberText(camera.cy)
          << ',' << camera.width << ',' << camera.height;
     out_ << PoseFields(truth.cam_from_marker);
@@ -81,12 +83,6 @@ std::string WriteFrame(const std::string& dir, int index, const RenderedFrame& f
   return png;
 }
 
-void MakeDir(const std::string& dir) {
-  std::error_code ec;
-  std::filesystem::create_directories(dir, ec);
-  if (ec) throw std::runtime_error(dir + ": cannot create the output folder: " + ec.message());
-}
-
 }  // namespace
 
 void RenderScenario(const std::string& scenario_path,
@@ -95,7 +91,7 @@ void RenderScenario(const std::string& scenario_path,
                     bool write_float) {
   const Scenario scenario = LoadScenario(scenario_path);
   const std::vector<PlannedFrame> frames = PlanFrames(scenario, limit);
-  MakeDir(out_dir);
+  CreateOutputFolder(out_dir);
   GroundTruthCsv csv(out_dir);
   for (const PlannedFrame& f : frames) {
     FrameRequest request = RequestFor(scenario, f);
@@ -195,7 +191,7 @@ ExplicitFrames LoadExplicitFrames(const std::string& marker_path,
 void RenderPoses(const ExplicitRenderOptions& o) {
   const ExplicitFrames frames = LoadExplicitFrames(
       o.marker_path, o.camera_path, o.poses_path, o.noise_var, o.blur_sigma_px, Channels::kAuto);
-  MakeDir(o.out_dir);
+  CreateOutputFolder(o.out_dir);
   GroundTruthCsv csv(o.out_dir);
   for (size_t i = 0; i < frames.poses.size(); ++i) {
     FrameRequest request = frames.Request(i);

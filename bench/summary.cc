@@ -5,6 +5,7 @@
 #include <map>
 #include <tuple>
 
+#include "bench/frames_csv.h"
 #include "core/number_text.h"
 
 namespace markerbench {
@@ -117,8 +118,8 @@ std::string SummaryCsv(const std::vector<SummaryRow>& rows) {
       "rotation_error_median_deg,best_position_error_median_m,flip_rate,time_median_ms,"
       "crlb_position_median_m,efficiency,crlb_rotation_median_deg,rotation_efficiency\n";
   for (const SummaryRow& r : rows) {
-    csv += r.scenario + ',' + r.sweep_parameter + ',' + NumberText(r.sweep_value) + ',' +
-           r.tracker + ',' + r.marker + ',' + std::to_string(r.n) + ',' +
+    csv += CsvField(r.scenario) + ',' + r.sweep_parameter + ',' + NumberText(r.sweep_value) + ',' +
+           CsvField(r.tracker) + ',' + CsvField(r.marker) + ',' + std::to_string(r.n) + ',' +
            NumberText(r.apparent_size_median_px) + ',' + NumberText(r.detection_rate) + ',' +
            NumberText(r.success_rate) + ',' + NumberTextOrEmpty(r.position_error_median_m) + ',' +
            NumberTextOrEmpty(r.position_error_mean_m) + ',' +

@@ -16,6 +16,7 @@
 #include <sstream>
 #include <thread>
 
+#include "bench/frames_csv.h"
 #include "core/test_files.h"
 
 extern char** environ;
@@ -311,6 +312,39 @@ TEST_F(SweepCliTest, AFullDiskIsExitOneAndTheRunStaysResumable) {
   ASSERT_EQ(Run({"sweep", scenario, "--out", full, "--threads", "2", "--resume"}).status, 0);
   EXPECT_EQ(Read(full + "/full/frames.csv"), Read(reference + "/full/frames.csv"));
   EXPECT_EQ(Lines(full + "/full/timing.csv"), Lines(reference + "/full/timing.csv"));
+}
+
+// A marker file named with a comma and quotes: every CSV keeps one field per column.
+TEST_F(SweepCliTest, NamesWithCommasAndQuotesAreQuotedInEveryCsv) {
+  const std::string name = "tag, \"quoted\"";
+  fs::copy_file(kRoot + "/scenarios/markers/apriltag.yaml", work_ / (name + ".yaml"));
+  const std::string scenario = WriteTestFile(
+      "quoting.yaml",
+      "name: quoting\ncamera: " + kRoot + "/scenarios/cameras/default.yaml\nmarkers:\n  - '" +
+          (work_ / (name + ".yaml")).string() +
+          "'\ntrackers:\n  - {name: apriltag}\n"
+          "poses: {sampler: look_at, distance_m: 0.6, tilt_deg: [0, 30]}\n"
+          "sweep: {parameter: noise_var, values: [0.01]}\ntrials: 2\nseed: 1\n");
+  const std::string out = (work_ / "out").string();
+  ASSERT_EQ(Run({"sweep", scenario, "--out", out}).status, 0) << Read(work_ / "stderr.txt");
+  ASSERT_EQ(Run({"report", out, "--no-plots"}).status, 0) << Read(work_ / "stderr.txt");
+  ASSERT_EQ(Run({"render", scenario, "--out", out + "/rendered"}).status, 0);
+  for (const std::string file :
+       {"/quoting/frames.csv", "/summary.csv", "/rendered/groundtruth.csv"}) {
+    std::istringstream lines(Read(out + file));
+    std::string line;
+    ASSERT_TRUE(std::getline(lines, line)) << file;
+    const std::vector<std::string> header = SplitCsvLine(line);
+    const size_t marker = std::find(header.begin(), header.end(), "marker") - header.begin();
+    ASSERT_LT(marker, header.size()) << file;
+    int rows = 0;
+    for (; std::getline(lines, line); ++rows) {
+      const std::vector<std::string> fields = SplitCsvLine(line);
+      ASSERT_EQ(fields.size(), header.size()) << file << ": " << line;
+      EXPECT_EQ(fields[marker], name) << file;
+    }
+    EXPECT_GT(rows, 0) << file;
+  }
 }
 
 TEST_F(SweepCliTest, TornTailIsCutOnResume) {

@@ -19,6 +19,7 @@
 #include "bench/frame_plan.h"
 #include "bench/frames_csv.h"
 #include "bench/manifest.h"
+#include "bench/output_folder.h"
 #include "bench/progress.h"
 #include "bench/scenario.h"
 #include "bench/tracker_worker_command.h"
@@ -173,7 +174,7 @@ void TakeOverEarlierRun(PreparedSweep& p, const SweepOptions& options) {
 // An advisory lock on the output folder, held until the process ends: a second sweep into
 // the same folder is refused instead of interleaving rows with this one.
 void LockOutputFolder(const std::string& out_dir) {
-  fs::create_directories(out_dir);
+  CreateOutputFolder(out_dir);
   const std::string path = out_dir + "/markerbench.lock";
   const int fd = ::open(path.c_str(), O_RDWR | O_CREAT | O_CLOEXEC, 0644);
   if (fd < 0) throw std::system_error(errno, std::generic_category(), path + ": cannot open");

@@ -81,6 +81,9 @@ void CheckFiles(const TrackCommandOptions& o) {
     if (std::filesystem::exists(input)) RequireRegularFile(input);
   }
   if (o.out_csv.empty()) return;
+  if (std::filesystem::is_directory(o.out_csv)) {
+    throw ConfigError("--out " + o.out_csv + ": expected a file, but it is a folder");
+  }
   std::error_code error;
   for (const std::string& input : read) {
     if (std::filesystem::equivalent(o.out_csv, input, error) ||

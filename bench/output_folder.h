@@ -1,0 +1,14 @@
+// Output folders a user names (--out): created when missing, refused when the path is
+// something else.
+#pragma once
+
+#include <string>
+
+namespace markerbench {
+
+// Creates `dir` and its parents. Throws ConfigError (exit 2) naming `dir` when it exists and
+// is not a folder, std::runtime_error naming it with the system's reason when it cannot be
+// created (no permission, a full disk).
+void CreateOutputFolder(const std::string& dir);
+
+}  // namespace markerbench
