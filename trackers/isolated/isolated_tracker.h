@@ -6,12 +6,11 @@
 // Results are bit-identical to running the tracker in-process.
 #pragma once
 
-#include <sys/types.h>
-
 #include <memory>
 #include <string>
 #include <vector>
 
+#include "trackers/process/child_process.h"
 #include "trackers/tracker.h"
 
 namespace markerbench {
@@ -33,7 +32,6 @@ class IsolatedTracker : public Tracker {
   // `local` is the same tracker in-process: it answers CanTrack and Parameters. Throws
   // std::runtime_error when the worker cannot start.
   IsolatedTracker(std::unique_ptr<Tracker> local, IsolationOptions options);
-  ~IsolatedTracker() override;
   IsolatedTracker(const IsolatedTracker&) = delete;
   IsolatedTracker& operator=(const IsolatedTracker&) = delete;
 
@@ -45,14 +43,10 @@ class IsolatedTracker : public Tracker {
  private:
   // Starts the worker and waits for its ready message; false with `*error` set otherwise.
   bool Start(std::string* error);
-  // Ends the worker (SIGKILL when `kill` or when it does not exit by itself) and says how it
-  // ended.
-  std::string Stop(bool kill);
 
   std::unique_ptr<Tracker> local_;
   IsolationOptions options_;
-  pid_t pid_ = -1;
-  int socket_ = -1;
+  ChildProcess worker_;
   bool reset_pending_ = true;
 };
 

@@ -1,13 +1,10 @@
 #include "trackers/isolated/worker_protocol.h"
 
-#include <poll.h>
-#include <sys/socket.h>
-
-#include <cerrno>
-#include <chrono>
 #include <cstring>
 #include <stdexcept>
 #include <type_traits>
+
+#include "trackers/process/socket_io.h"
 
 namespace markerbench {
 namespace {
@@ -77,55 +74,7 @@ Rigid3 GetPose(ByteReader& in) {
   return pose;
 }
 
-// Waits until `fd` is ready for `events` or the deadline passes.
-bool WaitFor(int fd, int16_t events, std::optional<int64_t> deadline_ms, std::string* error) {
-  for (;;) {
-    int timeout = -1;
-    if (deadline_ms) {
-      const int64_t left = *deadline_ms - SteadyNowMs();
-      if (left <= 0) {
-        *error = "timed out";
-        return false;
-      }
-      timeout = static_cast<int>(std::min<int64_t>(left, 1 << 30));
-    }
-    pollfd p{fd, events, 0};
-    const int ready = poll(&p, 1, timeout);
-    if (ready > 0) return true;
-    if (ready < 0 && errno != EINTR) {
-      *error = std::string("poll: ") + std::strerror(errno);
-      return false;
-    }
-  }
-}
-
-bool ReceiveExactly(
-    int fd, char* data, size_t size, std::optional<int64_t> deadline_ms, std::string* error) {
-  while (size > 0) {
-    if (!WaitFor(fd, POLLIN, deadline_ms, error)) return false;
-    const ssize_t got = recv(fd, data, size, 0);
-    if (got == 0) {
-      *error = "connection closed";
-      return false;
-    }
-    if (got < 0) {
-      if (errno == EINTR || errno == EAGAIN) continue;
-      *error = std::string("recv: ") + std::strerror(errno);
-      return false;
-    }
-    data += got;
-    size -= static_cast<size_t>(got);
-  }
-  return true;
-}
-
 }  // namespace
-
-int64_t SteadyNowMs() {
-  return std::chrono::duration_cast<std::chrono::milliseconds>(
-             std::chrono::steady_clock::now().time_since_epoch())
-      .count();
-}
 
 std::string EncodeRequest(bool reset, const Observation& observation) {
   ByteWriter out;
@@ -214,20 +163,10 @@ bool SendMessage(int fd,
     return false;
   }
   const uint32_t size = static_cast<uint32_t>(body.size());
-  std::string framed(reinterpret_cast<const char*>(&size), sizeof(size));
-  framed += body;
-  size_t sent = 0;
-  while (sent < framed.size()) {
-    if (!WaitFor(fd, POLLOUT, deadline_ms, error)) return false;
-    const ssize_t n = send(fd, framed.data() + sent, framed.size() - sent, MSG_NOSIGNAL);
-    if (n < 0) {
-      if (errno == EINTR || errno == EAGAIN) continue;
-      *error = errno == EPIPE ? "connection closed" : std::string("send: ") + std::strerror(errno);
-      return false;
-    }
-    sent += static_cast<size_t>(n);
-  }
-  return true;
+  return SendAll(fd,
+                 std::string(reinterpret_cast<const char*>(&size), sizeof(size)) + body,
+                 deadline_ms,
+                 error);
 }
 
 bool ReceiveMessage(int fd,

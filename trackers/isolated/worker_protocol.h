@@ -39,9 +39,7 @@ WorkerReply DecodeReply(const std::string& body);
 // Largest body either side accepts: an image at the camera pixel budget, in colour.
 constexpr uint32_t kMaxMessageBytes = 256u * 1024 * 1024;
 
-// Sends or receives one framed message on a stream socket (send uses MSG_NOSIGNAL: a dead
-// peer is an error, never SIGPIPE). `deadline_ms` is steady-clock milliseconds; nullopt waits
-// forever. They return false, with `*error` set, on a timeout, a closed peer or an I/O error.
+// Sends or receives one framed message, as trackers/process/socket_io.h sends and receives.
 bool SendMessage(int fd,
                  const std::string& body,
                  std::optional<int64_t> deadline_ms,
@@ -50,8 +48,5 @@ bool ReceiveMessage(int fd,
                     std::string* body,
                     std::optional<int64_t> deadline_ms,
                     std::string* error);
-
-// Steady-clock now, in the milliseconds that SendMessage and ReceiveMessage take.
-int64_t SteadyNowMs();
 
 }  // namespace markerbench
