@@ -194,6 +194,17 @@ TEST(YamlFiles, OnlyRegularFilesAreRead) {
   }
 }
 
+TEST(MarkerYaml, ScaleMultipliesEveryLength) {
+  const MarkerSpec plain = LoadMarkerYaml(WriteTestFile("circles_a.yaml", kGoodCirclesA));
+  const MarkerSpec scaled =
+      LoadMarkerYaml(WriteTestFile("circles_a.yaml", std::string(kGoodCirclesA) + "scale: 2.5\n"));
+  EXPECT_EQ(scaled.name, plain.name);
+  ASSERT_EQ(scaled.keypoints.size(), plain.keypoints.size());
+  EXPECT_EQ(scaled.keypoints[1], 2.5 * plain.keypoints[1]);
+  EXPECT_DOUBLE_EQ(scaled.circles[1].radius_m, 2.5 * plain.circles[1].radius_m);
+  EXPECT_THAT(MarkerError(std::string(kGoodCirclesA) + "scale: 0\n"), HasSubstr("key 'scale'"));
+}
+
 TEST(MarkerYaml, LoadsCirclesA) {
   const MarkerSpec spec = LoadMarkerYaml(WriteTestFile("circles_a.yaml", kGoodCirclesA));
   EXPECT_EQ(spec.kind, MarkerKind::kCirclesA);

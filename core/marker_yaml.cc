@@ -5,6 +5,7 @@
 #include <stdexcept>
 
 #include "core/marker_bits.h"
+#include "core/marker_scaling.h"
 #include "core/yaml_reader.h"
 #include "trackers/runetag/cyclic_code.h"
 
@@ -341,6 +342,8 @@ MarkerSpec LoadMarkerYaml(const std::string& path) {
   } else {
     LoadDotRings(root, &spec);
   }
+  // Written by sweeps for external trackers: the scenario's equal-area scaling.
+  if (root.Has("scale")) spec = ScaledMarker(spec, root.GetDouble("scale", 1e-3, 1e3));
   root.RejectUnknownKeys();
   return spec;
 }

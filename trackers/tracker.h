@@ -4,6 +4,7 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <cstdint>
 #include <optional>
 #include <string>
 #include <utility>
@@ -26,6 +27,7 @@ struct Observation {
   const Image8* image = nullptr;
   const Camera* camera = nullptr;
   const MarkerSpec* marker = nullptr;
+  int64_t frame = 0;  // the frame's index in its run, for trackers that name it to others
 };
 
 struct TrackResult {
