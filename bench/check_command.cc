@@ -61,10 +61,11 @@ int RunCheckCommand(const CheckCommandOptions& options, std::ostream& out) {
     Bless(options.run_dir, options.reference_dir, out);
     return 0;
   }
-  const std::vector<ScenarioResults> reference = ReadRunResults(options.reference_dir);
   CheckReport report;
   try {
-    report = CompareRuns(run, reference, options.check);
+    // A reference that cannot be compared (another ground truth, an older file format) is
+    // bad input, except to --bless, which replaces it.
+    report = CompareRuns(run, ReadRunResults(options.reference_dir), options.check);
   } catch (const ConfigError& e) {
     if (!options.bless) throw;
     out << "bless: " << e.what() << "\n";

@@ -176,11 +176,14 @@ std::vector<FrameRow> ReadFramesCsv(const std::string& path) {
   return rows;
 }
 
-std::string TimingCsvHeader() { return "frame,tracker,time_ms\n"; }
+std::string TimingCsvHeader() { return "frame,tracker,time_ms,round_trip_ms\n"; }
 
-std::string FormatTimingRow(int frame, const std::string& tracker, double time_ms) {
-  char ms[32];
-  std::snprintf(ms, sizeof(ms), "%.4f", time_ms);
+std::string FormatTimingRow(int frame,
+                            const std::string& tracker,
+                            double time_ms,
+                            double round_trip_ms) {
+  char ms[64];
+  std::snprintf(ms, sizeof(ms), "%.4f,%.4f", time_ms, round_trip_ms);
   return std::to_string(frame) + ',' + CsvField(tracker) + ',' + ms + '\n';
 }
 

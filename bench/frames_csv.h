@@ -53,7 +53,13 @@ std::vector<FrameRow> ReadFramesCsv(const std::string& path);
 
 // timing.csv: one row per frames.csv row, in the same order.
 std::string TimingCsvHeader();
-std::string FormatTimingRow(int frame, const std::string& tracker, double time_ms);
+// time_ms: the tracker's own time when it reports one (an isolated worker, an external
+// tracker's time_ms), else the round trip; round_trip_ms: Track() as the runner timed it,
+// process I/O included.
+std::string FormatTimingRow(int frame,
+                            const std::string& tracker,
+                            double time_ms,
+                            double round_trip_ms);
 
 // One field, in RFC 4180 quotes when it holds a comma or a quote; line breaks become spaces
 // (one row per line).

@@ -93,7 +93,7 @@ class ReportTest : public ::testing::Test {
       for (size_t trial = 0; trial < errors.size(); ++trial) {
         const FrameRow row = Row("fig6_noise", "apriltag", value, trial, errors[trial]);
         frames += FormatFrameRow(row);
-        timing += FormatTimingRow(row.frame, row.tracker, 1.0 + trial);
+        timing += FormatTimingRow(row.frame, row.tracker, 1.0 + trial, 1.5 + trial);
       }
     }
     std::ofstream(dir_ + "/fig6_noise/frames.csv") << frames;
@@ -155,7 +155,7 @@ TEST_F(ReportTest, StricterSuccessMovesTheBreakdown) {
 }
 
 TEST_F(ReportTest, MisalignedTimingIsAnError) {
-  std::ofstream(dir_ + "/fig6_noise/timing.csv") << TimingCsvHeader() << "7,apriltag,1.0\n";
+  std::ofstream(dir_ + "/fig6_noise/timing.csv") << TimingCsvHeader() << "7,apriltag,1.0,1.0\n";
   ReportOptions options;
   options.plots = false;
   EXPECT_THROW(WriteReport(dir_, options), ConfigError);

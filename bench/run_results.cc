@@ -22,10 +22,13 @@ std::vector<double> ReadTimes(const std::string& path, const std::vector<FrameRo
   RequireRegularFile(path);
   std::ifstream in(path);
   std::string line;
-  std::getline(in, line);
+  if (!std::getline(in, line) || line + '\n' != TimingCsvHeader()) {
+    throw ConfigError(path + ":1: expected the header '" +
+                      TimingCsvHeader().substr(0, TimingCsvHeader().size() - 1) + "'");
+  }
   for (size_t i = 0; i < rows.size() && std::getline(in, line); ++i) {
     const std::vector<std::string> f = SplitCsvLine(line);
-    const std::optional<double> time_ms = f.size() == 3 ? ParseFiniteNumber(f[2]) : std::nullopt;
+    const std::optional<double> time_ms = f.size() == 4 ? ParseFiniteNumber(f[2]) : std::nullopt;
     if (!time_ms || f[0] != std::to_string(rows[i].frame) || f[1] != rows[i].tracker) {
       throw ConfigError(path + ":" + std::to_string(i + 2) +
                         ": expected the timing of frames.csv's row " + std::to_string(i + 2));

@@ -10,6 +10,7 @@
 #include "core/marker_scaling.h"
 #include "core/marker_yaml.h"
 #include "core/yaml_reader.h"
+#include "trackers/external/external_tracker.h"
 #include "trackers/isolated/isolated_tracker.h"
 #include "trackers/tracker_factory.h"
 
@@ -121,18 +122,92 @@ std::unique_ptr<Tracker> MakeScenarioTracker(const Scenario& scenario, const Tra
   return MakeTracker(entry.name, &options);
 }
 
+namespace {
+
+constexpr const char* kFolderNameRule = "letters, digits, '_', '-' or '.' (it names a file)";
+
+// One path component of safe characters that is not "." or "..".
+bool IsFolderName(const std::string& name) {
+  return name != "." && name != ".." && !name.empty() &&
+         std::all_of(name.begin(), name.end(), [](char c) {
+           return std::isalnum(static_cast<unsigned char>(c)) || c == '_' || c == '-' || c == '.';
+         });
+}
+
+TrackerEntry ReadBuiltInTracker(const YamlMap& t, const Scenario& s) {
+  TrackerEntry entry;
+  entry.name = t.Get<std::string>("name");
+  entry.options_key = t.key_path() + ".options";
+  if (t.Has("options")) {
+    entry.options = t.GetNode("options");
+    if (!entry.options.IsMap()) t.Fail("options", "a mapping of tracker options");
+  }
+  entry.isolated = t.GetOr<bool>("isolated", RunsThirdPartyCCode(entry.name));
+  if (t.Has("timeout_s")) entry.timeout_s = t.GetDouble("timeout_s", 1e-3, 86400.0);
+  t.RejectUnknownKeys();
+  const std::vector<std::string> names = TrackerNames();
+  if (std::find(names.begin(), names.end(), entry.name) == names.end()) {
+    std::string list;
+    for (const std::string& n : names) list += (list.empty() ? "" : ", ") + n;
+    t.Fail("name", "one of the available trackers: " + list + " (or give exec: a command)");
+  }
+  const std::unique_ptr<Tracker> tracker = MakeScenarioTracker(s, entry);
+  for (size_t m = 0; m < s.markers.size(); ++m) {
+    if (tracker->CanTrack(s.markers[m])) entry.markers.push_back(m);
+  }
+  if (entry.markers.empty()) t.Fail("name", "a tracker for one of the scenario's markers");
+  entry.parameters = tracker->Parameters();
+  if (entry.isolated) {
+    for (auto& parameter : IsolationParameters(entry.timeout_s))
+      entry.parameters.push_back(parameter);
+  }
+  return entry;
+}
+
+// An external tracker (trackers/external): a command, the markers it tracks and a timeout.
+// Nothing is started at load; the sweep shakes hands with it before its first frame.
+TrackerEntry ReadExecTracker(const YamlMap& t, const Scenario& s) {
+  TrackerEntry entry;
+  entry.name = t.Get<std::string>("name");
+  if (!IsFolderName(entry.name)) t.Fail("name", kFolderNameRule);
+  const std::vector<std::string> names = TrackerNames();
+  if (std::find(names.begin(), names.end(), entry.name) != names.end()) {
+    t.Fail("name", "a name that is not a built-in tracker's");
+  }
+  entry.exec = t.Get<std::vector<std::string>>("exec");
+  if (entry.exec.empty() || entry.exec[0].empty()) t.Fail("exec", "a command: [program, args...]");
+  entry.working_dir = std::filesystem::absolute(s.path).parent_path().string();
+  entry.timeout_s = t.GetOr<double>("timeout_s", 10.0);
+  if (t.Has("timeout_s")) entry.timeout_s = t.GetDouble("timeout_s", 1e-3, 86400.0);
+  const std::vector<std::string> markers = t.GetOr<std::vector<std::string>>("markers", {});
+  for (size_t m = 0; m < s.markers.size(); ++m) {
+    if (markers.empty() ||
+        std::find(markers.begin(), markers.end(), s.markers[m].name) != markers.end()) {
+      entry.markers.push_back(m);
+    }
+  }
+  for (const std::string& name : markers) {
+    const bool known = std::any_of(
+        s.markers.begin(), s.markers.end(), [&](const MarkerSpec& m) { return m.name == name; });
+    if (!known) t.Fail("markers", "names of the scenario's markers ('" + name + "' is none)");
+  }
+  t.RejectUnknownKeys();
+  ExternalTrackerOptions options;
+  options.command = entry.exec;
+  options.timeout_s = entry.timeout_s;
+  entry.parameters = ExternalTrackerParameters(options);
+  return entry;
+}
+
+}  // namespace
+
 Scenario LoadScenario(const std::string& path) {
   const YamlMap root = YamlMap::LoadFile(path);
   Scenario s;
   s.path = path;
   s.input_files.push_back(path);
   s.name = root.GetOr<std::string>("name", std::filesystem::path(path).stem().string());
-  const bool safe_name =
-      s.name != "." && s.name != ".." && !s.name.empty() &&
-      std::all_of(s.name.begin(), s.name.end(), [](char c) {
-        return std::isalnum(static_cast<unsigned char>(c)) || c == '_' || c == '-' || c == '.';
-      });
-  if (!safe_name) root.Fail("name", "letters, digits, '_', '-' or '.' (it names a folder)");
+  if (!IsFolderName(s.name)) root.Fail("name", kFolderNameRule);
   s.input_files.push_back(ResolveRelativeTo(path, root.Get<std::string>("camera")));
   s.camera = LoadCameraYaml(s.input_files.back());
   const std::vector<std::string> markers = root.Get<std::vector<std::string>>("markers");
@@ -151,37 +226,21 @@ Scenario LoadScenario(const std::string& path) {
   }
   if (root.Has("equal_ink_area_m2")) {
     s.equal_ink_area_m2 = root.GetDouble("equal_ink_area_m2", 1e-6, 100.0);
-    for (MarkerSpec& m : s.markers) m = ScaledMarker(m, EqualAreaFactor(m, *s.equal_ink_area_m2));
+    for (MarkerSpec& m : s.markers) {
+      s.marker_scales.push_back(EqualAreaFactor(m, *s.equal_ink_area_m2));
+      m = ScaledMarker(m, s.marker_scales.back());
+    }
+  } else {
+    s.marker_scales.assign(s.markers.size(), 1.0);
   }
   if (root.Has("trackers")) {
     for (const YamlMap& t : root.GetMapList("trackers")) {
-      TrackerEntry entry;
-      entry.name = t.Get<std::string>("name");
-      entry.options_key = t.key_path() + ".options";
-      if (t.Has("options")) {
-        entry.options = t.GetNode("options");
-        if (!entry.options.IsMap()) t.Fail("options", "a mapping of tracker options");
+      s.trackers.push_back(t.Has("exec") ? ReadExecTracker(t, s) : ReadBuiltInTracker(t, s));
+      for (size_t i = 0; i + 1 < s.trackers.size(); ++i) {
+        if (s.trackers[i].name == s.trackers.back().name) {
+          t.Fail("name", "a name no other tracker of the scenario has (it names their rows)");
+        }
       }
-      entry.isolated = t.GetOr<bool>("isolated", RunsThirdPartyCCode(entry.name));
-      if (t.Has("timeout_s")) entry.timeout_s = t.GetDouble("timeout_s", 1e-3, 86400.0);
-      t.RejectUnknownKeys();
-      const std::vector<std::string> names = TrackerNames();
-      if (std::find(names.begin(), names.end(), entry.name) == names.end()) {
-        std::string list;
-        for (const std::string& n : names) list += (list.empty() ? "" : ", ") + n;
-        t.Fail("name", "one of the available trackers: " + list);
-      }
-      const std::unique_ptr<Tracker> tracker = MakeScenarioTracker(s, entry);
-      for (size_t m = 0; m < s.markers.size(); ++m) {
-        if (tracker->CanTrack(s.markers[m])) entry.markers.push_back(m);
-      }
-      if (entry.markers.empty()) t.Fail("name", "a tracker for one of the scenario's markers");
-      entry.parameters = tracker->Parameters();
-      if (entry.isolated) {
-        for (auto& parameter : IsolationParameters(entry.timeout_s))
-          entry.parameters.push_back(parameter);
-      }
-      s.trackers.push_back(entry);
     }
   }
   const YamlMap poses = root.GetMap("poses");

@@ -51,6 +51,10 @@ struct TrackerEntry {
   // that run third-party C code), with `timeout_s` per frame.
   bool isolated = false;
   double timeout_s = 60.0;
+  // An external tracker (README, "Benchmark your own tracker"): the command, run in
+  // `working_dir` (the scenario file's folder). Empty for built-in trackers.
+  std::vector<std::string> exec;
+  std::string working_dir;
   // Found at load by building the tracker once: the indices of the scenario's markers it can
   // track (never empty), and every parameter in effect (Tracker::Parameters).
   std::vector<size_t> markers;
@@ -66,7 +70,8 @@ struct Scenario {
   std::vector<std::string> input_files;
   std::string name;
   Camera camera;
-  std::vector<MarkerSpec> markers;  // after equal-area scaling, when asked for
+  std::vector<MarkerSpec> markers;    // after equal-area scaling, when asked for
+  std::vector<double> marker_scales;  // each marker's equal-area factor (1 without scaling)
   std::optional<double> equal_ink_area_m2;
   std::vector<TrackerEntry> trackers;
   PoseSamplerOptions poses;

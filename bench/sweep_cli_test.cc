@@ -347,6 +347,67 @@ TEST_F(SweepCliTest, NamesWithCommasAndQuotesAreQuotedInEveryCsv) {
   }
 }
 
+// A scenario with an external tracker next to a built-in one.
+std::string ExternalScenario(const std::string& name, const std::string& command) {
+  return WriteTestFile(
+      name + ".yaml",
+      "name: " + name + "\ncamera: " + kRoot + "/scenarios/cameras/default.yaml\nmarkers:\n  - " +
+          kRoot + "/scenarios/markers/apriltag.yaml\nequal_ink_area_m2: 0.01\ntrackers:\n" +
+          "  - {name: apriltag-ippe}\n  - {name: scripted, exec: " + command +
+          ", markers: [apriltag], timeout_s: 0.5}\n"
+          "poses: {sampler: look_at, distance_m: 0.8, tilt_deg: [0, 40]}\ncrlb: false\n"
+          "sweep: {parameter: noise_var, values: [0.0, 0.05]}\ntrials: 10\nseed: 4\n");
+}
+
+// External trackers in a sweep: their faults are rows (trackers/external/testdata/
+// scripted_tracker.py fails by frame number), frames.csv does not depend on the thread count,
+// and the marker file they are sent holds the scenario's equal-area scale.
+TEST_F(SweepCliTest, ExternalTrackersRunInTheSweep) {
+  const std::string command =
+      "[python3, " + kRoot + "/trackers/external/testdata/scripted_tracker.py, scripted]";
+  const std::string scenario = ExternalScenario("external", command);
+  const std::string one = (work_ / "one").string(), two = (work_ / "two").string();
+  ASSERT_EQ(Run({"sweep", scenario, "--out", one, "--threads", "1"}).status, 0)
+      << Read(work_ / "stderr.txt");
+  ASSERT_EQ(Run({"sweep", scenario, "--out", two, "--threads", "2"}).status, 0);
+  const std::string frames = Read(one + "/external/frames.csv");
+  EXPECT_EQ(Read(two + "/external/frames.csv"), frames);
+  std::istringstream lines(frames);
+  std::string line;
+  std::getline(lines, line);
+  std::map<std::string, int> scripted_status;
+  for (int row = 0; std::getline(lines, line); ++row) {
+    const std::vector<std::string> f = SplitCsvLine(line);
+    if (f[6] != "scripted") continue;
+    const int frame = std::stoi(f[4]);
+    ++scripted_status[f[10]];
+    const std::map<int, std::string> expected = {{1, "killed by signal SIGSEGV"},
+                                                 {2, "no reply within timeout_s 0.5 s"},
+                                                 {6, ",not_detected,"}};
+    const auto says = expected.find(frame % 10);
+    if (says != expected.end()) {
+      EXPECT_THAT(line, HasSubstr(says->second)) << frame;
+    }
+  }
+  // Of frames 0-19: errors end in 1, 2, 3, 4, 5 and 7; poses in 0, 8 and 9.
+  EXPECT_EQ(scripted_status["error"], 2 * 6);
+  EXPECT_EQ(scripted_status["ok"], 2 * 3);
+  EXPECT_EQ(scripted_status["not_detected"], 2);
+  EXPECT_THAT(Read(one + "/external/markers/apriltag.yaml"), HasSubstr("scale: "));
+  EXPECT_EQ(Lines(one + "/external/timing.csv"), Lines(one + "/external/frames.csv"));
+}
+
+TEST_F(SweepCliTest, AnExternalTrackerThatCannotShakeHandsIsBadInput) {
+  const std::string scenario = ExternalScenario(
+      "rude", "[python3, " + kRoot + "/trackers/external/testdata/no_handshake.py]");
+  const std::string out = (work_ / "out").string();
+  const Finished refused = Run({"sweep", scenario, "--out", out});
+  EXPECT_EQ(refused.status, 2);
+  EXPECT_THAT(refused.error, HasSubstr("tracker 'scripted' (python3 "));
+  EXPECT_THAT(refused.error, HasSubstr("handshake"));
+  EXPECT_FALSE(fs::exists(out + "/rude/frames.csv"));
+}
+
 TEST_F(SweepCliTest, TornTailIsCutOnResume) {
   const std::string scenario = Scenario("torn", 2);
   const std::string out = (work_ / "out").string();
@@ -535,6 +596,13 @@ TEST_F(SweepCliTest, CheckAgainstAnotherSeedIsBadInputNamingTheScenario) {
   EXPECT_EQ(f.status, 2);
   EXPECT_THAT(f.error, HasSubstr("gate: the ground truth of gate noise_var=0.02 trial 0 apriltag"));
   EXPECT_EQ(Run({"check", run, "--reference", (work_ / "nowhere").string()}).status, 2);
+  // A reference in another format is bad input to check, and --bless replaces it.
+  std::ofstream(reference + "/gate/timing.csv") << "frame,tracker,time_ms\n0,apriltag,1.0\n";
+  const Finished old_format = Run({"check", run, "--reference", reference});
+  EXPECT_EQ(old_format.status, 2);
+  EXPECT_THAT(old_format.error, HasSubstr("gate/timing.csv:1: expected the header"));
+  EXPECT_EQ(Run({"check", run, "--reference", reference, "--bless"}).status, 0);
+  EXPECT_EQ(Run({"check", run, "--reference", reference}).status, 0);
 }
 
 }  // namespace

@@ -22,7 +22,7 @@
 #include "bench/output_folder.h"
 #include "bench/progress.h"
 #include "bench/scenario.h"
-#include "bench/tracker_worker_command.h"
+#include "bench/sweep_trackers.h"
 #include "core/file_bytes.h"
 #include "core/sha256.h"
 #include "core/yaml_reader.h"
@@ -50,6 +50,7 @@ struct PreparedSweep {
   size_t done = 0;  // jobs already complete in frames.csv and timing.csv (resume)
   uintmax_t frames_bytes = 0;
   uintmax_t timing_bytes = 0;
+  std::unique_ptr<SweepTrackerContext> trackers;  // made once the run's folder is taken
 };
 
 // What a frames.csv or timing.csv of a killed run holds.
@@ -294,11 +295,12 @@ std::pair<std::string, std::string> RunJob(const PreparedSweep& p,
     Tracker* tracker = (*trackers)[t].get();
     tracker->Reset();  // frames are independent: no state may leak between them
     const auto start = std::chrono::steady_clock::now();
-    const TrackResult result = TrackCatchingExceptions(tracker, {&frame.image, &s.camera, &marker});
-    // An isolated tracker's own time, without the trip to its worker process.
-    const double time_ms = result.time_ms.value_or(
-        std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start)
-            .count());
+    const TrackResult result =
+        TrackCatchingExceptions(tracker, {&frame.image, &s.camera, &marker, f.index});
+    const double round_trip_ms =
+        std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+    // The tracker's own time, when it runs in another process and reports it.
+    const double time_ms = result.time_ms.value_or(round_trip_ms);
     const bool has_pose = result.status == TrackStatus::kOk && !result.hypotheses.empty();
     row.tracker = s.trackers[t].name;
     row.status = result.status;
@@ -308,7 +310,7 @@ std::pair<std::string, std::string> RunJob(const PreparedSweep& p,
     row.estimate = has_pose ? std::optional<Rigid3>(result.hypotheses.front()) : std::nullopt;
     row.message = result.message;
     frame_rows += FormatFrameRow(row);
-    timing_rows += FormatTimingRow(f.index, row.tracker, time_ms);
+    timing_rows += FormatTimingRow(f.index, row.tracker, time_ms, round_trip_ms);
   }
   return {frame_rows, timing_rows};
 }
@@ -373,7 +375,7 @@ void Run(PreparedSweep& p, int threads, const std::string& manifest_path) {
       try {
         std::vector<std::unique_ptr<Tracker>> trackers;
         for (size_t t = 0; t < p.scenario.trackers.size(); ++t) {
-          trackers.push_back(MakeSweepTracker(p.scenario, t));
+          trackers.push_back(p.trackers->MakeTracker(t));
         }
         for (size_t j = next++; j < p.jobs.size() && !failed; j = next++) {
           auto [frame_rows, timing_rows] = RunJob(p, p.jobs[j], &trackers);
@@ -421,6 +423,9 @@ void RunSweeps(const std::vector<std::string>& scenario_paths, const SweepOption
                             : std::max(1, static_cast<int>(std::thread::hardware_concurrency()));
   LockOutputFolder(options.out_dir);
   for (PreparedSweep& p : sweeps) TakeOverEarlierRun(p, options);
+  for (PreparedSweep& p : sweeps) {
+    p.trackers = std::make_unique<SweepTrackerContext>(p.scenario, p.dir);
+  }
   // Parallelism comes from the pool; OpenCV's own threads would oversubscribe the cores and
   // make time_ms depend on what the other workers do.
   cv::setNumThreads(1);

@@ -55,6 +55,7 @@ bool ExternalTracker::Start(std::string* error) {
   spec.argv = options_.command;
   spec.socket_fds = {STDIN_FILENO, STDOUT_FILENO};
   spec.stderr_path = options_.stderr_path;
+  spec.working_dir = options_.working_dir;
   if (!child_.Start(spec, error)) return false;
   pending_.clear();
   const int64_t deadline = DeadlineAfter(options_.timeout_s);
@@ -81,10 +82,15 @@ bool ExternalTracker::CanTrack(const MarkerSpec& marker) const {
              options_.markers.end();
 }
 
-std::vector<std::pair<std::string, std::string>> ExternalTracker::Parameters() const {
-  return {{"exec", CommandText(options_.command)},
+std::vector<std::pair<std::string, std::string>> ExternalTrackerParameters(
+    const ExternalTrackerOptions& options) {
+  return {{"exec", CommandText(options.command)},
           {"protocol", std::to_string(kExternalProtocol)},
-          {"timeout_s", NumberText(options_.timeout_s)}};
+          {"timeout_s", NumberText(options.timeout_s)}};
+}
+
+std::vector<std::pair<std::string, std::string>> ExternalTracker::Parameters() const {
+  return ExternalTrackerParameters(options_);
 }
 
 TrackResult ExternalTracker::Fault(const std::string& why) {

@@ -19,11 +19,16 @@ struct ExternalTrackerOptions {
   std::vector<std::string> command;  // the program and its arguments
   std::vector<std::string> markers;  // names of the markers it tracks; empty: every marker
   double timeout_s = 10.0;           // per frame, and for the handshake
+  std::string working_dir;           // where it runs; empty: this process's folder
   std::string stderr_path;           // the child's standard error is appended here
   std::string image_dir;             // each frame's PNG is written here, removed after
   // The marker file each request names (an absolute path), by marker name.
   std::map<std::string, std::string> marker_files;
 };
+
+// Its parameters for the run manifest: the command, the protocol and the timeout.
+std::vector<std::pair<std::string, std::string>> ExternalTrackerParameters(
+    const ExternalTrackerOptions& options);
 
 class ExternalTracker : public Tracker {
  public:

@@ -62,6 +62,9 @@ bool ChildProcess::Start(const ChildSpec& spec, std::string* error) {
     posix_spawn_file_actions_adddup2(&actions, STDERR_FILENO, STDOUT_FILENO);
   }
   for (const int fd : spec.socket_fds) posix_spawn_file_actions_adddup2(&actions, child_end, fd);
+  if (!spec.working_dir.empty()) {
+    posix_spawn_file_actions_addchdir_np(&actions, spec.working_dir.c_str());
+  }
   posix_spawnattr_t attributes;
   posix_spawnattr_init(&attributes);
   sigset_t none, all;

@@ -18,6 +18,8 @@ struct ChildSpec {
   std::vector<int> socket_fds;
   // The child's standard error is appended to this file; empty: this process's.
   std::string stderr_path;
+  // The child's working folder; empty: this process's.
+  std::string working_dir;
 };
 
 class ChildProcess {

@@ -1,0 +1,88 @@
+#include "bench/sweep_trackers.h"
+
+#include <unistd.h>
+#include <yaml-cpp/yaml.h>
+
+#include <filesystem>
+
+#include "bench/atomic_file.h"
+#include "trackers/external/external_tracker.h"
+#include "trackers/isolated/isolated_tracker.h"
+
+namespace fs = std::filesystem;
+
+namespace markerbench {
+namespace {
+
+bool HasExternalTrackers(const Scenario& scenario) {
+  for (const TrackerEntry& t : scenario.trackers) {
+    if (!t.exec.empty()) return true;
+  }
+  return false;
+}
+
+// The marker file at `source` with every length times `scale` (its own scale key included).
+std::string ScaledMarkerYaml(const std::string& source, double scale) {
+  YAML::Node marker = YAML::LoadFile(source);
+  marker["scale"] = (marker["scale"] ? marker["scale"].as<double>() : 1.0) * scale;
+  YAML::Emitter out;
+  out.SetDoublePrecision(17);
+  out << marker;
+  return std::string(out.c_str()) + "\n";
+}
+
+}  // namespace
+
+SweepTrackerContext::SweepTrackerContext(const Scenario& scenario, const std::string& run_dir)
+    : scenario_(scenario), run_dir_(fs::absolute(run_dir).string()) {
+  if (!HasExternalTrackers(scenario)) return;
+  fs::create_directories(run_dir_ + "/markers");
+  for (size_t m = 0; m < scenario.markers.size(); ++m) {
+    const std::string path = run_dir_ + "/markers/" + scenario.markers[m].name + ".yaml";
+    // input_files: the scenario, the camera, then the markers in order.
+    WriteFileAtomically(path,
+                        ScaledMarkerYaml(scenario.input_files[2 + m], scenario.marker_scales[m]));
+    marker_files_[scenario.markers[m].name] = path;
+  }
+  const fs::path tmpfs = "/dev/shm";
+  const fs::path base = access(tmpfs.c_str(), W_OK) == 0 ? tmpfs : fs::temp_directory_path();
+  image_dir_ = (base / ("markerbench-" + std::to_string(getpid()) + "-" + scenario.name)).string();
+  for (size_t t = 0; t < scenario.trackers.size(); ++t) {
+    if (!scenario.trackers[t].exec.empty()) MakeTracker(t);  // the handshake, then stopped
+  }
+  // Last: a constructor that throws leaves nothing to remove.
+  fs::create_directories(image_dir_);
+}
+
+SweepTrackerContext::~SweepTrackerContext() {
+  std::error_code ignored;
+  if (!image_dir_.empty()) fs::remove_all(image_dir_, ignored);
+}
+
+std::unique_ptr<Tracker> SweepTrackerContext::MakeTracker(size_t index) const {
+  const TrackerEntry& entry = scenario_.trackers.at(index);
+  if (!entry.exec.empty()) {
+    ExternalTrackerOptions options;
+    options.name = entry.name;
+    options.command = entry.exec;
+    for (const size_t m : entry.markers) options.markers.push_back(scenario_.markers[m].name);
+    options.timeout_s = entry.timeout_s;
+    options.working_dir = entry.working_dir;
+    options.stderr_path = run_dir_ + "/" + entry.name + ".stderr.log";
+    options.image_dir = image_dir_;
+    options.marker_files = marker_files_;
+    return std::make_unique<ExternalTracker>(options);
+  }
+  std::unique_ptr<Tracker> local = MakeScenarioTracker(scenario_, entry);
+  if (!entry.isolated) return local;
+  IsolationOptions options;
+  options.worker_argv = {fs::read_symlink("/proc/self/exe").string(),
+                         "tracker-worker",
+                         scenario_.path,
+                         "--tracker-index",
+                         std::to_string(index)};
+  options.timeout_s = entry.timeout_s;
+  return std::make_unique<IsolatedTracker>(std::move(local), options);
+}
+
+}  // namespace markerbench
