@@ -13,7 +13,7 @@ packages=(
   libopenimageio-dev openimageio-tools
   libyaml-cpp-dev libcli11-dev nlohmann-json3-dev
   libgtest-dev libgmock-dev libbenchmark-dev
-  python3 python3-matplotlib
+  python3 python3-matplotlib python3-opencv python3-yaml
   libxml2-utils
 )
 
