@@ -13,6 +13,7 @@
 #include "bench/marker_sheets.h"
 #include "bench/render_command.h"
 #include "bench/report.h"
+#include "bench/score_command.h"
 #include "bench/sweep_runner.h"
 #include "bench/track_command.h"
 #include "bench/tracker_worker_command.h"
@@ -103,6 +104,17 @@ int main(int argc, char** argv) {
   sweep->add_flag("--resume", sweep_options.resume, "Continue a killed run of the same scenarios");
   sweep->add_flag("--overwrite", sweep_options.overwrite, "Start again over an earlier run");
   sweep->get_option("--resume")->excludes("--overwrite");
+
+  CLI::App* score = app.add_subcommand(
+      "score", "Score a tracker's estimates for a rendered dataset into a run folder");
+  ScoreOptions score_options;
+  score->add_option("dataset", score_options.dataset_dir, "The folder markerbench render wrote")
+      ->required();
+  score->add_option("--poses", score_options.estimates_path, "ESTIMATES.csv")->required();
+  score->add_option("--tracker", score_options.tracker, "The tracker's name in the run")
+      ->required();
+  score->add_option("--out", score_options.out_dir, "Run folder (report and check read it)")
+      ->required();
 
   // Started by sweep for each isolated tracker; hidden from --help (an empty group).
   CLI::App* worker = app.add_subcommand("tracker-worker", "")->group("");
@@ -205,6 +217,8 @@ int main(int argc, char** argv) {
       RunTrackCommand(track_options);
     } else if (sweep->parsed()) {
       RunSweeps(sweep_scenarios, sweep_options);
+    } else if (score->parsed()) {
+      RunScoreCommand(score_options, std::cerr);
     } else if (worker->parsed()) {
       return RunTrackerWorker(worker_scenario, worker_tracker_index);
     } else if (report->parsed()) {

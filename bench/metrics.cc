@@ -55,6 +55,11 @@ PoseErrors ComputePoseErrors(const std::vector<Rigid3>& hypotheses, const Rigid3
   return e;
 }
 
+double DistanceToMarker(const Rigid3& cam_from_marker, const MarkerSpec& marker) {
+  const Eigen::Vector2d center = marker.InkBounds().center();
+  return (cam_from_marker * Eigen::Vector3d(center.x(), center.y(), 0.0)).norm();
+}
+
 bool IsSuccess(bool has_pose, double position_error_m, double distance_m, double fraction) {
   return has_pose && position_error_m <= fraction * distance_m;
 }

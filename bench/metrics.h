@@ -4,6 +4,7 @@
 
 #include <vector>
 
+#include "core/marker_spec.h"
 #include "core/rigid3.h"
 
 namespace markerbench {
@@ -26,6 +27,10 @@ int BestHypothesisIndex(const std::vector<Rigid3>& hypotheses, const Rigid3& tru
 bool IsFlip(const std::vector<Rigid3>& hypotheses, const Rigid3& truth);
 
 PoseErrors ComputePoseErrors(const std::vector<Rigid3>& hypotheses, const Rigid3& truth);
+
+// The true distance from the camera centre to the centre of the marker's ink bounds
+// (frames.csv's distance_m).
+double DistanceToMarker(const Rigid3& cam_from_marker, const MarkerSpec& marker);
 
 // Success (experiments.md): a pose, with a position error of at most
 // `fraction` × the true camera-to-marker distance.

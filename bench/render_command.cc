@@ -6,8 +6,10 @@
 #include <fstream>
 #include <sstream>
 
+#include "bench/dataset.h"
 #include "bench/frame_plan.h"
 #include "bench/frames_csv.h"
+#include "bench/marker_files.h"
 #include "bench/output_folder.h"
 #include "bench/pose_columns.h"
 #include "core/camera_yaml.h"
@@ -21,8 +23,6 @@
 
 namespace markerbench {
 namespace {
-
-constexpr double kRotationTol = 1e-6;  // orthonormality of rotations read from text
 
 // One groundtruth.csv row per rendered frame.
 class GroundTruthCsv {
@@ -92,6 +92,11 @@ void RenderScenario(const std::string& scenario_path,
   const Scenario scenario = LoadScenario(scenario_path);
   const std::vector<PlannedFrame> frames = PlanFrames(scenario, limit);
   CreateOutputFolder(out_dir);
+  WriteDatasetFiles(out_dir,
+                    scenario.name,
+                    scenario_path,
+                    scenario.input_files[1],
+                    WriteScaledMarkerFiles(scenario, out_dir + "/markers"));
   GroundTruthCsv csv(out_dir);
   for (const PlannedFrame& f : frames) {
     FrameRequest request = RequestFor(scenario, f);
@@ -143,9 +148,7 @@ std::vector<Rigid3> LoadPosesCsv(const std::string& path) {
     Rigid3 pose;
     pose.rotation << v[0], v[1], v[2], v[3], v[4], v[5], v[6], v[7], v[8];
     pose.translation << v[9], v[10], v[11];
-    if ((pose.rotation.transpose() * pose.rotation - Eigen::Matrix3d::Identity()).norm() >
-            kRotationTol ||
-        pose.rotation.determinant() < 0.0) {
+    if (!IsRotation(pose.rotation)) {
       throw ConfigError(path + ":" + std::to_string(line_number) +
                         ": columns 'r11'..'r33': expected a rotation matrix (orthonormal, "
                         "det +1)");
@@ -192,6 +195,13 @@ void RenderPoses(const ExplicitRenderOptions& o) {
   const ExplicitFrames frames = LoadExplicitFrames(
       o.marker_path, o.camera_path, o.poses_path, o.noise_var, o.blur_sigma_px, Channels::kAuto);
   CreateOutputFolder(o.out_dir);
+  const std::string& name = frames.marker.name;
+  WriteDatasetFiles(
+      o.out_dir,
+      std::filesystem::path(o.poses_path).stem().string(),
+      o.poses_path,
+      o.camera_path,
+      {{name, WriteScaledMarkerFile(o.marker_path, 1.0, o.out_dir + "/markers", name)}});
   GroundTruthCsv csv(o.out_dir);
   for (size_t i = 0; i < frames.poses.size(); ++i) {
     FrameRequest request = frames.Request(i);

@@ -271,7 +271,6 @@ std::pair<std::string, std::string> RunJob(const PreparedSweep& p,
     WriteImageAtomically(p.dir + "/examples/" + marker.name + ".png", frame.image);
   }
   if (job.trackers.empty()) return {};
-  const Eigen::Vector2d center = marker.InkBounds().center();
   FrameRow row;
   row.scenario = s.name;
   row.sweep_parameter = s.sweep_parameter;
@@ -281,7 +280,7 @@ std::pair<std::string, std::string> RunJob(const PreparedSweep& p,
   row.marker = marker.name;
   row.seed = s.seed;
   row.apparent_size_px = frame.truth.apparent_size_px;
-  row.distance_m = (f.cam_from_marker * Eigen::Vector3d(center.x(), center.y(), 0.0)).norm();
+  row.distance_m = DistanceToMarker(f.cam_from_marker, marker);
   row.truth = f.cam_from_marker;
   if (s.crlb) {
     const PoseBound bound = PoseCrlb(request);

@@ -1,11 +1,10 @@
 #include "bench/sweep_trackers.h"
 
 #include <unistd.h>
-#include <yaml-cpp/yaml.h>
 
 #include <filesystem>
 
-#include "bench/atomic_file.h"
+#include "bench/marker_files.h"
 #include "trackers/external/external_tracker.h"
 #include "trackers/isolated/isolated_tracker.h"
 
@@ -21,29 +20,12 @@ bool HasExternalTrackers(const Scenario& scenario) {
   return false;
 }
 
-// The marker file at `source` with every length times `scale` (its own scale key included).
-std::string ScaledMarkerYaml(const std::string& source, double scale) {
-  YAML::Node marker = YAML::LoadFile(source);
-  marker["scale"] = (marker["scale"] ? marker["scale"].as<double>() : 1.0) * scale;
-  YAML::Emitter out;
-  out.SetDoublePrecision(17);
-  out << marker;
-  return std::string(out.c_str()) + "\n";
-}
-
 }  // namespace
 
 SweepTrackerContext::SweepTrackerContext(const Scenario& scenario, const std::string& run_dir)
     : scenario_(scenario), run_dir_(fs::absolute(run_dir).string()) {
   if (!HasExternalTrackers(scenario)) return;
-  fs::create_directories(run_dir_ + "/markers");
-  for (size_t m = 0; m < scenario.markers.size(); ++m) {
-    const std::string path = run_dir_ + "/markers/" + scenario.markers[m].name + ".yaml";
-    // input_files: the scenario, the camera, then the markers in order.
-    WriteFileAtomically(path,
-                        ScaledMarkerYaml(scenario.input_files[2 + m], scenario.marker_scales[m]));
-    marker_files_[scenario.markers[m].name] = path;
-  }
+  marker_files_ = WriteScaledMarkerFiles(scenario, run_dir_ + "/markers");
   const fs::path tmpfs = "/dev/shm";
   const fs::path base = access(tmpfs.c_str(), W_OK) == 0 ? tmpfs : fs::temp_directory_path();
   image_dir_ = (base / ("markerbench-" + std::to_string(getpid()) + "-" + scenario.name)).string();

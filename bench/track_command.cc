@@ -140,7 +140,9 @@ void RunTrackCommand(const TrackCommandOptions& o) {
       track(input, image);
       continue;
     }
-    cv::VideoCapture video(input);
+    // FFmpeg reads every common container; the default would also try GStreamer, which leaks
+    // on files it cannot open.
+    cv::VideoCapture video(input, cv::CAP_FFMPEG);
     cv::Mat bgr, rgb;
     if (!video.isOpened() || !video.read(bgr)) {
       csv.Write(input, o.tracker, ErrorResult(input + ": cannot read as an image or a video"), NAN);

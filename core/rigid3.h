@@ -42,6 +42,10 @@ inline Eigen::Matrix3d RayFromPlane(const Rigid3& cam_from_marker) {
   return H;
 }
 
+// Whether `r` is a rotation within `tolerance`: ||RᵀR − I|| (Frobenius) <= tolerance and
+// det R > 0 (a matrix with a NaN is none). For rotations read from text or other programs.
+bool IsRotation(const Eigen::Matrix3d& r, double tolerance = 1e-6);
+
 // Angle of the relative rotation between two rotations, in radians, in [0, π].
 double RotationAngleBetween(const Eigen::Matrix3d& a, const Eigen::Matrix3d& b);
 

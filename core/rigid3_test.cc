@@ -15,6 +15,18 @@ Rigid3 RandomRigid(int seed) {
   return {q.toRotationMatrix(), Eigen::Vector3d::Random()};
 }
 
+TEST(Rigid3, IsRotation) {
+  const Eigen::Matrix3d r = Eigen::AngleAxisd(0.7, Eigen::Vector3d(1, 2, 3).normalized()).matrix();
+  EXPECT_TRUE(IsRotation(r));
+  EXPECT_FALSE(IsRotation(-r)) << "a reflection";
+  Eigen::Matrix3d off = r;
+  off(0, 0) += 1e-5;
+  EXPECT_FALSE(IsRotation(off));
+  EXPECT_TRUE(IsRotation(off, 1e-4));
+  off(1, 1) = NAN;
+  EXPECT_FALSE(IsRotation(off, 1.0));
+}
+
 TEST(Rigid3, InverseComposesToIdentity) {
   for (int seed = 1; seed <= 20; ++seed) {
     const Rigid3 b_from_a = RandomRigid(seed);

@@ -1,6 +1,5 @@
 #include "trackers/external/external_protocol.h"
 
-#include <Eigen/LU>
 #include <cmath>
 #include <nlohmann/json.hpp>
 #include <stdexcept>
@@ -37,12 +36,8 @@ Rigid3 ParsePose(const json& pose, size_t index) {
   Rigid3 result;
   for (int k = 0; k < 9; ++k) result.rotation(k / 3, k % 3) = r[static_cast<size_t>(k)];
   for (int k = 0; k < 3; ++k) result.translation[k] = t[static_cast<size_t>(k)];
-  const double off =
-      (result.rotation.transpose() * result.rotation - Eigen::Matrix3d::Identity()).norm();
-  if (!(off <= kRotationTolerance) || result.rotation.determinant() < 0.0) {
-    throw std::runtime_error(where +
-                             ".R is not a rotation (||R^T R - I|| = " + std::to_string(off) +
-                             ", det R = " + std::to_string(result.rotation.determinant()) + ")");
+  if (!IsRotation(result.rotation, kRotationTolerance)) {
+    throw std::runtime_error(where + ".R is not a rotation (||R^T R - I|| > 1e-6 or det R < 0)");
   }
   return result;
 }
