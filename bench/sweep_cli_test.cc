@@ -623,6 +623,38 @@ TEST_F(SweepCliTest, CheckCatchesAprilTagWithoutEdgeRefinement) {
   EXPECT_EQ(Run({"check", run, "--reference", reference}).status, 0);
 }
 
+// Offline: a sweep's own poses, exported as ESTIMATES.csv for the rendered frames of the same
+// scenario and scored, pass check against that sweep (same frames, same ground truth).
+TEST_F(SweepCliTest, ScoredEstimatesPassCheckAgainstTheSweepTheyCameFrom) {
+  const std::string scenario = TagScenario("offline.yaml", "", 6);
+  const std::string swept = (work_ / "swept").string(), dataset = (work_ / "dataset").string(),
+                    scored = (work_ / "scored").string();
+  ASSERT_EQ(Run({"sweep", scenario, "--out", swept}).status, 0);
+  ASSERT_EQ(Run({"render", scenario, "--out", dataset}).status, 0);
+  std::istringstream rows(Read(swept + "/gate/frames.csv"));
+  std::string line;
+  std::getline(rows, line);
+  const std::vector<std::string> header = SplitCsvLine(line);
+  const size_t r11 = std::find(header.begin(), header.end(), "r11") - header.begin();
+  std::string estimates = "frame,status,r11,r12,r13,r21,r22,r23,r31,r32,r33,tx,ty,tz\n";
+  while (std::getline(rows, line)) {
+    const std::vector<std::string> f = SplitCsvLine(line);
+    estimates += f[4] + "," + f[10];
+    for (size_t k = 0; k < 12; ++k) estimates += "," + f[r11 + k];
+    estimates += "\n";
+  }
+  const std::string estimates_path = WriteTestFile("offline_estimates.csv", estimates);
+  ASSERT_EQ(
+      Run({"score", dataset, "--poses", estimates_path, "--tracker", "apriltag", "--out", scored})
+          .status,
+      0)
+      << Read(work_ / "stderr.txt");
+  const Finished checked = Run({"check", scored, "--reference", swept});
+  EXPECT_EQ(checked.status, 0) << Read(work_ / "stdout.txt") << checked.error;
+  EXPECT_THAT(Read(work_ / "stdout.txt"),
+              HasSubstr("1 the same, 0 new; 0 rows only in the reference, 0 only in the run"));
+}
+
 TEST_F(SweepCliTest, CheckAgainstAnotherSeedIsBadInputNamingTheScenario) {
   const std::string reference = (work_ / "reference").string(), run = (work_ / "run").string();
   ASSERT_EQ(Run({"sweep", TagScenario("a.yaml", "", 4), "--out", reference}).status, 0);
