@@ -177,8 +177,7 @@ TrackerEntry ReadExecTracker(const YamlMap& t, const Scenario& s) {
   entry.exec = t.Get<std::vector<std::string>>("exec");
   if (entry.exec.empty() || entry.exec[0].empty()) t.Fail("exec", "a command: [program, args...]");
   entry.working_dir = std::filesystem::absolute(s.path).parent_path().string();
-  entry.timeout_s = t.GetOr<double>("timeout_s", 10.0);
-  if (t.Has("timeout_s")) entry.timeout_s = t.GetDouble("timeout_s", 1e-3, 86400.0);
+  entry.timeout_s = t.Has("timeout_s") ? t.GetDouble("timeout_s", 1e-3, 86400.0) : 10.0;
   const std::vector<std::string> markers = t.GetOr<std::vector<std::string>>("markers", {});
   for (size_t m = 0; m < s.markers.size(); ++m) {
     if (markers.empty() ||

@@ -118,6 +118,30 @@ TEST(Scenario, TrackersOfThirdPartyCCodeAreIsolated) {
   EXPECT_THAT(ErrorOf(with_second(", isolated: maybe")), HasSubstr("key 'trackers[1].isolated'"));
 }
 
+TEST(Scenario, ExecTrackersAreCheckedAtLoad) {
+  auto with_exec = [](const std::string& entry) {
+    return Replace(GoodScenario(), "poses:", "  - {" + entry + "}\nposes:");
+  };
+  const Scenario s = LoadScenario(WriteTestFile(
+      "scenario.yaml", with_exec("name: mine, exec: [python3, mine.py, -v], markers: [apriltag]")));
+  ASSERT_EQ(s.trackers.size(), 2u);
+  EXPECT_EQ(s.trackers[1].exec, (std::vector<std::string>{"python3", "mine.py", "-v"}));
+  EXPECT_EQ(s.trackers[1].markers, std::vector<size_t>{0});
+  EXPECT_EQ(s.trackers[1].timeout_s, 10.0);
+  EXPECT_EQ(s.trackers[1].working_dir, std::filesystem::path(WriteTestFile("x", "")).parent_path());
+  EXPECT_THAT(s.trackers[1].parameters,
+              testing::Contains(testing::Pair("exec", "python3 mine.py -v")));
+  EXPECT_THAT(ErrorOf(with_exec("name: apriltag-ippe, exec: [x]")),
+              HasSubstr("key 'trackers[1].name': expected a name that is not a built-in"));
+  EXPECT_THAT(ErrorOf(with_exec("name: mine, exec: [x], markers: [circles_a]")),
+              HasSubstr("key 'trackers[1].markers'"));
+  EXPECT_THAT(ErrorOf(with_exec("name: mine, exec: []")), HasSubstr("key 'trackers[1].exec'"));
+  EXPECT_THAT(ErrorOf(with_exec("name: mine, exec: [x], options: {a: 1}")),
+              HasSubstr("key 'trackers[1].options': unknown key"));
+  EXPECT_THAT(ErrorOf(with_exec("name: apriltag")),
+              HasSubstr("key 'trackers[1].name': expected a name no other tracker"));
+}
+
 TEST(Scenario, TrackerMustTrackOneOfTheMarkers) {
   EXPECT_THAT(
       ErrorOf(Replace(

@@ -46,6 +46,11 @@ bool ChildProcess::Start(const ChildSpec& spec, std::string* error) {
   // dup2 onto itself, which would keep close-on-exec, cannot happen).
   const int child_end = fcntl(sockets[1], F_DUPFD_CLOEXEC, 10);
   close(sockets[1]);
+  if (child_end < 0) {
+    *error = std::string("fcntl: ") + std::strerror(errno);
+    close(sockets[0]);
+    return false;
+  }
   auto listed = [&](int fd) {
     return std::find(spec.socket_fds.begin(), spec.socket_fds.end(), fd) != spec.socket_fds.end();
   };
