@@ -122,6 +122,8 @@ int main(int argc, char** argv) {
   size_t worker_tracker_index = 0;
   worker->add_option("scenario", worker_scenario)->required();
   worker->add_option("--tracker-index", worker_tracker_index)->required();
+  std::string worker_fingerprint;
+  worker->add_option("--fingerprint", worker_fingerprint)->required();
 
   CLI::App* report =
       app.add_subcommand("report", "summary.csv, report.md and plots from a sweep's DIR");
@@ -220,7 +222,7 @@ int main(int argc, char** argv) {
     } else if (score->parsed()) {
       RunScoreCommand(score_options, std::cerr);
     } else if (worker->parsed()) {
-      return RunTrackerWorker(worker_scenario, worker_tracker_index);
+      return RunTrackerWorker(worker_scenario, worker_tracker_index, worker_fingerprint);
     } else if (report->parsed()) {
       WriteReport(report_dir, report_options);
     } else if (check->parsed()) {

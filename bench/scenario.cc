@@ -9,6 +9,7 @@
 #include "core/camera_yaml.h"
 #include "core/marker_scaling.h"
 #include "core/marker_yaml.h"
+#include "core/sha256.h"
 #include "core/yaml_reader.h"
 #include "trackers/external/external_tracker.h"
 #include "trackers/isolated/isolated_tracker.h"
@@ -114,6 +115,18 @@ int ChannelsFor(Channels channels, const MarkerSpec& marker) {
     default:
       return marker.HasColor() ? 3 : 1;
   }
+}
+
+std::vector<std::string> InputHashes(const Scenario& scenario) {
+  std::vector<std::string> hashes;
+  for (const std::string& file : scenario.input_files) hashes.push_back(Sha256OfFile(file));
+  return hashes;
+}
+
+std::string Fingerprint(const std::vector<std::string>& input_hashes) {
+  Sha256 fingerprint;
+  for (const std::string& hash : input_hashes) fingerprint.Update(hash);
+  return fingerprint.HexDigest();
 }
 
 std::unique_ptr<Tracker> MakeScenarioTracker(const Scenario& scenario, const TrackerEntry& entry) {

@@ -91,6 +91,11 @@ struct Scenario {
 // the pose sampler can put every marker in view at every sweep value.
 Scenario LoadScenario(const std::string& path);
 
+// SHA-256 of each of scenario.input_files, and of those hashes: the fingerprint that a
+// resumed run and an isolated tracker's worker process must find again.
+std::vector<std::string> InputHashes(const Scenario& scenario);
+std::string Fingerprint(const std::vector<std::string>& input_hashes);
+
 // A fresh tracker for `entry` (options checked again; they were valid at load).
 std::unique_ptr<Tracker> MakeScenarioTracker(const Scenario& scenario, const TrackerEntry& entry);
 

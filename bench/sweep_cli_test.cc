@@ -288,6 +288,15 @@ TEST_F(SweepCliTest, AKilledTrackerWorkerIsAnErrorRowAndTheSweepGoesOn) {
   EXPECT_EQ(rows, 1 + 3 * 40 * 3);
 }
 
+// A worker loads the scenario itself: files that changed since the sweep started (another
+// fingerprint) are refused rather than served with other options or markers.
+TEST_F(SweepCliTest, AWorkerRefusesAScenarioThatChanged) {
+  const Finished refused =
+      Run({"tracker-worker", Scenario("changed", 1), "--tracker-index", "0", "--fingerprint", "0"});
+  EXPECT_EQ(refused.status, 2);
+  EXPECT_THAT(refused.error, HasSubstr("changed since the sweep started"));
+}
+
 // A full disk, made by a file size limit (RLIMIT_FSIZE, SIGXFSZ ignored so that writes fail
 // with EFBIG): exit 1 naming the file and the error, run.json intact, and once there is room
 // again --resume completes to the bytes of an uninterrupted run.

@@ -24,7 +24,6 @@
 #include "bench/scenario.h"
 #include "bench/sweep_trackers.h"
 #include "core/file_bytes.h"
-#include "core/sha256.h"
 #include "core/yaml_reader.h"
 #include "renderer/image_io.h"
 #include "renderer/pose_crlb.h"
@@ -114,12 +113,8 @@ PreparedSweep Prepare(const std::string& path, const SweepOptions& options) {
     throw ConfigError(path + ": key 'trackers': missing; expected at least one tracker to sweep");
   }
   p.dir = (fs::path(options.out_dir) / s.name).string();
-  Sha256 fingerprint;
-  for (const std::string& file : s.input_files) {
-    p.input_hashes.push_back(Sha256OfFile(file));
-    fingerprint.Update(p.input_hashes.back());
-  }
-  p.fingerprint = fingerprint.HexDigest();
+  p.input_hashes = InputHashes(s);
+  p.fingerprint = Fingerprint(p.input_hashes);
 
   std::vector<std::vector<size_t>> trackers_of_marker(s.markers.size());
   for (size_t t = 0; t < s.trackers.size(); ++t) {
@@ -423,7 +418,7 @@ void RunSweeps(const std::vector<std::string>& scenario_paths, const SweepOption
   LockOutputFolder(options.out_dir);
   for (PreparedSweep& p : sweeps) TakeOverEarlierRun(p, options);
   for (PreparedSweep& p : sweeps) {
-    p.trackers = std::make_unique<SweepTrackerContext>(p.scenario, p.dir);
+    p.trackers = std::make_unique<SweepTrackerContext>(p.scenario, p.fingerprint, p.dir);
   }
   // Parallelism comes from the pool; OpenCV's own threads would oversubscribe the cores and
   // make time_ms depend on what the other workers do.

@@ -22,8 +22,10 @@ bool HasExternalTrackers(const Scenario& scenario) {
 
 }  // namespace
 
-SweepTrackerContext::SweepTrackerContext(const Scenario& scenario, const std::string& run_dir)
-    : scenario_(scenario), run_dir_(fs::absolute(run_dir).string()) {
+SweepTrackerContext::SweepTrackerContext(const Scenario& scenario,
+                                         const std::string& fingerprint,
+                                         const std::string& run_dir)
+    : scenario_(scenario), fingerprint_(fingerprint), run_dir_(fs::absolute(run_dir).string()) {
   if (!HasExternalTrackers(scenario)) return;
   marker_files_ = WriteScaledMarkerFiles(scenario, run_dir_ + "/markers");
   const fs::path tmpfs = "/dev/shm";
@@ -62,7 +64,9 @@ std::unique_ptr<Tracker> SweepTrackerContext::MakeTracker(size_t index) const {
                          "tracker-worker",
                          scenario_.path,
                          "--tracker-index",
-                         std::to_string(index)};
+                         std::to_string(index),
+                         "--fingerprint",
+                         fingerprint_};
   options.timeout_s = entry.timeout_s;
   return std::make_unique<IsolatedTracker>(std::move(local), options);
 }

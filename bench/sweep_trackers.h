@@ -19,7 +19,11 @@ class SweepTrackerContext {
   // temporary image folder (on tmpfs where there is one) and starts each external tracker
   // once to check its handshake: a ConfigError before any frame. Nothing for scenarios
   // without external trackers.
-  SweepTrackerContext(const Scenario& scenario, const std::string& run_dir);
+  // `fingerprint` (bench/scenario.h) is checked again by isolated trackers' workers, which
+  // load the scenario themselves.
+  SweepTrackerContext(const Scenario& scenario,
+                      const std::string& fingerprint,
+                      const std::string& run_dir);
   ~SweepTrackerContext();
   SweepTrackerContext(const SweepTrackerContext&) = delete;
   SweepTrackerContext& operator=(const SweepTrackerContext&) = delete;
@@ -29,6 +33,7 @@ class SweepTrackerContext {
 
  private:
   const Scenario& scenario_;
+  std::string fingerprint_;
   std::string run_dir_;
   std::string image_dir_;
   std::map<std::string, std::string> marker_files_;

@@ -9,8 +9,16 @@
 
 namespace markerbench {
 
-int RunTrackerWorker(const std::string& scenario_path, size_t tracker_index) {
+int RunTrackerWorker(const std::string& scenario_path,
+                     size_t tracker_index,
+                     const std::string& fingerprint) {
   const Scenario scenario = LoadScenario(scenario_path);
+  if (Fingerprint(InputHashes(scenario)) != fingerprint) {
+    std::fprintf(stderr,
+                 "tracker-worker: %s or its files changed since the sweep started; not serving\n",
+                 scenario_path.c_str());
+    return 2;
+  }
   if (tracker_index >= scenario.trackers.size()) {
     std::fprintf(
         stderr, "tracker-worker: %s has no tracker %zu\n", scenario_path.c_str(), tracker_index);
