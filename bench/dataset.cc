@@ -1,5 +1,7 @@
 #include "bench/dataset.h"
 
+#include <algorithm>
+#include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
