@@ -363,7 +363,7 @@ std::string ExternalScenario(const std::string& name, const std::string& command
       "name: " + name + "\ncamera: " + kRoot + "/scenarios/cameras/default.yaml\nmarkers:\n  - " +
           kRoot + "/scenarios/markers/apriltag.yaml\nequal_ink_area_m2: 0.01\ntrackers:\n" +
           "  - {name: apriltag-ippe}\n  - {name: scripted, exec: " + command +
-          ", markers: [apriltag], timeout_s: 0.5}\n"
+          ", markers: [apriltag], timeout_s: 1}\n"
           "poses: {sampler: look_at, distance_m: 0.8, tilt_deg: [0, 40]}\ncrlb: false\n"
           "sweep: {parameter: noise_var, values: [0.0, 0.05]}\ntrials: 10\nseed: 4\n");
 }
@@ -391,7 +391,7 @@ TEST_F(SweepCliTest, ExternalTrackersRunInTheSweep) {
     const int frame = std::stoi(f[4]);
     ++scripted_status[f[10]];
     const std::map<int, std::string> expected = {{1, "killed by signal SIGSEGV"},
-                                                 {2, "no reply within timeout_s 0.5 s"},
+                                                 {2, "no reply within timeout_s 1 s"},
                                                  {6, ",not_detected,"}};
     const auto says = expected.find(frame % 10);
     if (says != expected.end()) {

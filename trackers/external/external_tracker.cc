@@ -57,7 +57,7 @@ bool ExternalTracker::Start(std::string* error) {
   spec.working_dir = options_.working_dir;
   if (!child_.Start(spec, error)) return false;
   pending_.clear();
-  const int64_t deadline = DeadlineAfter(options_.timeout_s);
+  const int64_t deadline = DeadlineAfter(options_.start_timeout_s);
   std::string ready;
   if (!SendAll(child_.socket(), HandshakeLine(options_.name), deadline, error) ||
       !ReceiveLine(child_.socket(), &pending_, &ready, kMaxReplyBytes, deadline, error)) {

@@ -18,7 +18,8 @@ struct ExternalTrackerOptions {
   std::string name;                  // the scenario's name for it, sent in the handshake
   std::vector<std::string> command;  // the program and its arguments
   std::vector<std::string> markers;  // names of the markers it tracks; empty: every marker
-  double timeout_s = 10.0;           // per frame, and for the handshake
+  double timeout_s = 10.0;           // per frame
+  double start_timeout_s = 30.0;     // for a start and its handshake
   std::string working_dir;           // where it runs; empty: this process's folder
   std::string stderr_path;           // the child's standard error is appended here
   std::string image_dir;             // each frame's PNG is written here, removed after

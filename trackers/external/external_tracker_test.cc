@@ -76,10 +76,10 @@ TEST(ExternalTracker, ResultsComeBackExactly) {
 }
 
 TEST(ExternalTracker, EveryFaultIsAnErrorRowAndTheNextFrameIsTracked) {
-  ExternalTracker tracker(ScriptedOptions(0.5));
+  ExternalTracker tracker(ScriptedOptions(1.0));
   const std::vector<std::pair<int64_t, std::string>> faults = {
       {1, "the program was killed by signal SIGSEGV on this frame"},
-      {2, "no reply within timeout_s 0.5 s; the program was stopped"},
+      {2, "no reply within timeout_s 1 s; the program was stopped"},
       {3, "malformed reply: not a JSON object: 'this is not JSON'"},
       {4, "malformed reply: poses[0].R is not a rotation"},
       {5, "the program exited with status 3 on this frame"},
