@@ -1,13 +1,10 @@
 #include "bench/frames_csv.h"
 
 #include <cmath>
-#include <fstream>
 #include <stdexcept>
 
 #include "bench/pose_columns.h"
 #include "core/number_text.h"
-#include "core/regular_file.h"
-#include "core/yaml_reader.h"
 
 namespace markerbench {
 namespace {
@@ -155,25 +152,6 @@ FrameRow ParseFrameRow(const std::string& line) {
   if (!f[33].empty()) r.estimate = ParsePose(f, 33);
   r.message = f[45];
   return r;
-}
-
-std::vector<FrameRow> ReadFramesCsv(const std::string& path) {
-  RequireRegularFile(path);
-  std::ifstream in(path);
-  if (!in) throw ConfigError(path + ": cannot read");
-  std::string line;
-  if (!std::getline(in, line) || line + '\n' != FramesCsvHeader()) {
-    throw ConfigError(path + ":1: expected the frames.csv header");
-  }
-  std::vector<FrameRow> rows;
-  for (int number = 2; std::getline(in, line); ++number) {
-    try {
-      rows.push_back(ParseFrameRow(line));
-    } catch (const std::exception& e) {
-      throw ConfigError(path + ":" + std::to_string(number) + ": " + e.what());
-    }
-  }
-  return rows;
 }
 
 std::string TimingCsvHeader() { return "frame,tracker,time_ms,round_trip_ms\n"; }

@@ -48,9 +48,6 @@ std::string FormatFrameRow(const FrameRow& row);
 // Parses one data line (without its '\n'); throws std::runtime_error naming the column.
 FrameRow ParseFrameRow(const std::string& line);
 
-// Reads a whole frames.csv; throws ConfigError naming the file and line.
-std::vector<FrameRow> ReadFramesCsv(const std::string& path);
-
 // timing.csv: one row per frames.csv row, in the same order.
 std::string TimingCsvHeader();
 // time_ms: the tracker's own time when it reports one (an isolated worker, an external

@@ -11,6 +11,7 @@
 #include "bench/check_command.h"
 #include "bench/crlb_command.h"
 #include "bench/marker_sheets.h"
+#include "bench/merge_command.h"
 #include "bench/render_command.h"
 #include "bench/report.h"
 #include "bench/score_command.h"
@@ -104,6 +105,19 @@ int main(int argc, char** argv) {
   sweep->add_flag("--resume", sweep_options.resume, "Continue a killed run of the same scenarios");
   sweep->add_flag("--overwrite", sweep_options.overwrite, "Start again over an earlier run");
   sweep->get_option("--resume")->excludes("--overwrite");
+  std::string sweep_shard;
+  sweep->add_option("--shard", sweep_shard, "Run only shard I of N (I/N, 0 <= I < N); see merge");
+  sweep->add_flag("--zstd",
+                  sweep_options.compress,
+                  "Once complete, write frames.csv.zst and timing.csv.zst instead of plain CSV");
+
+  CLI::App* merge = app.add_subcommand(
+      "merge", "Merge the N shards of sweeps (sweep --shard I/N) into one run folder");
+  MergeOptions merge_options;
+  merge->add_option("shards", merge_options.shard_dirs, "The shards' --out folders")->required();
+  merge->add_option("--out", merge_options.out_dir, "Output folder")->required();
+  merge->add_flag("--zstd", merge_options.compress, "Write frames.csv.zst and timing.csv.zst");
+  merge->add_flag("--overwrite", merge_options.overwrite, "Replace an earlier merge in --out");
 
   CLI::App* score = app.add_subcommand(
       "score", "Score a tracker's estimates for a rendered dataset into a run folder");
@@ -218,7 +232,10 @@ int main(int argc, char** argv) {
     } else if (track->parsed()) {
       RunTrackCommand(track_options);
     } else if (sweep->parsed()) {
+      if (!sweep_shard.empty()) sweep_options.shard = ParseShard(sweep_shard);
       RunSweeps(sweep_scenarios, sweep_options);
+    } else if (merge->parsed()) {
+      MergeShards(merge_options, std::cerr);
     } else if (score->parsed()) {
       RunScoreCommand(score_options, std::cerr);
     } else if (worker->parsed()) {

@@ -1,5 +1,10 @@
 #include "bench/output_folder.h"
 
+#include <fcntl.h>
+#include <sys/file.h>
+#include <unistd.h>
+
+#include <cerrno>
 #include <filesystem>
 #include <stdexcept>
 #include <system_error>
@@ -17,6 +22,23 @@ void CreateOutputFolder(const std::string& dir) {
   std::filesystem::create_directories(dir, error);
   if (error)
     throw std::runtime_error(dir + ": cannot create the output folder: " + error.message());
+}
+
+void LockOutputFolder(const std::string& out_dir) {
+  CreateOutputFolder(out_dir);
+  const std::string path = out_dir + "/markerbench.lock";
+  const int fd = ::open(path.c_str(), O_RDWR | O_CREAT | O_CLOEXEC, 0644);
+  if (fd < 0) throw std::system_error(errno, std::generic_category(), path + ": cannot open");
+  if (::flock(fd, LOCK_EX | LOCK_NB) != 0) {
+    const int error = errno;
+    ::close(fd);
+    if (error == EWOULDBLOCK) {
+      throw ConfigError(path + ": another markerbench sweep or merge is writing into " + out_dir +
+                        "; wait for it or choose another --out");
+    }
+    throw std::system_error(error, std::generic_category(), path + ": cannot lock");
+  }
+  // The descriptor stays open (and the lock held) for the life of the process.
 }
 
 }  // namespace markerbench

@@ -1,5 +1,5 @@
 // Output folders a user names (--out): created when missing, refused when the path is
-// something else.
+// something else, locked while a command writes into them.
 #pragma once
 
 #include <string>
@@ -10,5 +10,10 @@ namespace markerbench {
 // is not a folder, std::runtime_error naming it with the system's reason when it cannot be
 // created (no permission, a full disk).
 void CreateOutputFolder(const std::string& dir);
+
+// Creates `dir` as above and takes an advisory lock on it (DIR/markerbench.lock), held until
+// the process ends: a second sweep or merge into `dir` is a ConfigError instead of
+// interleaving its rows with this one's.
+void LockOutputFolder(const std::string& dir);
 
 }  // namespace markerbench

@@ -145,14 +145,22 @@ void RunPlots(const std::string& dir) {
 }  // namespace
 
 void WriteReport(const std::string& dir, const ReportOptions& options) {
-  const std::vector<ScenarioResults> results = ReadRunResults(dir);
-  std::vector<FrameRow> rows;
-  std::vector<double> times;
-  for (const ScenarioResults& r : results) {
-    rows.insert(rows.end(), r.rows.begin(), r.rows.end());
-    times.insert(times.end(), r.time_ms.begin(), r.time_ms.end());
+  // Streamed: memory grows with a sweep cell, not with frames.csv (results/speed.md).
+  const std::vector<std::string> folders = ScenarioFolders(dir);
+  SummaryBuilder builder(options.summary);
+  for (const std::string& folder : folders) {
+    ScenarioRowReader reader(folder);
+    FrameRow row;
+    double time_ms = NAN;
+    while (reader.Next(&row, &time_ms)) {
+      try {
+        builder.Add(row, time_ms);
+      } catch (const ConfigError& e) {
+        throw ConfigError(reader.location() + ": " + e.what());
+      }
+    }
   }
-  const std::vector<SummaryRow> summary = Summarize(rows, times, options.summary);
+  const std::vector<SummaryRow> summary = builder.Finish();
   WriteFileAtomically(dir + "/summary.csv", SummaryCsv(summary));
   nlohmann::json manifest = ReadManifest(dir + "/manifest.json");
   manifest["report"] = {{"success_position_fraction_of_distance", options.summary.success_fraction},
@@ -176,12 +184,13 @@ void WriteReport(const std::string& dir, const ReportOptions& options) {
         "can).\n\n";
   md += "## The paper's claims beside ours\n\n";
   md += ReproductionTableMarkdown(ReproduceClaims(summary, options.summary)) + "\n";
-  for (const ScenarioResults& r : results) {
+  for (const std::string& folder : folders) {
+    const std::string name = fs::path(folder).filename().string();
     const nlohmann::json entry =
-        manifest.contains("scenarios") && manifest["scenarios"].contains(r.name)
-            ? manifest["scenarios"][r.name]
+        manifest.contains("scenarios") && manifest["scenarios"].contains(name)
+            ? manifest["scenarios"][name]
             : nlohmann::json::object();
-    md += ScenarioSection(r.name, summary, entry, options.summary, dir);
+    md += ScenarioSection(name, summary, entry, options.summary, dir);
   }
   WriteFileAtomically(dir + "/report.md", md);
 }

@@ -170,3 +170,35 @@ TEST(Report, EmptyFolderIsAnError) {
 
 }  // namespace
 }  // namespace markerbench
+
+namespace markerbench {
+namespace {
+
+// The summary is built one sweep cell at a time: trackers may interleave within a cell, but
+// a cell that comes back after another is refused (its groups were already summarised).
+TEST(SummaryBuilderTest, SummarisesCellByCellAndRefusesACellThatComesBack) {
+  SummaryBuilder builder({});
+  builder.Add(Row("s", "a", 0.0, 0, 0.001), 1.0);
+  builder.Add(Row("s", "b", 0.0, 0, NAN), 2.0);
+  builder.Add(Row("s", "a", 0.0, 1, 0.003), 3.0);
+  builder.Add(Row("s", "a", 0.1, 0, 0.002), 4.0);
+  const std::vector<SummaryRow> summary = builder.Finish();
+  // Series in order of appearance (a, then b), values in order within each.
+  ASSERT_EQ(summary.size(), 3u);
+  EXPECT_EQ(summary[0].tracker, "a");
+  EXPECT_EQ(summary[0].n, 2);
+  EXPECT_DOUBLE_EQ(summary[0].position_error_median_m, 0.002);
+  EXPECT_EQ(summary[1].tracker, "a");
+  EXPECT_EQ(summary[1].sweep_value, 0.1);
+  EXPECT_EQ(summary[2].tracker, "b");
+  EXPECT_EQ(summary[2].detection_rate, 0.0);
+
+  SummaryBuilder out_of_order({});
+  out_of_order.Add(Row("s", "a", 0.0, 0, 0.001), 1.0);
+  out_of_order.Add(Row("s", "a", 0.1, 0, 0.001), 1.0);
+  EXPECT_THAT([&] { out_of_order.Add(Row("s", "a", 0.0, 1, 0.001), 1.0); },
+              ::testing::ThrowsMessage<ConfigError>(HasSubstr("after the rows of other values")));
+}
+
+}  // namespace
+}  // namespace markerbench

@@ -6,88 +6,91 @@
 #include <tuple>
 
 #include "bench/frames_csv.h"
+#include "core/config_error.h"
 #include "core/number_text.h"
 
 namespace markerbench {
-namespace {
 
-using GroupKey = std::tuple<std::string, std::string, std::string, double>;
-
-}  // namespace
-
-std::vector<SummaryRow> Summarize(const std::vector<FrameRow>& rows,
-                                  const std::vector<double>& time_ms,
-                                  const SummaryOptions& options) {
-  std::vector<GroupKey> order;
-  std::map<GroupKey, std::vector<size_t>> members;
-  for (size_t i = 0; i < rows.size(); ++i) {
-    const FrameRow& r = rows[i];
-    const GroupKey key{r.scenario, r.tracker, r.marker, r.sweep_value};
-    auto [it, inserted] = members.try_emplace(key);
-    if (inserted) order.push_back(key);
-    it->second.push_back(i);
+void SummaryBuilder::Add(const FrameRow& r, double time_ms) {
+  if (!open_.empty() && (open_.front().row.scenario != r.scenario ||
+                         open_.front().row.sweep_value != r.sweep_value)) {
+    CloseCell();
   }
+  if (open_.empty()) {
+    const std::pair<std::string, double> cell{r.scenario, r.sweep_value};
+    if (std::find(closed_cells_.begin(), closed_cells_.end(), cell) != closed_cells_.end()) {
+      throw ConfigError("a row of " + r.scenario + " at " + r.sweep_parameter + " = " +
+                        NumberText(r.sweep_value) +
+                        " after the rows of other values; frames.csv must keep each sweep "
+                        "value's rows together, in plan order, as sweep and merge write them");
+    }
+  }
+  auto group = std::find_if(open_.begin(), open_.end(), [&](const Group& g) {
+    return g.row.tracker == r.tracker && g.row.marker == r.marker;
+  });
+  if (group == open_.end()) {
+    group = open_.insert(open_.end(), Group{});
+    group->row.scenario = r.scenario;
+    group->row.sweep_parameter = r.sweep_parameter;
+    group->row.sweep_value = r.sweep_value;
+    group->row.tracker = r.tracker;
+    group->row.marker = r.marker;
+  }
+  Group& g = *group;
+  const bool has_pose = r.estimate.has_value();
+  ++g.row.n;
+  g.detected += r.status == TrackStatus::kOk || r.status == TrackStatus::kPoseFailed;
+  g.successes +=
+      IsSuccess(has_pose, r.errors.position_error_m, r.distance_m, options_.success_fraction);
+  g.sizes.push_back(r.apparent_size_px);
+  g.times.push_back(time_ms);
+  g.position_bound.push_back(r.crlb_position_med_m);
+  g.rotation_bound.push_back(r.crlb_rotation_med_deg);
+  if (!has_pose) return;
+  g.posed_position_bound.push_back(r.crlb_position_med_m);
+  g.posed_rotation_bound.push_back(r.crlb_rotation_med_deg);
+  ++g.posed;
+  g.flips += r.errors.flip;
+  g.position.push_back(r.errors.position_error_m);
+  g.rotation.push_back(r.errors.rotation_error_deg);
+  g.best_position.push_back(r.errors.best_position_error_m);
+}
+
+void SummaryBuilder::CloseCell() {
+  closed_cells_.emplace_back(open_.front().row.scenario, open_.front().row.sweep_value);
+  for (Group& g : open_) {
+    SummaryRow s = g.row;
+    s.apparent_size_median_px = Median(g.sizes);
+    s.detection_rate = static_cast<double>(g.detected) / s.n;
+    s.success_rate = static_cast<double>(g.successes) / s.n;
+    s.position_error_median_m = Median(g.position);
+    s.position_error_mean_m = Mean(g.position);
+    s.position_error_p90_m = Percentile(g.position, 90.0);
+    s.rotation_error_median_deg = Median(g.rotation);
+    s.best_position_error_median_m = Median(g.best_position);
+    s.flip_rate = g.posed ? static_cast<double>(g.flips) / g.posed : NAN;
+    s.time_median_ms = Median(g.times);
+    s.crlb_position_median_m = Median(g.position_bound);
+    s.crlb_rotation_median_deg = Median(g.rotation_bound);
+    s.efficiency = s.position_error_median_m / Median(g.posed_position_bound);
+    s.rotation_efficiency = s.rotation_error_median_deg / Median(g.posed_rotation_bound);
+    rows_.push_back(s);
+  }
+  open_.clear();
+}
+
+std::vector<SummaryRow> SummaryBuilder::Finish() {
+  if (!open_.empty()) CloseCell();
   // Series (scenario, tracker, marker) in order of appearance, values in order within each.
   std::map<std::tuple<std::string, std::string, std::string>, size_t> series_rank;
-  for (const GroupKey& key : order) {
-    series_rank.try_emplace({std::get<0>(key), std::get<1>(key), std::get<2>(key)},
-                            series_rank.size());
-  }
-  std::stable_sort(order.begin(), order.end(), [&](const GroupKey& a, const GroupKey& b) {
-    return series_rank.at({std::get<0>(a), std::get<1>(a), std::get<2>(a)}) <
-           series_rank.at({std::get<0>(b), std::get<1>(b), std::get<2>(b)});
+  for (const SummaryRow& r : rows_)
+    series_rank.try_emplace({r.scenario, r.tracker, r.marker}, series_rank.size());
+  std::vector<SummaryRow> summary = std::move(rows_);
+  rows_.clear();
+  std::stable_sort(summary.begin(), summary.end(), [&](const SummaryRow& a, const SummaryRow& b) {
+    return series_rank.at({a.scenario, a.tracker, a.marker}) <
+           series_rank.at({b.scenario, b.tracker, b.marker});
   });
-
-  std::vector<SummaryRow> summary;
-  for (const GroupKey& key : order) {
-    const std::vector<size_t>& group = members[key];
-    const FrameRow& first = rows[group.front()];
-    SummaryRow s;
-    s.scenario = first.scenario;
-    s.sweep_parameter = first.sweep_parameter;
-    s.sweep_value = first.sweep_value;
-    s.tracker = first.tracker;
-    s.marker = first.marker;
-    s.n = static_cast<int>(group.size());
-    int detected = 0, successes = 0, posed = 0, flips = 0;
-    std::vector<double> sizes, position, rotation, best_position, times;
-    std::vector<double> position_bound, rotation_bound;              // every frame
-    std::vector<double> posed_position_bound, posed_rotation_bound;  // frames with a pose
-    for (const size_t i : group) {
-      const FrameRow& r = rows[i];
-      const bool has_pose = r.estimate.has_value();
-      detected += r.status == TrackStatus::kOk || r.status == TrackStatus::kPoseFailed;
-      successes +=
-          IsSuccess(has_pose, r.errors.position_error_m, r.distance_m, options.success_fraction);
-      sizes.push_back(r.apparent_size_px);
-      times.push_back(i < time_ms.size() ? time_ms[i] : NAN);
-      position_bound.push_back(r.crlb_position_med_m);
-      rotation_bound.push_back(r.crlb_rotation_med_deg);
-      if (!has_pose) continue;
-      posed_position_bound.push_back(r.crlb_position_med_m);
-      posed_rotation_bound.push_back(r.crlb_rotation_med_deg);
-      ++posed;
-      flips += r.errors.flip;
-      position.push_back(r.errors.position_error_m);
-      rotation.push_back(r.errors.rotation_error_deg);
-      best_position.push_back(r.errors.best_position_error_m);
-    }
-    s.apparent_size_median_px = Median(sizes);
-    s.detection_rate = static_cast<double>(detected) / s.n;
-    s.success_rate = static_cast<double>(successes) / s.n;
-    s.position_error_median_m = Median(position);
-    s.position_error_mean_m = Mean(position);
-    s.position_error_p90_m = Percentile(position, 90.0);
-    s.rotation_error_median_deg = Median(rotation);
-    s.best_position_error_median_m = Median(best_position);
-    s.flip_rate = posed ? static_cast<double>(flips) / posed : NAN;
-    s.time_median_ms = Median(times);
-    s.crlb_position_median_m = Median(position_bound);
-    s.crlb_rotation_median_deg = Median(rotation_bound);
-    s.efficiency = s.position_error_median_m / Median(posed_position_bound);
-    s.rotation_efficiency = s.rotation_error_median_deg / Median(posed_rotation_bound);
-    summary.push_back(s);
-  }
   return summary;
 }
 

@@ -45,11 +45,37 @@ struct SummaryRow {
   double rotation_efficiency = 0.0;
 };
 
-// `time_ms[i]` belongs to rows[i] (NaN when unknown). Groups keep the order in which they
-// first appear: scenario, then tracker and marker, then sweep value.
-std::vector<SummaryRow> Summarize(const std::vector<FrameRow>& rows,
-                                  const std::vector<double>& time_ms,
-                                  const SummaryOptions& options);
+// Builds the summary from frames.csv rows, one at a time, in memory bounded by one sweep cell
+// (a scenario's rows at one sweep value) rather than by the file: a sweep writes its cells
+// one after another, so a cell's groups are summarised and freed when the next cell begins.
+class SummaryBuilder {
+ public:
+  explicit SummaryBuilder(const SummaryOptions& options) : options_(options) {}
+
+  // `time_ms`: the row's time (NaN when unknown). Throws ConfigError when the row belongs to
+  // a cell that ended earlier (the rows are not in plan order).
+  void Add(const FrameRow& row, double time_ms);
+
+  // Groups in the order in which they first appear: scenario, then tracker and marker, then
+  // sweep value.
+  std::vector<SummaryRow> Finish();
+
+ private:
+  // One (tracker, marker) group of the open cell.
+  struct Group {
+    SummaryRow row;  // names and counts so far
+    int detected = 0, successes = 0, posed = 0, flips = 0;
+    std::vector<double> sizes, times, position_bound, rotation_bound;  // every frame
+    std::vector<double> position, rotation, best_position;             // frames with a pose
+    std::vector<double> posed_position_bound, posed_rotation_bound;
+  };
+  void CloseCell();
+
+  SummaryOptions options_;
+  std::vector<std::pair<std::string, double>> closed_cells_;  // (scenario, sweep value)
+  std::vector<Group> open_;  // the open cell's groups, in order of appearance
+  std::vector<SummaryRow> rows_;
+};
 
 // The first sweep value of `rows` (one scenario, tracker and marker, in sweep order) whose
 // success rate is below the breakdown rate; nullopt when there is none.

@@ -1,12 +1,9 @@
 // markerbench sweep (and check) as users run them, as a subprocess: determinism across thread
 // counts and runs, kill -9 and --resume, exit status 2 with a located message for bad input,
 // and the regression gate on real sweeps.
-#include <fcntl.h>
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 #include <signal.h>
-#include <spawn.h>
-#include <sys/wait.h>
 #include <unistd.h>
 
 #include <chrono>
@@ -16,10 +13,9 @@
 #include <sstream>
 #include <thread>
 
+#include "bench/cli_test.h"
 #include "bench/frames_csv.h"
 #include "core/test_files.h"
-
-extern char** environ;
 
 namespace markerbench {
 namespace {
@@ -27,77 +23,8 @@ namespace {
 using ::testing::HasSubstr;
 namespace fs = std::filesystem;
 
-const std::string kRoot = fs::current_path().string();
-
-struct Finished {
-  int status = -1;
-  std::string error;  // standard error
-};
-
-class SweepCliTest : public ::testing::Test {
+class SweepCliTest : public CliTest {
  protected:
-  void SetUp() override {
-    work_ = fs::temp_directory_path() / ("markerbench_sweep_cli_" + std::to_string(::getpid()));
-    fs::remove_all(work_);
-    fs::create_directories(work_);
-  }
-  void TearDown() override { fs::remove_all(work_); }
-
-  // Starts markerbench with `args`; standard error goes to work_/stderr.txt.
-  pid_t Start(const std::vector<std::string>& args) {
-    return StartProgram(MARKERBENCH_BINARY, args);
-  }
-
-  pid_t StartProgram(const std::string& program, const std::vector<std::string>& args) {
-    std::vector<std::string> argv_text = {program};
-    argv_text.insert(argv_text.end(), args.begin(), args.end());
-    std::vector<char*> argv;
-    for (std::string& a : argv_text) argv.push_back(a.data());
-    argv.push_back(nullptr);
-    posix_spawn_file_actions_t actions;
-    posix_spawn_file_actions_init(&actions);
-    posix_spawn_file_actions_addopen(&actions,
-                                     STDOUT_FILENO,
-                                     (work_ / "stdout.txt").c_str(),
-                                     O_WRONLY | O_CREAT | O_TRUNC,
-                                     0644);
-    posix_spawn_file_actions_addopen(&actions,
-                                     STDERR_FILENO,
-                                     (work_ / "stderr.txt").c_str(),
-                                     O_WRONLY | O_CREAT | O_TRUNC,
-                                     0644);
-    pid_t pid = -1;
-    EXPECT_EQ(posix_spawn(&pid, argv[0], &actions, nullptr, argv.data(), environ), 0);
-    posix_spawn_file_actions_destroy(&actions);
-    return pid;
-  }
-
-  Finished Wait(pid_t pid) {
-    int status = 0;
-    EXPECT_EQ(::waitpid(pid, &status, 0), pid);
-    Finished f;
-    f.status = WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
-    f.error = Read(work_ / "stderr.txt");
-    return f;
-  }
-
-  Finished Run(const std::vector<std::string>& args) { return Wait(Start(args)); }
-  Finished RunProgram(const std::string& program, const std::vector<std::string>& args) {
-    return Wait(StartProgram(program, args));
-  }
-
-  static std::string Read(const fs::path& path) {
-    std::ifstream in(path, std::ios::binary);
-    std::stringstream text;
-    text << in.rdbuf();
-    return text.str();
-  }
-
-  static size_t Lines(const fs::path& path) {
-    const std::string text = Read(path);
-    return static_cast<size_t>(std::count(text.begin(), text.end(), '\n'));
-  }
-
   // Two tag markers and their trackers under a three-value noise sweep.
   std::string Scenario(const std::string& name, int trials) {
     return WriteTestFile(name + ".yaml",
@@ -111,8 +38,6 @@ class SweepCliTest : public ::testing::Test {
                              "sweep: {parameter: noise_var, values: [0.0, 0.05, 0.15]}\ntrials: " +
                              std::to_string(trials) + "\nseed: 9\n");
   }
-
-  fs::path work_;
 };
 
 TEST_F(SweepCliTest, FramesCsvIsByteIdenticalAcrossThreadCountsAndRuns) {

@@ -1,7 +1,6 @@
 #include "bench/sweep_runner.h"
 
 #include <fcntl.h>
-#include <sys/file.h>
 #include <unistd.h>
 
 #include <atomic>
@@ -16,8 +15,10 @@
 #include <system_error>
 #include <thread>
 
+#include "bench/atomic_file.h"
 #include "bench/frame_plan.h"
 #include "bench/frames_csv.h"
+#include "bench/line_reader.h"
 #include "bench/manifest.h"
 #include "bench/output_folder.h"
 #include "bench/progress.h"
@@ -46,7 +47,9 @@ struct PreparedSweep {
   std::string fingerprint;                // of the input hashes: a resumed run must match it
   std::vector<Job> jobs;
   std::vector<std::string> idle_markers;  // markers no tracker can track: they only constrain poses
-  size_t done = 0;  // jobs already complete in frames.csv and timing.csv (resume)
+  Shard shard;
+  size_t done = 0;          // jobs already complete in frames.csv and timing.csv (resume)
+  bool compressed = false;  // a complete run already compressed: nothing left to do
   uintmax_t frames_bytes = 0;
   uintmax_t timing_bytes = 0;
   std::unique_ptr<SweepTrackerContext> trackers;  // made once the run's folder is taken
@@ -123,7 +126,9 @@ PreparedSweep Prepare(const std::string& path, const SweepOptions& options) {
   for (size_t m = 0; m < s.markers.size(); ++m) {
     if (trackers_of_marker[m].empty()) p.idle_markers.push_back(s.markers[m].name);
   }
+  p.shard = options.shard;
   for (const PlannedFrame& f : PlanFrames(s)) {
+    if (!InShard(f, s.trials, p.shard)) continue;
     const auto& trackers = trackers_of_marker[static_cast<size_t>(f.marker_index)];
     // Markers without a tracker are still rendered for the example-image figure.
     const bool example = f.trial == 0 && f.sweep_value == s.example_value;
@@ -138,10 +143,14 @@ PreparedSweep Prepare(const std::string& path, const SweepOptions& options) {
 void TakeOverEarlierRun(PreparedSweep& p, const SweepOptions& options) {
   const Scenario& s = p.scenario;
   const std::string& path = s.path;
-  const std::string frames = p.dir + "/frames.csv";
-  if (!fs::exists(frames)) return;
+  // Both forms exist only when a compression was killed before it removed the plain files.
+  std::optional<std::string> written;
+  for (const char* name : {"frames.csv", "frames.csv.zst"}) {
+    if (!written && fs::exists(p.dir + "/" + name)) written = p.dir + "/" + name;
+  }
+  if (!written) return;
   if (!options.resume && !options.overwrite) {
-    throw ConfigError(frames +
+    throw ConfigError(*written +
                       ": exists; pass --resume to continue that run or --overwrite to "
                       "start again");
   }
@@ -156,34 +165,31 @@ void TakeOverEarlierRun(PreparedSweep& p, const SweepOptions& options) {
                       run.value("fingerprint", std::string("missing")) + ", " + path + " has " +
                       p.fingerprint + "); refusing to --resume into it");
   }
+  const Shard shard{run.value("/shard/index"_json_pointer, 0),
+                    run.value("/shard/count"_json_pointer, 1)};
+  if (shard.index != p.shard.index || shard.count != p.shard.count) {
+    throw ConfigError(run_json + ": key 'shard': this folder holds shard " +
+                      std::to_string(shard.index) + "/" + std::to_string(shard.count) +
+                      "; refusing to --resume shard " + std::to_string(p.shard.index) + "/" +
+                      std::to_string(p.shard.count) + " into it");
+  }
+  if (written->size() > 4 && written->substr(written->size() - 4) == ".zst") {
+    // Compressed only once complete.
+    p.done = p.jobs.size();
+    p.compressed = true;
+    return;
+  }
+  fs::remove(p.dir + "/frames.csv.zst");
+  fs::remove(p.dir + "/timing.csv.zst");
   std::vector<std::string> names;
   for (const TrackerEntry& t : s.trackers) names.push_back(t.name);
-  const WrittenJobs in_frames = ScanWrittenJobs(frames, FramesCsvHeader(), p.jobs, names, 4, 6);
+  const WrittenJobs in_frames = ScanWrittenJobs(*written, FramesCsvHeader(), p.jobs, names, 4, 6);
   const WrittenJobs in_timing =
       ScanWrittenJobs(p.dir + "/timing.csv", TimingCsvHeader(), p.jobs, names, 0, 1);
   // Continue after the jobs that both files hold whole.
   p.done = std::min(in_frames.complete, in_timing.complete);
   p.frames_bytes = in_frames.offsets[p.done];
   p.timing_bytes = in_timing.offsets[p.done];
-}
-
-// An advisory lock on the output folder, held until the process ends: a second sweep into
-// the same folder is refused instead of interleaving rows with this one.
-void LockOutputFolder(const std::string& out_dir) {
-  CreateOutputFolder(out_dir);
-  const std::string path = out_dir + "/markerbench.lock";
-  const int fd = ::open(path.c_str(), O_RDWR | O_CREAT | O_CLOEXEC, 0644);
-  if (fd < 0) throw std::system_error(errno, std::generic_category(), path + ": cannot open");
-  if (::flock(fd, LOCK_EX | LOCK_NB) != 0) {
-    const int error = errno;
-    ::close(fd);
-    if (error == EWOULDBLOCK) {
-      throw ConfigError(path + ": another markerbench sweep is writing into " + out_dir +
-                        "; wait for it or choose another --out");
-    }
-    throw std::system_error(error, std::generic_category(), path + ": cannot lock");
-  }
-  // The descriptor stays open (and the lock held) for the life of the process.
 }
 
 void WriteAll(int fd, const std::string& text, const std::string& path) {
@@ -335,19 +341,40 @@ nlohmann::json ScenarioManifest(const PreparedSweep& p, int threads) {
     entry["trackers"].push_back(tracker);
   }
   entry["frames"] = p.jobs.size();
+  entry["shard"] = {{"index", p.shard.index}, {"count", p.shard.count}};
   entry["resumed_at_frame"] = p.done;
   entry["threads"] = threads;
   return entry;
 }
 
-void Run(PreparedSweep& p, int threads, const std::string& manifest_path) {
-  fs::create_directories(p.dir + "/examples");
-  {
-    nlohmann::json run;
-    run["scenario"] = p.scenario.path;
-    run["fingerprint"] = p.fingerprint;
-    WriteManifest(p.dir + "/run.json", run);
+// run.json: what `--resume` and `merge` check the folder against.
+nlohmann::json RunJson(const PreparedSweep& p, bool complete) {
+  size_t rows = 0;
+  for (const Job& job : p.jobs) rows += job.trackers.size();
+  return {{"scenario", p.scenario.path},
+          {"fingerprint", p.fingerprint},
+          {"shard", {{"index", p.shard.index}, {"count", p.shard.count}}},
+          {"complete", complete},
+          {"rows", rows}};
+}
+
+// Replaces a complete CSV file by its .zst: the compressed file is in place before the plain
+// one goes, and --resume removes a .zst left beside its plain file.
+void CompressCsv(const std::string& path) {
+  LineReader reader(path);
+  AtomicFileWriter writer(path + ".zst");
+  std::string line;
+  while (reader.Next(&line)) {
+    line += '\n';
+    writer.Write(line);
   }
+  writer.Commit();
+  fs::remove(path);
+}
+
+void Run(PreparedSweep& p, int threads, bool compress, const std::string& manifest_path) {
+  fs::create_directories(p.dir + "/examples");
+  WriteManifest(p.dir + "/run.json", RunJson(p, false));
   AppendFile frames(p.dir + "/frames.csv", p.frames_bytes, FramesCsvHeader());
   AppendFile timing(p.dir + "/timing.csv", p.timing_bytes, TimingCsvHeader());
   for (const std::string& m : p.idle_markers) {
@@ -387,9 +414,16 @@ void Run(PreparedSweep& p, int threads, const std::string& manifest_path) {
   progress.Finish();
   const double wall_s =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  if (compress) {
+    CompressCsv(p.dir + "/frames.csv");
+    CompressCsv(p.dir + "/timing.csv");
+  }
+  WriteManifest(p.dir + "/run.json", RunJson(p, true));
   nlohmann::json entry = ScenarioManifest(p, threads);
+  const double frames_run = static_cast<double>(p.jobs.size() - p.done);
   entry["wall_s"] = wall_s;
-  entry["frames_per_s"] = wall_s > 0.0 ? static_cast<double>(p.jobs.size() - p.done) / wall_s : 0.0;
+  entry["frames_per_s"] = wall_s > 0.0 ? frames_run / wall_s : 0.0;
+  entry["frames_per_core_s"] = wall_s > 0.0 ? frames_run / (wall_s * threads) : 0.0;
   UpdateManifest(manifest_path, p.scenario.name, EnvironmentManifest(threads), entry);
 }
 
@@ -424,10 +458,15 @@ void RunSweeps(const std::vector<std::string>& scenario_paths, const SweepOption
   // make time_ms depend on what the other workers do.
   cv::setNumThreads(1);
   for (PreparedSweep& p : sweeps) {
+    if (p.compressed) {
+      std::fprintf(
+          stderr, "%s: complete (frames.csv.zst); nothing to resume\n", p.scenario.name.c_str());
+      continue;
+    }
     // No more workers than frames left to run.
     const int threads = static_cast<int>(
         std::clamp<size_t>(p.jobs.size() - p.done, 1, static_cast<size_t>(requested)));
-    Run(p, threads, options.out_dir + "/manifest.json");
+    Run(p, threads, options.compress, options.out_dir + "/manifest.json");
   }
 }
 

@@ -8,6 +8,8 @@
 #include <string>
 #include <vector>
 
+#include "bench/shard.h"
+
 namespace markerbench {
 
 constexpr int kMaxThreads = 1024;
@@ -17,13 +19,17 @@ struct SweepOptions {
   int threads = 0;         // 0: every hardware thread; at most kMaxThreads
   bool resume = false;     // continue a killed run of the same scenario
   bool overwrite = false;  // start again over an earlier run
+  Shard shard;             // run only this shard of each scenario's plan (bench/shard.h)
+  // Once a scenario is complete, replace frames.csv and timing.csv by frames.csv.zst and
+  // timing.csv.zst (every command reads both forms).
+  bool compress = false;
 };
 
 // Loads and checks every scenario before writing anything (bad input: ConfigError), locks
 // DIR (DIR/markerbench.lock: a second sweep into DIR is a ConfigError), then runs them one
-// after another. Writes, per scenario, frames.csv,
-// timing.csv, run.json and examples/<marker>.png (trial 0 at the example value), and
-// updates DIR/manifest.json.
+// after another. Writes, per scenario, frames.csv, timing.csv, run.json (the scenario's
+// fingerprint, the shard, and whether the run is complete) and examples/<marker>.png (trial 0
+// at the example value), and updates DIR/manifest.json.
 void RunSweeps(const std::vector<std::string>& scenario_paths, const SweepOptions& options);
 
 }  // namespace markerbench
