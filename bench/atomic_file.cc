@@ -15,18 +15,13 @@ namespace {
 // Level 3, zstd's default: ci_noise's frames.csv becomes 3.4× smaller.
 constexpr int kZstdLevel = 3;
 
-bool EndsWith(const std::string& text, const std::string& suffix) {
-  return text.size() >= suffix.size() &&
-         text.compare(text.size() - suffix.size(), suffix.size(), suffix) == 0;
-}
-
 }  // namespace
 
-AtomicFileWriter::AtomicFileWriter(const std::string& path)
+AtomicFileWriter::AtomicFileWriter(const std::string& path, Compression compression)
     : path_(path), temporary_(path + ".tmp") {
   fd_ = ::open(temporary_.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
   if (fd_ < 0) throw std::runtime_error(temporary_ + ": cannot create: " + std::strerror(errno));
-  if (EndsWith(path, ".zst")) {
+  if (compression == Compression::kZstd) {
     ZSTD_CCtx* context = ZSTD_createCCtx();
     zstd_ = context;
     if (!context ||

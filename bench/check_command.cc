@@ -14,8 +14,9 @@ namespace fs = std::filesystem;
 namespace markerbench {
 namespace {
 
-// The files of a scenario folder that make a reference (no images).
-const char* const kReferenceFiles[] = {"frames.csv", "timing.csv", "run.json"};
+// The files of a scenario folder that make a reference (no images), plain or compressed.
+const char* const kReferenceFiles[] = {
+    "frames.csv", "frames.csv.zst", "timing.csv", "timing.csv.zst", "run.json"};
 
 void Bless(const std::string& run_dir, const std::string& reference_dir, std::ostream& out) {
   CreateOutputFolder(reference_dir);
@@ -41,7 +42,7 @@ void Bless(const std::string& run_dir, const std::string& reference_dir, std::os
   for (const auto& entry : fs::directory_iterator(reference_dir)) {
     const std::string name = entry.path().filename().string();
     if (!entry.is_directory() || scenarios.count(name) ||
-        !fs::exists(entry.path() / "frames.csv")) {
+        !(fs::exists(entry.path() / "frames.csv") || fs::exists(entry.path() / "frames.csv.zst"))) {
       continue;
     }
     for (const char* file : kReferenceFiles) fs::remove(entry.path() / file);

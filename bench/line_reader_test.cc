@@ -45,7 +45,8 @@ std::vector<std::string> ReadAll(const std::string& path) {
 }
 
 std::string Write(const std::string& path, const std::vector<std::string>& lines) {
-  AtomicFileWriter writer(path);
+  const bool zstd = path.size() > 4 && path.substr(path.size() - 4) == ".zst";
+  AtomicFileWriter writer(path, zstd ? Compression::kZstd : Compression::kNone);
   for (const std::string& line : lines) writer.Write(line + "\n");
   writer.Commit();
   return path;

@@ -141,8 +141,9 @@ size_t MergeRows(const std::vector<ShardFolder>& shards,
                  const std::string& out_folder,
                  bool compress) {
   const std::string suffix = compress ? ".zst" : "";
-  AtomicFileWriter frames_out(out_folder + "/frames.csv" + suffix);
-  AtomicFileWriter timing_out(out_folder + "/timing.csv" + suffix);
+  const Compression compression = compress ? Compression::kZstd : Compression::kNone;
+  AtomicFileWriter frames_out(out_folder + "/frames.csv" + suffix, compression);
+  AtomicFileWriter timing_out(out_folder + "/timing.csv" + suffix, compression);
   frames_out.Write(FramesCsvHeader());
   timing_out.Write(TimingCsvHeader());
   std::vector<ShardCursor> cursors(shards.size());

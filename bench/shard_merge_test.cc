@@ -259,6 +259,12 @@ TEST_F(ShardMergeTest, CompressedRunsReadLikePlainOnes) {
   EXPECT_EQ(without_times(Read(packed + "/summary.csv")),
             without_times(Read(plain + "/summary.csv")));
   EXPECT_EQ(Run({"check", packed, "--reference", plain}).status, 0);
+  // A compressed run blessed as the reference stays compressed there and gates plain runs.
+  const std::string reference = (work_ / "reference").string();
+  Ok({"check", packed, "--reference", reference, "--bless"});
+  EXPECT_TRUE(fs::exists(reference + "/packed/frames.csv.zst"));
+  EXPECT_TRUE(fs::exists(reference + "/packed/timing.csv.zst"));
+  EXPECT_EQ(Run({"check", plain, "--reference", reference}).status, 0);
   // Shards compressed, merged compressed: the same rows.
   const std::vector<std::string> dirs = {(work_ / "z0").string(), (work_ / "z1").string()};
   Ok({"sweep", scenario, "--out", dirs[0], "--shard", "0/2", "--zstd"});

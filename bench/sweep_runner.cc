@@ -362,7 +362,7 @@ nlohmann::json RunJson(const PreparedSweep& p, bool complete) {
 // one goes, and --resume removes a .zst left beside its plain file.
 void CompressCsv(const std::string& path) {
   LineReader reader(path);
-  AtomicFileWriter writer(path + ".zst");
+  AtomicFileWriter writer(path + ".zst", Compression::kZstd);
   std::string line;
   while (reader.Next(&line)) {
     line += '\n';
