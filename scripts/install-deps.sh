@@ -15,6 +15,7 @@ packages=(
   libgtest-dev libgmock-dev libbenchmark-dev
   python3 python3-matplotlib python3-opencv python3-yaml
   libxml2-utils
+  slurm-wlm munge
 )
 
 sudo_cmd=()
