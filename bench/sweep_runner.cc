@@ -24,7 +24,6 @@
 #include "bench/progress.h"
 #include "bench/scenario.h"
 #include "bench/sweep_trackers.h"
-#include "core/file_bytes.h"
 #include "core/yaml_reader.h"
 #include "renderer/image_io.h"
 #include "renderer/pose_crlb.h"
@@ -75,30 +74,31 @@ WrittenJobs ScanWrittenJobs(const std::string& path,
     written.offsets.push_back(0);
     return written;
   }
-  const std::string text = ReadFileBytes(path);
-  if (text.rfind(header, 0) != 0) {
+  // Streamed: a shard of millions of rows resumes in bounded memory.
+  const uintmax_t size = fs::file_size(path);
+  LineReader reader(path);
+  std::string line;
+  if (!reader.Next(&line) || line + '\n' != header) {
     throw ConfigError(path + ":1: expected the header '" + header.substr(0, header.size() - 1) +
                       "'; this folder was not written by markerbench sweep");
   }
-  size_t pos = header.size();
-  size_t line_number = 1;
+  uintmax_t pos = header.size();
   written.offsets.push_back(pos);
   for (size_t j = 0; j < jobs.size(); ++j) {
     const Job& job = jobs[j];
     for (const size_t t : job.trackers) {
-      const size_t end = text.find('\n', pos);
-      if (end == std::string::npos) return written;
-      ++line_number;
-      const std::vector<std::string> f = SplitCsvLine(text.substr(pos, end - pos));
+      // A last line without its '\n' is a torn row of a killed run.
+      if (!reader.Next(&line) || pos + line.size() + 1 > size) return written;
+      const std::vector<std::string> f = SplitCsvLine(line);
       if (f.size() <= std::max(column_of_frame, column_of_tracker) ||
           f[column_of_frame] != std::to_string(job.frame.index) ||
           f[column_of_tracker] != tracker_names[t]) {
-        throw ConfigError(path + ":" + std::to_string(line_number) +
+        throw ConfigError(path + ":" + std::to_string(reader.line_number()) +
                           ": expected the row of frame " + std::to_string(job.frame.index) +
                           " and tracker " + tracker_names[t] +
                           "; the file does not follow this scenario's plan");
       }
-      pos = end + 1;
+      pos += line.size() + 1;
     }
     written.offsets.push_back(pos);
     // A job without rows (an example image only) counts once a later job's rows are in.
