@@ -1,6 +1,8 @@
 #include "bench/frames_csv.h"
 
+#include <charconv>
 #include <cmath>
+#include <limits>
 #include <stdexcept>
 
 #include "bench/pose_columns.h"
@@ -49,6 +51,27 @@ double ParseNumber(const std::vector<std::string>& f, size_t i, bool optional) {
                              "'");
   }
   return v;
+}
+
+// A whole number in [0, INT_MAX] (trial, frame, hypotheses).
+int ParseCount(const std::vector<std::string>& f, size_t i) {
+  const double v = ParseNumber(f, i, false);
+  if (!(v >= 0.0 && v <= std::numeric_limits<int>::max()) || v != std::floor(v)) {
+    throw std::runtime_error("column '" + Columns()[i] + "': expected a whole number >= 0, got '" +
+                             f[i] + "'");
+  }
+  return static_cast<int>(v);
+}
+
+// The scenario seed: a whole decimal number of 64 bits.
+uint64_t ParseSeed(const std::vector<std::string>& f, size_t i) {
+  uint64_t seed = 0;
+  const auto [end, error] = std::from_chars(f[i].data(), f[i].data() + f[i].size(), seed);
+  if (error != std::errc() || end != f[i].data() + f[i].size() || f[i].empty()) {
+    throw std::runtime_error("column '" + Columns()[i] + "': expected a whole number, got '" +
+                             f[i] + "'");
+  }
+  return seed;
 }
 
 Rigid3 ParsePose(const std::vector<std::string>& f, size_t first) {
@@ -128,17 +151,17 @@ FrameRow ParseFrameRow(const std::string& line) {
   r.scenario = f[0];
   r.sweep_parameter = f[1];
   r.sweep_value = ParseNumber(f, 2, false);
-  r.trial = static_cast<int>(ParseNumber(f, 3, false));
-  r.frame = static_cast<int>(ParseNumber(f, 4, false));
+  r.trial = ParseCount(f, 3);
+  r.frame = ParseCount(f, 4);
   r.marker = f[5];
   r.tracker = f[6];
-  r.seed = static_cast<uint64_t>(std::stoull(f[7]));
+  r.seed = ParseSeed(f, 7);
   r.apparent_size_px = ParseNumber(f, 8, false);
   r.distance_m = ParseNumber(f, 9, false);
   const std::optional<TrackStatus> status = TrackStatusFromString(f[10]);
   if (!status) throw std::runtime_error("column 'status': unknown status '" + f[10] + "'");
   r.status = *status;
-  r.hypotheses = static_cast<int>(ParseNumber(f, 11, false));
+  r.hypotheses = ParseCount(f, 11);
   r.errors.position_error_m = ParseNumber(f, 12, true);
   r.errors.rotation_error_deg = ParseNumber(f, 13, true);
   r.errors.best_position_error_m = ParseNumber(f, 14, true);

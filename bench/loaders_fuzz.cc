@@ -1,6 +1,7 @@
 // libFuzzer target: the loaders of every file a user writes (camera, marker and scenario
-// YAML, POSES.csv) on arbitrary bytes. The first byte picks the loader, the rest is the
-// file. Bad input must be a ConfigError (exit status 2); any other exception, a crash, a
+// YAML, POSES.csv) and of the results other commands read (frames.csv with timing.csv,
+// plain or zstd-compressed) on arbitrary bytes. The first byte picks the loader, the rest is
+// the file. Bad input must be a ConfigError (exit status 2); any other exception, a crash, a
 // leak or a slow input is a finding. Scenarios may name cameras/*.yaml and markers/*.yaml,
 // copied from scenarios/ beside the fuzzed file.
 #include <unistd.h>
@@ -11,6 +12,7 @@
 #include <string>
 
 #include "bench/render_command.h"
+#include "bench/run_results.h"
 #include "bench/scenario.h"
 #include "core/camera_yaml.h"
 #include "core/config_error.h"
@@ -35,6 +37,20 @@ std::string FuzzedFilePath() {
   return path;
 }
 
+// Reads every row of a run's scenario folder holding only `file`, as report does.
+void ReadRows(const std::string& file, const uint8_t* data, size_t size) {
+  const fs::path folder = fs::path(FuzzedFilePath()).parent_path() / "run";
+  fs::remove_all(folder);
+  fs::create_directories(folder);
+  std::ofstream(folder / file, std::ios::binary)
+      .write(reinterpret_cast<const char*>(data), static_cast<std::streamsize>(size));
+  markerbench::ScenarioRowReader reader(folder.string());
+  markerbench::FrameRow row;
+  double time_ms = 0.0;
+  while (reader.Next(&row, &time_ms)) {
+  }
+}
+
 }  // namespace
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
@@ -44,7 +60,7 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   std::ofstream(path, std::ios::binary)
       .write(reinterpret_cast<const char*>(data + 1), static_cast<std::streamsize>(size - 1));
   try {
-    switch (data[0] % 4) {
+    switch (data[0] % 6) {
       case 0:
         LoadCameraYaml(path);
         break;
@@ -54,8 +70,14 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
       case 2:
         LoadScenario(path);
         break;
-      default:
+      case 3:
         LoadPosesCsv(path);
+        break;
+      case 4:
+        ReadRows("frames.csv", data + 1, size - 1);
+        break;
+      default:
+        ReadRows("frames.csv.zst", data + 1, size - 1);
         break;
     }
   } catch (const ConfigError&) {

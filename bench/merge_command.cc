@@ -2,7 +2,9 @@
 
 #include <sys/resource.h>
 
+#include <cmath>
 #include <filesystem>
+#include <limits>
 #include <map>
 #include <memory>
 #include <nlohmann/json.hpp>
@@ -118,7 +120,8 @@ int FrameOf(const std::string& line, const LineReader& reader, size_t column) {
   const std::vector<std::string> f = SplitCsvLine(line);
   const std::optional<double> frame =
       f.size() > column ? ParseFiniteNumber(f[column]) : std::nullopt;
-  if (!frame || *frame < 0 || *frame != static_cast<int>(*frame)) {
+  if (!frame || !(*frame >= 0.0 && *frame <= std::numeric_limits<int>::max()) ||
+      *frame != std::floor(*frame)) {
     throw ConfigError(reader.path() + ":" + std::to_string(reader.line_number()) +
                       ": expected a frame number in column " + std::to_string(column + 1));
   }

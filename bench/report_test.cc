@@ -75,6 +75,27 @@ TEST(FramesCsv, RowsRoundTrip) {
   EXPECT_THROW(ParseFrameRow("a,b,c"), std::runtime_error);
 }
 
+// Counts and the seed out of their types' range are errors, not wrapped or undefined casts
+// (found by loaders_fuzz).
+TEST(FramesCsv, CountsOutOfRangeAreErrors) {
+  const std::string good = FormatFrameRow(Row("s", "t", 0.1, 3, 0.02));
+  const std::vector<std::string> fields = SplitCsvLine(good.substr(0, good.size() - 1));
+  const auto with = [&](size_t column, const std::string& value) {
+    std::vector<std::string> f = fields;
+    f[column] = value;
+    std::string line;
+    for (const std::string& v : f) line += (line.empty() ? "" : ",") + CsvField(v);
+    return line;
+  };
+  EXPECT_NO_THROW(ParseFrameRow(with(3, "7")));
+  for (const auto& [column, value] : std::vector<std::pair<size_t, std::string>>{
+           {3, "8.65065e+13"}, {3, "-1"}, {4, "2.5"}, {11, "1e300"}, {7, "-3"}, {7, "1x"}}) {
+    EXPECT_THAT([&] { ParseFrameRow(with(column, value)); },
+                ::testing::ThrowsMessage<std::runtime_error>(HasSubstr("expected a whole number")))
+        << column << " " << value;
+  }
+}
+
 class ReportTest : public ::testing::Test {
  protected:
   void SetUp() override {

@@ -17,8 +17,7 @@ void SummaryBuilder::Add(const FrameRow& r, double time_ms) {
     CloseCell();
   }
   if (open_.empty()) {
-    const std::pair<std::string, double> cell{r.scenario, r.sweep_value};
-    if (std::find(closed_cells_.begin(), closed_cells_.end(), cell) != closed_cells_.end()) {
+    if (closed_cells_.count({r.scenario, r.sweep_value})) {
       throw ConfigError("a row of " + r.scenario + " at " + r.sweep_parameter + " = " +
                         NumberText(r.sweep_value) +
                         " after the rows of other values; frames.csv must keep each sweep "
@@ -57,7 +56,7 @@ void SummaryBuilder::Add(const FrameRow& r, double time_ms) {
 }
 
 void SummaryBuilder::CloseCell() {
-  closed_cells_.emplace_back(open_.front().row.scenario, open_.front().row.sweep_value);
+  closed_cells_.emplace(open_.front().row.scenario, open_.front().row.sweep_value);
   for (Group& g : open_) {
     SummaryRow s = g.row;
     s.apparent_size_median_px = Median(g.sizes);

@@ -3,6 +3,7 @@
 #pragma once
 
 #include <optional>
+#include <set>
 #include <string>
 #include <vector>
 
@@ -72,7 +73,7 @@ class SummaryBuilder {
   void CloseCell();
 
   SummaryOptions options_;
-  std::vector<std::pair<std::string, double>> closed_cells_;  // (scenario, sweep value)
+  std::set<std::pair<std::string, double>> closed_cells_;  // (scenario, sweep value)
   std::vector<Group> open_;  // the open cell's groups, in order of appearance
   std::vector<SummaryRow> rows_;
 };

@@ -358,8 +358,9 @@ nlohmann::json RunJson(const PreparedSweep& p, bool complete) {
           {"rows", rows}};
 }
 
-// Replaces a complete CSV file by its .zst: the compressed file is in place before the plain
-// one goes, and --resume removes a .zst left beside its plain file.
+// Replaces a complete CSV file by its .zst (after run.json says complete): the compressed file
+// is in place before the plain one goes, and --resume removes a .zst left beside its plain
+// file.
 void CompressCsv(const std::string& path) {
   LineReader reader(path);
   AtomicFileWriter writer(path + ".zst", Compression::kZstd);
@@ -414,11 +415,11 @@ void Run(PreparedSweep& p, int threads, bool compress, const std::string& manife
   progress.Finish();
   const double wall_s =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  WriteManifest(p.dir + "/run.json", RunJson(p, true));
   if (compress) {
     CompressCsv(p.dir + "/frames.csv");
     CompressCsv(p.dir + "/timing.csv");
   }
-  WriteManifest(p.dir + "/run.json", RunJson(p, true));
   nlohmann::json entry = ScenarioManifest(p, threads);
   const double frames_run = static_cast<double>(p.jobs.size() - p.done);
   entry["wall_s"] = wall_s;

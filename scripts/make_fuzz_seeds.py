@@ -1,11 +1,13 @@
 #!/usr/bin/env python3
 """Writes the fuzz targets' seed corpora (committed; re-run after a format change).
 
-bench/fuzz_corpus/loaders_fuzz: a selector byte (0 camera, 1 marker, 2 scenario, 3 POSES.csv)
-and a shipped file. trackers/fuzz_corpus/track_fuzz: for each tracker, a 64x48 image in the
+bench/fuzz_corpus/loaders_fuzz: a selector byte (0 camera, 1 marker, 2 scenario, 3 POSES.csv,
+4 frames.csv, 5 frames.csv.zst) and a shipped file (frames.csv: the first rows of the CI
+gate's reference run, plain and compressed with the zstd command). trackers/fuzz_corpus/track_fuzz: for each tracker, a 64x48 image in the
 target's input format with a marker-like shape (a black square, or a red and a blue disk).
 """
 import pathlib
+import subprocess
 
 root = pathlib.Path(__file__).resolve().parent.parent
 
@@ -22,6 +24,11 @@ for marker in sorted((root / "scenarios/markers").glob("*.yaml")):
 write(loaders / "scenario", b"\x02" + (root / "scenarios/smoke.yaml").read_bytes())
 write(loaders / "poses", b"\x03r11,r12,r13,r21,r22,r23,r31,r32,r33,tx,ty,tz\n"
       b"1,0,0,0,-1,0,0,0,-1,0,0,0.5\n0.9,0,0.43,0,-1,0,0.43,0,-0.9,0.01,0,0.8\n")
+frames = (root / "results/reference/ci_noise/frames.csv").read_bytes().split(b"\n")
+frames = b"\n".join(frames[:6]) + b"\n"
+write(loaders / "frames", b"\x04" + frames)
+zstd = subprocess.run(["zstd", "-q", "-c"], input=frames, capture_output=True, check=True).stdout
+write(loaders / "frames_zst", b"\x05" + zstd)
 
 width, height = 64, 48
 trackers = ["apriltag", "apriltag-ippe", "artkplus", "aruco", "circle", "runetag"]
