@@ -7,12 +7,12 @@
 #include <filesystem>
 
 #include "core/camera_yaml.h"
+#include "core/codes/artkplus_id_code.h"
+#include "core/codes/runetag_cyclic_code.h"
 #include "core/file_bytes.h"
 #include "core/marker_yaml.h"
 #include "core/test_files.h"
 #include "core/yaml_reader.h"
-#include "trackers/artkplus/id_code.h"
-#include "trackers/runetag/cyclic_code.h"
 
 namespace markerbench {
 namespace {

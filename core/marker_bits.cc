@@ -16,7 +16,7 @@
 #include <stdexcept>
 #include <utility>
 
-#include "trackers/artkplus/id_code.h"
+#include "core/codes/artkplus_id_code.h"
 
 namespace markerbench {
 namespace {

@@ -22,9 +22,9 @@ enum class MarkerKind {
   kAprilTag,  // libapriltag family bitmap
   kAruco,     // OpenCV 4.6 aruco dictionary bitmap
   kBitGrid,   // generic bordered bit-grid square
-  kArtkPlus,  // ARToolKitPlus-style BCH-id or simple-id square (trackers/artkplus/id_code.h)
+  kArtkPlus,  // ARToolKitPlus-style BCH-id or simple-id square (core/codes/artkplus_id_code.h)
   kDotRings,  // generic dots on concentric rings (building block for RUNETag style)
-  kRuneTag,   // RUNETag-style: 43 sectors x 3 rings coded by trackers/runetag/cyclic_code.h
+  kRuneTag,   // RUNETag-style: 43 sectors x 3 rings coded by core/codes/runetag_cyclic_code.h
 };
 
 const char* ToString(MarkerKind kind);

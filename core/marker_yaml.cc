@@ -4,10 +4,10 @@
 #include <filesystem>
 #include <stdexcept>
 
+#include "core/codes/runetag_cyclic_code.h"
 #include "core/marker_bits.h"
 #include "core/marker_scaling.h"
 #include "core/yaml_reader.h"
-#include "trackers/runetag/cyclic_code.h"
 
 namespace markerbench {
 namespace {

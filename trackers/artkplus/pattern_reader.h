@@ -9,7 +9,7 @@
 #include <optional>
 
 #include "core/camera.h"
-#include "trackers/artkplus/id_code.h"
+#include "core/codes/artkplus_id_code.h"
 
 namespace markerbench {
 

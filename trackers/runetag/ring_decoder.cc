@@ -6,13 +6,13 @@
 #include <complex>
 #include <iterator>
 
+#include "core/codes/runetag_cyclic_code.h"
 #include "core/random.h"
 #include "trackers/bilinear_sample.h"
 #include "trackers/circle/analytic_pose.h"
 #include "trackers/circle/conic.h"
 #include "trackers/circle/conic_fit.h"
 #include "trackers/circle/line_at_infinity.h"
-#include "trackers/runetag/cyclic_code.h"
 
 namespace markerbench {
 namespace {

@@ -3,10 +3,10 @@
 #include <limits>
 #include <sstream>
 
+#include "core/codes/runetag_cyclic_code.h"
 #include "core/number_text.h"
 #include "core/yaml_reader.h"
 #include "trackers/grey_image.h"
-#include "trackers/runetag/cyclic_code.h"
 
 namespace markerbench {
 

@@ -1,7 +1,7 @@
-#include "trackers/artkplus/id_code.h"
+#include "core/codes/artkplus_id_code.h"
 
-#include "trackers/artkplus/bch_code.h"
-#include "trackers/artkplus/simple_id_code.h"
+#include "core/codes/artkplus_bch_code.h"
+#include "core/codes/artkplus_simple_id_code.h"
 
 namespace markerbench {
 

@@ -1,4 +1,4 @@
-#include "trackers/artkplus/bch_code.h"
+#include "core/codes/artkplus_bch_code.h"
 
 #include <array>
 #include <bitset>

@@ -10,7 +10,7 @@
 namespace markerbench {
 
 enum class ArtkPlusIdMode {
-  kBch,     // (36,12) BCH, corrects up to 4 bit errors, 4096 ids (bch_code.h)
+  kBch,     // (36,12) BCH, corrects up to 4 bit errors, 4096 ids (artkplus_bch_code.h)
   kSimple,  // 9-bit id repeated 4 times with XOR masks, corrects 1 bit error, 512 ids
 };
 

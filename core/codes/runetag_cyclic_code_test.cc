@@ -1,4 +1,4 @@
-#include "trackers/runetag/cyclic_code.h"
+#include "core/codes/runetag_cyclic_code.h"
 
 #include <gtest/gtest.h>
 

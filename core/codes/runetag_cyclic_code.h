@@ -20,7 +20,7 @@ inline constexpr std::array<double, 3> kRuneRingFractions = {4.0 / 6.0, 5.0 / 6.
 inline constexpr double kRuneDotRadiusRatio = 17.8;
 inline constexpr int kRuneIds = 128;
 // The rotation-aware minimum Hamming distance over symbols that the codebook reaches
-// (cyclic_code_test checks it over every pair and rotation). 29 equals the original's GF(7)
+// (runetag_cyclic_code_test checks it over every pair and rotation). 29 equals the original's GF(7)
 // code (2 * errors + erasures <= 28); 30 would take seconds of greedy search at start-up.
 inline constexpr int kRuneMinDistance = 29;
 // The same minimum counted in dots (slots printed in one word and not in the other): every

@@ -8,11 +8,11 @@
 #include <cstdint>
 #include <optional>
 
-#include "trackers/artkplus/id_code.h"
+#include "core/codes/artkplus_id_code.h"
 
 namespace markerbench {
 
-// Chosen so that no codeword is a 90/180/270-degree rotation of another (id_code_test).
+// Chosen so that no codeword is a 90/180/270-degree rotation of another (artkplus_id_code_test).
 inline constexpr std::array<uint32_t, 4> kSimpleIdMasks = {0x1a5, 0x0e3, 0x13c, 0x05a};
 inline constexpr int kSimpleIds = 512;
 

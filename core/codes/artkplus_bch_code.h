@@ -10,7 +10,7 @@
 #include <cstdint>
 #include <optional>
 
-#include "trackers/artkplus/id_code.h"
+#include "core/codes/artkplus_id_code.h"
 
 namespace markerbench {
 

@@ -1,4 +1,4 @@
-#include "trackers/artkplus/id_code.h"
+#include "core/codes/artkplus_id_code.h"
 
 #include <gtest/gtest.h>
 
@@ -7,8 +7,8 @@
 #include <random>
 #include <vector>
 
-#include "trackers/artkplus/bch_code.h"
-#include "trackers/artkplus/simple_id_code.h"
+#include "core/codes/artkplus_bch_code.h"
+#include "core/codes/artkplus_simple_id_code.h"
 
 namespace markerbench {
 namespace {

@@ -1,4 +1,4 @@
-#include "trackers/artkplus/simple_id_code.h"
+#include "core/codes/artkplus_simple_id_code.h"
 
 namespace markerbench {
 namespace {
