@@ -27,6 +27,11 @@ namespace {
 
 std::string Percent(double rate) { return FormattedOrDash(100.0 * rate, "%.0f%%"); }
 
+// Three significant digits for tables (1.42, 0.0812, 108), whole numbers from 1000 on.
+std::string Significant(double value) {
+  return FormattedOrDash(value, std::fabs(value) >= 1000.0 ? "%.0f" : "%.3g");
+}
+
 // (tracker, marker) pairs of one scenario, in order of appearance.
 std::vector<std::pair<std::string, std::string>> SeriesNames(const std::vector<SummaryRow>& rows,
                                                              const std::string& scenario) {
@@ -76,24 +81,22 @@ std::string ScenarioSection(const std::string& scenario,
     md +=
         "| " + tracker + " | " + marker + " | " + (b ? FormattedOrDash(*b, "%g") : "none") + " |\n";
   }
-  md += "\n| " + parameter + " | tracker | n | size (px) | detected | success" +
+  md += "\n| " + parameter + " | tracker | marker | n | size (px) | detected | success" +
         " | median pos. err (mm) | mean (mm) | p90 (mm) | median rot. err (°)" +
         " | oracle median (mm) | flips | median ms | bound (mm) | × bound | rot. × bound |\n" +
-        "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n";
+        "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n";
   for (const SummaryRow& r : summary) {
     if (r.scenario != scenario) continue;
-    md += "| " + FormattedOrDash(r.sweep_value, "%g") + " | " + r.tracker + " | " +
-          std::to_string(r.n) + " | " + FormattedOrDash(r.apparent_size_median_px, "%.0f") + " | " +
+    md += "| " + FormattedOrDash(r.sweep_value, "%g") + " | " + r.tracker + " | " + r.marker +
+          " | " + std::to_string(r.n) + " | " + Significant(r.apparent_size_median_px) + " | " +
           Percent(r.detection_rate) + " | " + Percent(r.success_rate) + " | " +
-          FormattedOrDash(1e3 * r.position_error_median_m, "%.2f") + " | " +
-          FormattedOrDash(1e3 * r.position_error_mean_m, "%.2f") + " | " +
-          FormattedOrDash(1e3 * r.position_error_p90_m, "%.2f") + " | " +
-          FormattedOrDash(r.rotation_error_median_deg, "%.2f") + " | " +
-          FormattedOrDash(1e3 * r.best_position_error_median_m, "%.2f") + " | " +
-          Percent(r.flip_rate) + " | " + FormattedOrDash(r.time_median_ms, "%.2f") + " | " +
-          FormattedOrDash(1e3 * r.crlb_position_median_m, "%.3g") + " | " +
-          FormattedOrDash(r.efficiency, "%.2f") + " | " +
-          FormattedOrDash(r.rotation_efficiency, "%.2f") + " |\n";
+          Significant(1e3 * r.position_error_median_m) + " | " +
+          Significant(1e3 * r.position_error_mean_m) + " | " +
+          Significant(1e3 * r.position_error_p90_m) + " | " +
+          Significant(r.rotation_error_median_deg) + " | " +
+          Significant(1e3 * r.best_position_error_median_m) + " | " + Percent(r.flip_rate) + " | " +
+          Significant(r.time_median_ms) + " | " + Significant(1e3 * r.crlb_position_median_m) +
+          " | " + Significant(r.efficiency) + " | " + Significant(r.rotation_efficiency) + " |\n";
   }
   return md + "\n";
 }
@@ -182,8 +185,10 @@ void WriteReport(const std::string& dir, const ReportOptions& options) {
         "error divided by the median bound over the same frames (1 is the limit; a better "
         "algorithm cannot go below it, only a bigger marker, a closer camera or less noise "
         "can).\n\n";
-  md += "## The paper's claims beside ours\n\n";
-  md += ReproductionTableMarkdown(ReproduceClaims(summary, options.summary)) + "\n";
+  const std::vector<ClaimResult> claims = ReproduceClaims(summary, options.summary);
+  if (!claims.empty()) {
+    md += "## The paper's claims beside ours\n\n" + ReproductionTableMarkdown(claims) + "\n";
+  }
   for (const std::string& folder : folders) {
     const std::string name = fs::path(folder).filename().string();
     const nlohmann::json entry =

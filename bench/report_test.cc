@@ -161,10 +161,29 @@ TEST_F(ReportTest, SummaryOfASyntheticSweep) {
               HasSubstr("| AprilTag noise breakdown | σ² > 0.18 | breaks down at noise_var = 0.2 "
                         "| agrees |"));
   EXPECT_THAT(report, HasSubstr("not run: no `artkplus` rows in `fig6_noise`"));
-  EXPECT_THAT(report, HasSubstr("| 0.18 | apriltag | 5 | 60 | 80% | 60% | 70.00 |"));
-  EXPECT_THAT(report, HasSubstr("| 3.00 | 30 | 2.80 | 0.00 |\n"));  // ms, bound, × bound
+  EXPECT_THAT(report, HasSubstr("| 0.18 | apriltag | tag | 5 | 60 | 80% | 60% | 70 | 87.5 |"));
+  EXPECT_THAT(report, HasSubstr("| 3 | 30 | 2.8 | 0 |\n"));  // ms, bound, × bound
+  // The circle method's own claims, not run here.
+  EXPECT_THAT(report, HasSubstr("| circle method blur | works up to σ = 10 | not run"));
   EXPECT_THAT(ReadFileBytes(dir_ + "/manifest.json"),
               HasSubstr("\"success_position_fraction_of_distance\": 0.1"));
+}
+
+// A user's own scenario gets its sections, not nine "not run" claims of the paper.
+TEST_F(ReportTest, AUsersScenarioMakesNoClaimsOfThePaper) {
+  fs::create_directories(dir_ + "/mine");
+  std::string frames = FramesCsvHeader();
+  for (int trial = 0; trial < 3; ++trial)
+    frames += FormatFrameRow(Row("mine", "circle", 0.1, trial, 0.01));
+  std::ofstream(dir_ + "/mine/frames.csv") << frames;
+  fs::remove_all(dir_ + "/fig6_noise");
+  ReportOptions options;
+  options.plots = false;
+  WriteReport(dir_, options);
+  const std::string report = ReadFileBytes(dir_ + "/report.md");
+  EXPECT_THAT(report, ::testing::Not(HasSubstr("The paper's claims")));
+  EXPECT_THAT(report, HasSubstr("## mine (sweep of `noise_var`)"));
+  EXPECT_THAT(report, HasSubstr("| 0.1 | circle | tag | 3 |"));
 }
 
 TEST_F(ReportTest, StricterSuccessMovesTheBreakdown) {

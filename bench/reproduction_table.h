@@ -16,7 +16,8 @@ struct ClaimResult {
 };
 
 // Checks every claim against `summary` (scenarios fig6_noise, fig7_blur, fig8_distance, as
-// shipped in scenarios/paper/).
+// shipped in scenarios/paper/; times over those scenarios only). Empty when the summary holds
+// none of them: a user's own scenarios make no claims of the paper.
 std::vector<ClaimResult> ReproduceClaims(const std::vector<SummaryRow>& summary,
                                          const SummaryOptions& options);
 

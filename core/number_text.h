@@ -1,7 +1,8 @@
-// Numbers as text. For CSV files and manifests: the shortest "%.{15,16,17}g" form that reads
-// back to the same double, independent of locale and thread count.
+// Numbers as text. For CSV files and manifests: std::to_chars's shortest form that reads back
+// to the same double, independent of locale and thread count.
 #pragma once
 
+#include <charconv>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -12,12 +13,8 @@ namespace markerbench {
 
 inline std::string NumberText(double value) {
   char buffer[32];
-  for (int digits = 15; digits < 17; ++digits) {
-    std::snprintf(buffer, sizeof(buffer), "%.*g", digits, value);
-    if (std::strtod(buffer, nullptr) == value) return buffer;
-  }
-  std::snprintf(buffer, sizeof(buffer), "%.17g", value);
-  return buffer;
+  const std::to_chars_result result = std::to_chars(buffer, buffer + sizeof(buffer), value);
+  return std::string(buffer, result.ptr);
 }
 
 // An empty CSV field for NaN (no value), else NumberText.

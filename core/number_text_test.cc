@@ -17,6 +17,16 @@ TEST(NumberText, IsShortForDecimalLiterals) {
   EXPECT_EQ(NumberText(1e-20), "1e-20");
 }
 
+// The shortest digits that read back, never padding (%.15g wrote 4.94065645841247e-324 for
+// the smallest denormal).
+TEST(NumberText, IsTheShortestRoundTrip) {
+  EXPECT_EQ(NumberText(5e-324), "5e-324");
+  EXPECT_EQ(NumberText(0.1 + 0.2), "0.30000000000000004");
+  EXPECT_EQ(NumberText(1.0 / 3.0), "0.3333333333333333");
+  EXPECT_EQ(NumberText(1e22), "1e+22");
+  EXPECT_EQ(NumberText(INFINITY), "inf");
+}
+
 TEST(NumberText, ReadsBackExactly) {
   Rng rng(11);
   for (int i = 0; i < 10000; ++i) {

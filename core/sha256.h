@@ -1,7 +1,8 @@
-// SHA-256 (FIPS 180-4), for the run fingerprints and the manifest's file hashes.
+// SHA-256 for the run fingerprints and the manifest's file hashes: OpenSSL's libcrypto (EVP),
+// behind a small interface so that callers do not see OpenSSL.
 #pragma once
 
-#include <cstdint>
+#include <memory>
 #include <string>
 
 namespace markerbench {
@@ -9,16 +10,17 @@ namespace markerbench {
 class Sha256 {
  public:
   Sha256();
+  ~Sha256();
+  Sha256(const Sha256&) = delete;
+  Sha256& operator=(const Sha256&) = delete;
+
   void Update(const std::string& bytes);
   // Lower-case hex digest; the object must not be updated afterwards.
   std::string HexDigest();
 
  private:
-  void Compress(const uint8_t* block);
-
-  uint32_t state_[8];
-  uint8_t buffer_[64];
-  uint64_t length_bytes_ = 0;
+  struct Context;
+  std::unique_ptr<Context> context_;
 };
 
 // Digest of a string, and of a file's bytes (throws std::runtime_error when unreadable).
