@@ -10,7 +10,28 @@ function(run expected_status)
     message(FATAL_ERROR "markerbench ${ARGN}: status ${status}, expected ${expected_status}\n${out}\n${err}")
   endif()
   set(last_error "${err}" PARENT_SCOPE)
+  set(last_output "${out}" PARENT_SCOPE)
 endfunction()
+
+# --version names the build and the libraries; list names every tracker with its options
+# and the marker files it reads, and every marker file with its readers.
+run(0 --version)
+if(NOT last_output MATCHES "^markerbench [^\n]+ \\(" OR NOT last_output MATCHES "\nOpenCV 4"
+   OR NOT last_output MATCHES "\nzstd [0-9]")
+  message(FATAL_ERROR "unexpected --version: ${last_output}")
+endif()
+run(0 list trackers)
+foreach(expected "circle\n  reads: circle_d \\(circle_d\\), circles_a" "    tracking: true"
+                 "apriltag  \\[isolated in sweeps by default\\]" "runetag\n  reads: runetag")
+  if(NOT last_output MATCHES "${expected}")
+    message(FATAL_ERROR "list trackers lacks '${expected}':\n${last_output}")
+  endif()
+endforeach()
+run(0 list markers)
+if(NOT last_output MATCHES "aruco: aruco DICT_6X6_250 id 0, 100 mm; read by aruco\n")
+  message(FATAL_ERROR "unexpected list markers:\n${last_output}")
+endif()
+run(2 list sequences)
 
 run(0 render scenarios/smoke.yaml --out ${WORK_DIR}/smoke)
 file(STRINGS ${WORK_DIR}/smoke/groundtruth.csv rows)

@@ -10,6 +10,8 @@
 
 #include "bench/check_command.h"
 #include "bench/crlb_command.h"
+#include "bench/list_command.h"
+#include "bench/manifest.h"
 #include "bench/marker_sheets.h"
 #include "bench/merge_command.h"
 #include "bench/render_command.h"
@@ -54,6 +56,16 @@ int main(int argc, char** argv) {
   using namespace markerbench;
   CLI::App app{"markerbench: synthetic benchmark of fiducial-marker pose tracking"};
   app.require_subcommand(1);
+  app.set_version_flag("--version", [] { return VersionText(); });
+
+  CLI::App* list =
+      app.add_subcommand("list", "The trackers (options, defaults, markers they read) or markers");
+  std::string list_what;
+  std::string list_markers_dir = std::string(MARKERBENCH_SOURCE_DIR) + "/scenarios/markers";
+  list->add_option("what", list_what, "trackers or markers")
+      ->required()
+      ->check(CLI::IsMember({"trackers", "markers"}));
+  list->add_option("--markers-dir", list_markers_dir, "Folder of marker YAML files");
 
   CLI::App* render = app.add_subcommand(
       "render", "Render frames with ground truth: from a SCENARIO, or --marker/--camera/--poses");
@@ -211,7 +223,9 @@ int main(int argc, char** argv) {
     return app.exit(e) == 0 ? 0 : kBadInput;
   }
   try {
-    if (render->parsed()) {
+    if (list->parsed()) {
+      ListCommand(list_what, list_markers_dir, std::cout);
+    } else if (render->parsed()) {
       const bool explicit_form = !explicit_options.marker_path.empty() ||
                                  !explicit_options.camera_path.empty() ||
                                  !explicit_options.poses_path.empty();

@@ -54,6 +54,17 @@ nlohmann::json EnvironmentManifest(int threads) {
   return env;
 }
 
+std::string VersionText() {
+  const std::string describe = CommandOutput(std::string("git -C '") + MARKERBENCH_SOURCE_DIR +
+                                             "' describe --always --dirty 2>/dev/null");
+  std::string text = "markerbench " + (describe.empty() ? std::string("(no git)") : describe) +
+                     " (" + build_info::kBuildType + ", " + build_info::kCompiler + ")\n";
+  for (const auto& [library, version] : build_info::kLibraries) {
+    text += std::string(library) + " " + version + "\n";
+  }
+  return text;
+}
+
 nlohmann::json ReadManifest(const std::string& path) {
   if (!std::filesystem::exists(path)) return nlohmann::json::object();
   RequireRegularFile(path);

@@ -11,6 +11,9 @@ namespace markerbench {
 // What built and ran this program.
 nlohmann::json EnvironmentManifest(int threads);
 
+// `markerbench --version`: the source's git describe, the build and the libraries' versions.
+std::string VersionText();
+
 // Reads `path` (if any), sets "environment", puts `entry` at scenarios[scenario_name] and
 // writes it back atomically (temporary file, then rename).
 void UpdateManifest(const std::string& path,
