@@ -27,9 +27,20 @@ namespace {
 
 std::string Percent(double rate) { return FormattedOrDash(100.0 * rate, "%.0f%%"); }
 
+// "31–83%": a rate's interval.
+std::string PercentRange(const Interval& ci) {
+  return FormattedOrDash(100.0 * ci.lo, "%.0f") + "–" + FormattedOrDash(100.0 * ci.hi, "%.0f%%");
+}
+
 // Three significant digits for tables (1.42, 0.0812, 108), whole numbers from 1000 on.
 std::string Significant(double value) {
   return FormattedOrDash(value, std::fabs(value) >= 1000.0 ? "%.0f" : "%.3g");
+}
+
+// " (1.2–3.4)": a median error's interval in mm; nothing when the sample is too small.
+std::string MillimetreRange(const Interval& ci_m) {
+  if (std::isnan(ci_m.lo)) return "";
+  return " (" + Significant(1e3 * ci_m.lo) + "–" + Significant(1e3 * ci_m.hi) + ")";
 }
 
 // (tracker, marker) pairs of one scenario, in order of appearance.
@@ -81,6 +92,7 @@ std::string ScenarioSection(const std::string& scenario,
     md +=
         "| " + tracker + " | " + marker + " | " + (b ? FormattedOrDash(*b, "%g") : "none") + " |\n";
   }
+  md += "\nSuccess and median error with their 95 % intervals (Wilson; order statistics).\n";
   md += "\n| " + parameter + " | tracker | marker | n | size (px) | detected | success" +
         " | median pos. err (mm) | mean (mm) | p90 (mm) | median rot. err (°)" +
         " | oracle median (mm) | flips | median ms | bound (mm) | × bound | rot. × bound |\n" +
@@ -89,8 +101,9 @@ std::string ScenarioSection(const std::string& scenario,
     if (r.scenario != scenario) continue;
     md += "| " + FormattedOrDash(r.sweep_value, "%g") + " | " + r.tracker + " | " + r.marker +
           " | " + std::to_string(r.n) + " | " + Significant(r.apparent_size_median_px) + " | " +
-          Percent(r.detection_rate) + " | " + Percent(r.success_rate) + " | " +
-          Significant(1e3 * r.position_error_median_m) + " | " +
+          Percent(r.detection_rate) + " | " + Percent(r.success_rate) + " (" +
+          PercentRange(r.success_rate_ci) + ") | " + Significant(1e3 * r.position_error_median_m) +
+          MillimetreRange(r.position_error_median_ci_m) + " | " +
           Significant(1e3 * r.position_error_mean_m) + " | " +
           Significant(1e3 * r.position_error_p90_m) + " | " +
           Significant(r.rotation_error_median_deg) + " | " +

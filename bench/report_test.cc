@@ -135,21 +135,64 @@ TEST_F(ReportTest, SummaryOfASyntheticSweep) {
   // scenario .. marker, then n, median apparent size, detection, success, median / mean / p90
   // error, median rotation, oracle median, flip rate, median time (of every call: 1..5 ms),
   // median bound (1..5 cm over all trials: 3 cm), efficiency (median error / median bound of
-  // the posed trials), median rotation bound, rotation efficiency (no rotation error: 0).
+  // the posed trials), median rotation bound, rotation efficiency (no rotation error: 0);
+  // then the Wilson intervals of detection and success (5/5: 0.5655-1, 4/5: 0.3755-0.9638,
+  // 3/5: 0.2307-0.8824, 2/5: 0.1176-0.7693).
   const std::vector<std::vector<double>> expected = {
-      {5, 60, 1.0, 1.0, 0.03, 0.03, 0.046, 0, 0.03, 0, 3, 0.03, 1.0, 0.5, 0},
+      {5, 60, 1.0, 1.0, 0.03, 0.03, 0.046, 0, 0.03, 0, 3, 0.03, 1.0, 0.5, 0, 0.5655, 1, 0.5655, 1},
       // Posed errors 0.01, 0.05, 0.09, 0.2: median 0.07, mean 0.0875, p90 0.167; posed
       // bounds 1-4 cm: efficiency 0.07 / 0.025.
-      {5, 60, 0.8, 0.6, 0.07, 0.0875, 0.167, 0, 0.07, 0, 3, 0.03, 2.8, 0.5, 0},
+      {5,
+       60,
+       0.8,
+       0.6,
+       0.07,
+       0.0875,
+       0.167,
+       0,
+       0.07,
+       0,
+       3,
+       0.03,
+       2.8,
+       0.5,
+       0,
+       0.3755,
+       0.9638,
+       0.2307,
+       0.8824},
       // Posed errors 0.02, 0.08, 0.5: median 0.08, mean 0.2, p90 0.416; bounds 1-3 cm.
-      {5, 60, 0.6, 0.4, 0.08, 0.2, 0.416, 0, 0.08, 0, 3, 0.03, 4.0, 0.5, 0}};
+      {5,
+       60,
+       0.6,
+       0.4,
+       0.08,
+       0.2,
+       0.416,
+       0,
+       0.08,
+       0,
+       3,
+       0.03,
+       4.0,
+       0.5,
+       0,
+       0.2307,
+       0.8824,
+       0.1176,
+       0.7693}};
   for (const std::vector<double>& want : expected) {
     ASSERT_TRUE(std::getline(summary, line));
     const std::vector<std::string> fields = SplitCsvLine(line);
-    ASSERT_EQ(fields.size(), 20u) << line;
+    ASSERT_EQ(fields.size(), 28u) << line;
+    // Five or fewer posed frames: no median interval reaches 95 % (empty fields).
+    for (size_t i = 24; i < 28; ++i) {
+      EXPECT_EQ(fields[i], "") << line;
+    }
     EXPECT_EQ(fields[0] + fields[3] + fields[4], "fig6_noiseapriltagtag");
     for (size_t i = 0; i < want.size(); ++i) {
-      EXPECT_NEAR(std::stod(fields[5 + i]), want[i], 1e-12) << line << " column " << 5 + i;
+      EXPECT_NEAR(std::stod(fields[5 + i]), want[i], i < 15 ? 1e-12 : 5e-5)
+          << line << " column " << 5 + i;
     }
   }
   EXPECT_FALSE(std::getline(summary, line));
@@ -161,7 +204,8 @@ TEST_F(ReportTest, SummaryOfASyntheticSweep) {
               HasSubstr("| AprilTag noise breakdown | σ² > 0.18 | breaks down at noise_var = 0.2 "
                         "| agrees |"));
   EXPECT_THAT(report, HasSubstr("not run: no `artkplus` rows in `fig6_noise`"));
-  EXPECT_THAT(report, HasSubstr("| 0.18 | apriltag | tag | 5 | 60 | 80% | 60% | 70 | 87.5 |"));
+  EXPECT_THAT(report,
+              HasSubstr("| 0.18 | apriltag | tag | 5 | 60 | 80% | 60% (23–88%) | 70 | 87.5 |"));
   EXPECT_THAT(report, HasSubstr("| 3 | 30 | 2.8 | 0 |\n"));  // ms, bound, × bound
   // The circle method's own claims, not run here.
   EXPECT_THAT(report, HasSubstr("| circle method blur | works up to σ = 10 | not run"));

@@ -73,6 +73,10 @@ void SummaryBuilder::CloseCell() {
     s.crlb_rotation_median_deg = Median(g.rotation_bound);
     s.efficiency = s.position_error_median_m / Median(g.posed_position_bound);
     s.rotation_efficiency = s.rotation_error_median_deg / Median(g.posed_rotation_bound);
+    s.detection_rate_ci = WilsonInterval(g.detected, s.n);
+    s.success_rate_ci = WilsonInterval(g.successes, s.n);
+    s.position_error_median_ci_m = MedianInterval(g.position);
+    s.rotation_error_median_ci_deg = MedianInterval(g.rotation);
     rows_.push_back(s);
   }
   open_.clear();
@@ -118,7 +122,10 @@ std::string SummaryCsv(const std::vector<SummaryRow>& rows) {
       "detection_rate,success_rate,"
       "position_error_median_m,position_error_mean_m,position_error_p90_m,"
       "rotation_error_median_deg,best_position_error_median_m,flip_rate,time_median_ms,"
-      "crlb_position_median_m,efficiency,crlb_rotation_median_deg,rotation_efficiency\n";
+      "crlb_position_median_m,efficiency,crlb_rotation_median_deg,rotation_efficiency,"
+      "detection_rate_lo,detection_rate_hi,success_rate_lo,success_rate_hi,"
+      "position_error_median_lo_m,position_error_median_hi_m,"
+      "rotation_error_median_lo_deg,rotation_error_median_hi_deg\n";
   for (const SummaryRow& r : rows) {
     csv += CsvField(r.scenario) + ',' + r.sweep_parameter + ',' + NumberText(r.sweep_value) + ',' +
            CsvField(r.tracker) + ',' + CsvField(r.marker) + ',' + std::to_string(r.n) + ',' +
@@ -131,7 +138,14 @@ std::string SummaryCsv(const std::vector<SummaryRow>& rows) {
            NumberTextOrEmpty(r.flip_rate) + ',' + NumberTextOrEmpty(r.time_median_ms) + ',' +
            NumberTextOrEmpty(r.crlb_position_median_m) + ',' + NumberTextOrEmpty(r.efficiency) +
            ',' + NumberTextOrEmpty(r.crlb_rotation_median_deg) + ',' +
-           NumberTextOrEmpty(r.rotation_efficiency) + '\n';
+           NumberTextOrEmpty(r.rotation_efficiency);
+    for (const Interval& i : {r.detection_rate_ci,
+                              r.success_rate_ci,
+                              r.position_error_median_ci_m,
+                              r.rotation_error_median_ci_deg}) {
+      csv += ',' + NumberTextOrEmpty(i.lo) + ',' + NumberTextOrEmpty(i.hi);
+    }
+    csv += '\n';
   }
   return csv;
 }

@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "bench/frames_csv.h"
+#include "bench/intervals.h"
 
 namespace markerbench {
 
@@ -44,6 +45,11 @@ struct SummaryRow {
   double crlb_rotation_median_deg = 0.0;
   double efficiency = 0.0;
   double rotation_efficiency = 0.0;
+  // 95 % intervals (bench/intervals.h): Wilson for the rates, order statistics for medians.
+  Interval detection_rate_ci;
+  Interval success_rate_ci;
+  Interval position_error_median_ci_m;
+  Interval rotation_error_median_ci_deg;
 };
 
 // Builds the summary from frames.csv rows, one at a time, in memory bounded by one sweep cell

@@ -42,6 +42,11 @@ def number(text):
     return float(text) if text != "" else float("nan")
 
 
+def band(rows, column, scale):
+    """A column of summary.csv scaled, NaN where empty or absent (an older summary)."""
+    return [scale * number(r.get(column) or "") for r in rows]
+
+
 def read_summary(path):
     scenarios = {}
     with open(path, newline="") as f:
@@ -58,7 +63,7 @@ def plot_errors(directory, scenario, series):
         t for t, _ in series if sum(1 for u, _ in series if u == t) > 1
     }
     fig, (err_ax, ok_ax) = plt.subplots(
-        2, 1, sharex=True, figsize=(7, 6), gridspec_kw={"height_ratios": [3, 2]}
+        2, 1, sharex=True, figsize=(9.5, 6), gridspec_kw={"height_ratios": [3, 2]}
     )
     floors = []
     for (tracker, marker), rows in series.items():
@@ -70,6 +75,12 @@ def plot_errors(directory, scenario, series):
         bound = [1e3 * number(r.get("crlb_position_median_m", "")) for r in rows]
         (line,) = err_ax.plot(x, median, "o-", label=label, markersize=4)
         err_ax.plot(x, p90, "--", color=line.get_color(), linewidth=0.8)
+        # 95 % intervals of summary.csv: the median's (order statistics), the rate's (Wilson).
+        err_ax.fill_between(x, band(rows, "position_error_median_lo_m", 1e3),
+                            band(rows, "position_error_median_hi_m", 1e3),
+                            color=line.get_color(), alpha=0.18, linewidth=0)
+        ok_ax.fill_between(x, band(rows, "success_rate_lo", 100), band(rows, "success_rate_hi", 100),
+                           color=line.get_color(), alpha=0.18, linewidth=0)
         if any(math.isfinite(b) for b in bound):
             err_ax.plot(x, bound, ":", color=line.get_color(), linewidth=1.0)
             floors.append((x, bound, line.get_color()))
@@ -81,13 +92,14 @@ def plot_errors(directory, scenario, series):
             err_ax.fill_between(x, bottom, bound, color=color, alpha=0.06, linewidth=0)
         err_ax.set_ylim(bottom=bottom)
         err_ax.plot([], [], ":", color="grey", label="physical limit (Cramér-Rao)")
-    err_ax.set_ylabel("camera-centre error (mm)\nmedian, p90 dashed, bound dotted")
+    err_ax.set_ylabel("camera-centre error (mm)\nmedian (95% band), p90 dashed, bound dotted")
     err_ax.grid(True, which="both", alpha=0.3)
-    err_ax.legend(fontsize=8)
+    # Beside the axes, never over the data.
+    err_ax.legend(fontsize=8, loc="upper left", bbox_to_anchor=(1.01, 1.0), borderaxespad=0)
     err_ax.set_title(f"{scenario}: localization error versus {LABELS.get(parameter, parameter)}")
     ok_ax.axhline(50, color="grey", linewidth=0.8, linestyle=":")
     ok_ax.set_ylim(-5, 105)
-    ok_ax.set_ylabel("success rate (%)")
+    ok_ax.set_ylabel("success rate (%)\n95% Wilson band")
     ok_ax.set_xlabel(LABELS.get(parameter, parameter))
     ok_ax.grid(True, alpha=0.3)
     fig.tight_layout()
