@@ -85,6 +85,9 @@ int main(int argc, char** argv) {
       ->check(FiniteRange(0.0, 100.0));
   render->add_option("--seed", explicit_options.seed, "Noise seed")
       ->check(FiniteRange(0.0, 2147483647.0));
+  render->add_flag("--overwrite",
+                   explicit_options.overwrite,
+                   "Replace the dataset an earlier render wrote into --out");
   render->add_flag("--float",
                    explicit_options.write_float,
                    "Also write frame_NNNNNN.exr (linear float, after noise and clipping)");
@@ -239,9 +242,26 @@ int main(int argc, char** argv) {
           std::cerr << "render: the explicit form needs --marker, --camera and --poses\n";
           return kBadInput;
         }
+        if (render->count("--limit") > 0) {
+          std::cerr << "render: --limit applies to a scenario's frames; with --poses, render "
+                       "fewer poses\n";
+          return kBadInput;
+        }
         RenderPoses(explicit_options);
       } else {
-        RenderScenario(scenario, explicit_options.out_dir, limit, explicit_options.write_float);
+        for (const char* option : {"--noise-var", "--blur-sigma", "--seed"}) {
+          if (render->count(option) > 0) {
+            std::cerr << "render: " << option
+                      << " is for the explicit form; a scenario sets its noise, blur and seed "
+                         "in its render: and seed: keys\n";
+            return kBadInput;
+          }
+        }
+        RenderScenario(scenario,
+                       explicit_options.out_dir,
+                       limit,
+                       explicit_options.write_float,
+                       explicit_options.overwrite);
       }
     } else if (track->parsed()) {
       RunTrackCommand(track_options);

@@ -24,6 +24,24 @@ void CreateOutputFolder(const std::string& dir) {
     throw std::runtime_error(dir + ": cannot create the output folder: " + error.message());
 }
 
+void CreateEmptyOutputFolder(const std::string& dir, bool overwrite) {
+  CreateOutputFolder(dir);
+  if (std::filesystem::is_empty(dir)) return;
+  if (!overwrite) {
+    throw ConfigError(dir +
+                      ": not empty; choose a new --out, or pass --overwrite to replace the "
+                      "dataset markerbench rendered there");
+  }
+  if (!std::filesystem::exists(std::filesystem::path(dir) / "dataset.json")) {
+    throw ConfigError(dir +
+                      ": --overwrite empties only a folder markerbench rendered (with "
+                      "dataset.json); this one holds something else");
+  }
+  for (const auto& entry : std::filesystem::directory_iterator(dir)) {
+    std::filesystem::remove_all(entry.path());
+  }
+}
+
 void LockOutputFolder(const std::string& out_dir) {
   CreateOutputFolder(out_dir);
   const std::string path = out_dir + "/markerbench.lock";

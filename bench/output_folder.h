@@ -11,6 +11,12 @@ namespace markerbench {
 // created (no permission, a full disk).
 void CreateOutputFolder(const std::string& dir);
 
+// Creates `dir` for a command that fills a whole folder (render): an existing folder must be
+// empty, or, with `overwrite`, hold a dataset markerbench wrote (dataset.json), which is then
+// emptied; never a mix of two runs, and never the emptying of a folder of something else.
+// ConfigError naming `dir` otherwise.
+void CreateEmptyOutputFolder(const std::string& dir, bool overwrite);
+
 // Creates `dir` as above and takes an advisory lock on it (DIR/markerbench.lock), held until
 // the process ends: a second sweep or merge into `dir` is a ConfigError instead of
 // interleaving its rows with this one's.

@@ -88,10 +88,11 @@ std::string WriteFrame(const std::string& dir, int index, const RenderedFrame& f
 void RenderScenario(const std::string& scenario_path,
                     const std::string& out_dir,
                     int limit,
-                    bool write_float) {
+                    bool write_float,
+                    bool overwrite) {
   const Scenario scenario = LoadScenario(scenario_path);
   const std::vector<PlannedFrame> frames = PlanFrames(scenario, limit);
-  CreateOutputFolder(out_dir);
+  CreateEmptyOutputFolder(out_dir, overwrite);
   WriteDatasetFiles(out_dir,
                     scenario.name,
                     scenario_path,
@@ -194,7 +195,7 @@ ExplicitFrames LoadExplicitFrames(const std::string& marker_path,
 void RenderPoses(const ExplicitRenderOptions& o) {
   const ExplicitFrames frames = LoadExplicitFrames(
       o.marker_path, o.camera_path, o.poses_path, o.noise_var, o.blur_sigma_px, Channels::kAuto);
-  CreateOutputFolder(o.out_dir);
+  CreateEmptyOutputFolder(o.out_dir, o.overwrite);
   const std::string& name = frames.marker.name;
   WriteDatasetFiles(
       o.out_dir,

@@ -12,12 +12,14 @@
 
 namespace markerbench {
 
-// Renders the scenario's frames in (cell, trial, marker) order, at most `limit` (0: all).
-// With write_float, also frame_NNNNNN.exr: the linear float image after noise and clipping.
+// Renders the scenario's frames in (cell, trial, marker) order, at most `limit` (0: all),
+// into an empty folder (bench/output_folder.h: CreateEmptyOutputFolder). With write_float,
+// also frame_NNNNNN.exr: the linear float image after noise and clipping.
 void RenderScenario(const std::string& scenario_path,
                     const std::string& out_dir,
                     int limit,
-                    bool write_float);
+                    bool write_float,
+                    bool overwrite);
 
 struct ExplicitRenderOptions {
   std::string marker_path;
@@ -28,6 +30,7 @@ struct ExplicitRenderOptions {
   double blur_sigma_px = 0.0;
   uint64_t seed = 0;
   bool write_float = false;  // also frame_NNNNNN.exr (linear, after noise and clipping)
+  bool overwrite = false;    // replace the dataset rendered in out_dir before
 };
 
 void RenderPoses(const ExplicitRenderOptions& options);

@@ -31,7 +31,7 @@ const std::string& DatasetDir() {
   static const std::string dir = [] {
     const std::string out = fs::path(WriteTestFile("unused", "")).parent_path() / "dataset";
     fs::remove_all(out);
-    RenderScenario("scenarios/smoke.yaml", out, kFrames, false);
+    RenderScenario("scenarios/smoke.yaml", out, kFrames, false, false);
     return out;
   }();
   return dir;
