@@ -173,6 +173,18 @@ if(NOT last_error MATCHES "unknown tracker 'nosuch'")
   message(FATAL_ERROR "unexpected message: ${last_error}")
 endif()
 
+# Every example with a tracked marker sweeps; the others name what they lack.
+foreach(example all_markers apriltag artkplus aruco circle_d circles_a circles_b circles_c)
+  run(0 sweep scenarios/examples/${example}.yaml --out ${WORK_DIR}/examples --threads 2)
+endforeach()
+foreach(example bit_grid circle_e circle_f dot_rings)
+  run(2 sweep scenarios/examples/${example}.yaml --out ${WORK_DIR}/examples)
+  if(NOT last_error MATCHES "key 'trackers': missing")
+    message(FATAL_ERROR "unexpected message: ${last_error}")
+  endif()
+endforeach()
+run(0 report ${WORK_DIR}/examples --no-plots)
+
 # sweep + report end to end, with the plots (Debian python3-matplotlib).
 run(0 sweep scenarios/smoke.yaml --out ${WORK_DIR}/sweep --threads 2)
 run(0 report ${WORK_DIR}/sweep)
