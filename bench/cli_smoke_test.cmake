@@ -188,7 +188,8 @@ run(0 report ${WORK_DIR}/examples --no-plots)
 # sweep + report end to end, with the plots (Debian python3-matplotlib).
 run(0 sweep scenarios/smoke.yaml --out ${WORK_DIR}/sweep --threads 2)
 run(0 report ${WORK_DIR}/sweep)
-foreach(f summary.csv report.md manifest.json smoke.png smoke_examples.png smoke/frames.csv
+foreach(f summary.csv report.md manifest.json smoke.png smoke_rotation_time.png
+          smoke_examples.png smoke/frames.csv
           smoke/timing.csv smoke/examples/circles_a.png smoke/examples/apriltag.png)
   if(NOT EXISTS ${WORK_DIR}/sweep/${f})
     message(FATAL_ERROR "sweep/report did not write ${f}")

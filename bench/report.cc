@@ -81,6 +81,10 @@ std::string ScenarioSection(const std::string& scenario,
   if (fs::exists(dir + "/" + scenario + ".png")) {
     md += "![" + scenario + ": error and success rate](" + scenario + ".png)\n\n";
   }
+  if (fs::exists(dir + "/" + scenario + "_rotation_time.png")) {
+    md += "![" + scenario + ": rotation error and time per frame](" + scenario +
+          "_rotation_time.png)\n\n";
+  }
   if (fs::exists(dir + "/" + scenario + "_examples.png")) {
     md += "![" + scenario + ": example images](" + scenario + "_examples.png)\n\n";
   }

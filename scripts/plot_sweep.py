@@ -9,7 +9,9 @@ writes, for every scenario:
                                physical limit (the median Cramér-Rao bound of the frames,
                                dotted, the unreachable region below it shaded) and, in its
                                own panel, the success rate versus the sweep value; one line
-                               per tracker;
+                               per tracker, with 95 % bands;
+  DIR/<scenario>_rotation_time.png  median rotation error (band, bound dotted) and median
+                               time per frame versus the sweep value;
   DIR/<scenario>_examples.png  trial 0 of every marker at the scenario's example value
                                (DIR/<scenario>/examples/<marker>.png), like panels (a)-(d).
 Needs Debian's python3-matplotlib (run with /usr/bin/python3).
@@ -107,6 +109,38 @@ def plot_errors(directory, scenario, series):
     plt.close(fig)
 
 
+def plot_rotation_and_time(directory, scenario, series):
+    """<scenario>_rotation_time.png: median rotation error (with its 95 % band and bound) and
+    median time per frame, per tracker."""
+    parameter = next(iter(series.values()))[0]["sweep_parameter"]
+    fig, (rot_ax, time_ax) = plt.subplots(2, 1, sharex=True, figsize=(9.5, 5.5))
+    for (tracker, marker), rows in series.items():
+        x = [number(r["sweep_value"]) for r in rows]
+        label = f"{tracker} ({marker})"
+        (line,) = rot_ax.plot(x, band(rows, "rotation_error_median_deg", 1), "o-", label=label,
+                              markersize=4)
+        rot_ax.fill_between(x, band(rows, "rotation_error_median_lo_deg", 1),
+                            band(rows, "rotation_error_median_hi_deg", 1),
+                            color=line.get_color(), alpha=0.18, linewidth=0)
+        rot_ax.plot(x, band(rows, "crlb_rotation_median_deg", 1), ":", color=line.get_color(),
+                    linewidth=1.0)
+        time_ax.plot(x, band(rows, "time_median_ms", 1), "o-", color=line.get_color(),
+                     markersize=4)
+    rot_ax.set_yscale("log")
+    rot_ax.set_ylabel("rotation error (°)\nmedian (95% band), bound dotted")
+    rot_ax.grid(True, which="both", alpha=0.3)
+    rot_ax.legend(fontsize=8, loc="upper left", bbox_to_anchor=(1.01, 1.0), borderaxespad=0)
+    rot_ax.set_title(f"{scenario}: rotation error and time per frame versus "
+                     f"{LABELS.get(parameter, parameter)}")
+    time_ax.set_yscale("log")
+    time_ax.set_ylabel("time per frame (ms)\nmedian")
+    time_ax.set_xlabel(LABELS.get(parameter, parameter))
+    time_ax.grid(True, which="both", alpha=0.3)
+    fig.tight_layout()
+    fig.savefig(os.path.join(directory, f"{scenario}_rotation_time.png"), dpi=110)
+    plt.close(fig)
+
+
 def plot_examples(directory, scenario, entry):
     folder = os.path.join(directory, scenario, "examples")
     markers = entry.get("markers") or sorted(
@@ -146,6 +180,7 @@ def main():
             manifest = json.load(f)
     for scenario, series in read_summary(os.path.join(directory, "summary.csv")).items():
         plot_errors(directory, scenario, series)
+        plot_rotation_and_time(directory, scenario, series)
         if os.path.isdir(os.path.join(directory, scenario, "examples")):
             plot_examples(directory, scenario, manifest.get("scenarios", {}).get(scenario, {}))
 
