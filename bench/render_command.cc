@@ -12,6 +12,7 @@
 #include "bench/marker_files.h"
 #include "bench/output_folder.h"
 #include "bench/pose_columns.h"
+#include "bench/progress.h"
 #include "core/camera_yaml.h"
 #include "core/marker_yaml.h"
 #include "core/number_text.h"
@@ -99,6 +100,7 @@ void RenderScenario(const std::string& scenario_path,
                     scenario.input_files[1],
                     WriteScaledMarkerFiles(scenario, out_dir + "/markers"));
   GroundTruthCsv csv(out_dir);
+  Progress progress("render " + scenario.name, frames.size(), 0);
   for (const PlannedFrame& f : frames) {
     FrameRequest request = RequestFor(scenario, f);
     request.keep_linear = write_float;
@@ -114,7 +116,9 @@ void RenderScenario(const std::string& scenario_path,
               scenario.camera,
               request,
               frame.truth);
+    progress.Advance();
   }
+  progress.Finish();
 }
 
 std::vector<Rigid3> LoadPosesCsv(const std::string& path) {
@@ -204,6 +208,7 @@ void RenderPoses(const ExplicitRenderOptions& o) {
       o.camera_path,
       {{name, WriteScaledMarkerFile(o.marker_path, 1.0, o.out_dir + "/markers", name)}});
   GroundTruthCsv csv(o.out_dir);
+  Progress progress("render " + frames.marker.name, frames.poses.size(), 0);
   for (size_t i = 0; i < frames.poses.size(); ++i) {
     FrameRequest request = frames.Request(i);
     request.keep_linear = o.write_float;
@@ -220,7 +225,9 @@ void RenderPoses(const ExplicitRenderOptions& o) {
               frames.camera,
               request,
               frame.truth);
+    progress.Advance();
   }
+  progress.Finish();
 }
 
 }  // namespace markerbench
