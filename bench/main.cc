@@ -102,7 +102,7 @@ int main(int argc, char** argv) {
 
   CLI::App* track = app.add_subcommand("track", "Run a tracker on images or video files");
   TrackCommandOptions track_options;
-  track->add_option("--tracker", track_options.tracker, "apriltag, apriltag-ippe or aruco")
+  track->add_option("--tracker", track_options.tracker, "A tracker (markerbench list trackers)")
       ->required();
   track->add_option("--marker", track_options.marker_path, "Marker YAML")->required();
   track->add_option("--camera", track_options.camera_path, "Camera YAML")->required();
