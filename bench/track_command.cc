@@ -64,13 +64,6 @@ class TrackCsv {
   std::ostream& out_;
 };
 
-TrackResult ErrorResult(const std::string& message) {
-  TrackResult result;
-  result.status = TrackStatus::kError;
-  result.message = message;
-  return result;
-}
-
 // Refuses, before anything is written, inputs that are not regular files and an output that
 // would overwrite one of the command's own inputs.
 void CheckFiles(const TrackCommandOptions& o) {

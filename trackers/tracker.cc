@@ -25,23 +25,24 @@ const char* ToString(TrackStatus status) {
   return "error";
 }
 
-TrackResult CannotTrack(const std::string& tracker,
-                        const MarkerSpec& marker,
-                        const std::string& why) {
+TrackResult ErrorResult(const std::string& message) {
   TrackResult result;
   result.status = TrackStatus::kError;
-  result.message =
-      tracker + " cannot track marker '" + marker.name + "'" + (why.empty() ? "" : ": " + why);
+  result.message = message;
   return result;
 }
 
+TrackResult CannotTrack(const std::string& tracker,
+                        const MarkerSpec& marker,
+                        const std::string& why) {
+  return ErrorResult(tracker + " cannot track marker '" + marker.name + "'" +
+                     (why.empty() ? "" : ": " + why));
+}
+
 std::optional<TrackResult> UnusableImage(const Observation& observation) {
-  TrackResult result;
-  result.status = TrackStatus::kError;
   const Image8* image = observation.image;
   if (!image || !observation.camera || !observation.marker) {
-    result.message = "observation without an image, camera or marker";
-    return result;
+    return ErrorResult("observation without an image, camera or marker");
   }
   const std::string size = std::to_string(image->width) + "x" + std::to_string(image->height) +
                            "x" + std::to_string(image->channels);
@@ -50,11 +51,11 @@ std::optional<TrackResult> UnusableImage(const Observation& observation) {
   if (!shape_ok || image->pixels.size() != static_cast<size_t>(image->width) *
                                                static_cast<size_t>(image->height) *
                                                static_cast<size_t>(image->channels)) {
-    result.message =
-        "malformed image " + size + " with " + std::to_string(image->pixels.size()) + " bytes";
-    return result;
+    return ErrorResult("malformed image " + size + " with " + std::to_string(image->pixels.size()) +
+                       " bytes");
   }
   if (std::min(image->width, image->height) < kMinImageSide) {
+    TrackResult result;
     result.status = TrackStatus::kNotDetected;
     result.message =
         "image " + size + " is under " + std::to_string(kMinImageSide) + " px on a side";
@@ -64,16 +65,13 @@ std::optional<TrackResult> UnusableImage(const Observation& observation) {
 }
 
 TrackResult TrackCatchingExceptions(Tracker* tracker, const Observation& observation) {
-  TrackResult result;
-  result.status = TrackStatus::kError;
   try {
     return tracker->Track(observation);
   } catch (const std::exception& e) {
-    result.message = std::string("exception: ") + e.what();
+    return ErrorResult(std::string("exception: ") + e.what());
   } catch (...) {
-    result.message = "exception of unknown type";
+    return ErrorResult("exception of unknown type");
   }
-  return result;
 }
 
 std::optional<TrackStatus> TrackStatusFromString(const std::string& text) {

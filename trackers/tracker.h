@@ -52,6 +52,10 @@ TrackResult CannotTrack(const std::string& tracker,
 // on images 4 px tall or less).
 constexpr int kMinImageSide = 8;
 
+// An `error` result with `message`: what a tracker, a worker or a command reports for a frame
+// it could not process.
+TrackResult ErrorResult(const std::string& message);
+
 // What a tracker returns, before looking at it, for an image it must not read: `error` for a
 // malformed observation (a null pointer, a side <= 0, channels other than 1 or 3, a pixel
 // count that is not width * height * channels), `not_detected` for a side under

@@ -93,11 +93,8 @@ std::vector<std::pair<std::string, std::string>> ExternalTracker::Parameters() c
 }
 
 TrackResult ExternalTracker::Fault(const std::string& why) {
-  TrackResult failure;
-  failure.status = TrackStatus::kError;
-  failure.message = why;
   if (child_.running()) child_.Stop(true);
-  return failure;
+  return ErrorResult(why);
 }
 
 TrackResult ExternalTracker::Track(const Observation& observation) {

@@ -43,12 +43,9 @@ bool IsolatedTracker::Start(std::string* error) {
 
 TrackResult IsolatedTracker::Track(const Observation& observation) {
   if (std::optional<TrackResult> unusable = UnusableImage(observation)) return *unusable;
-  TrackResult failure;
-  failure.status = TrackStatus::kError;
   std::string error;
   if (!worker_.running() && !Start(&error)) {
-    failure.message = "cannot restart the worker process: " + error;
-    return failure;
+    return ErrorResult("cannot restart the worker process: " + error);
   }
   const int64_t deadline = DeadlineAfter(options_.timeout_s);
   std::string reply;
@@ -57,10 +54,9 @@ TrackResult IsolatedTracker::Track(const Observation& observation) {
       !ReceiveMessage(worker_.socket(), &reply, deadline, &error)) {
     const bool timed_out = error == kTimedOut;
     const std::string end = worker_.Stop(timed_out);
-    failure.message = timed_out ? "no result within timeout_s " + NumberText(options_.timeout_s) +
-                                      " s; the worker was stopped"
-                                : "the worker " + end + " on this frame";
-    return failure;
+    return ErrorResult(timed_out ? "no result within timeout_s " + NumberText(options_.timeout_s) +
+                                       " s; the worker was stopped"
+                                 : "the worker " + end + " on this frame");
   }
   reset_pending_ = false;
   try {
@@ -69,8 +65,7 @@ TrackResult IsolatedTracker::Track(const Observation& observation) {
     return decoded.result;
   } catch (const std::exception& e) {
     worker_.Stop(true);
-    failure.message = std::string("malformed reply from the worker: ") + e.what();
-    return failure;
+    return ErrorResult(std::string("malformed reply from the worker: ") + e.what());
   }
 }
 
