@@ -4,6 +4,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <limits>
 #include <nlohmann/json.hpp>
 
 #include "bench/atomic_file.h"
@@ -125,8 +126,18 @@ Dataset ReadDataset(const std::string& dir) {
       }
       return *v;
     };
+    // Counts and the seed read exactly, never through an out-of-range cast.
+    auto count_at = [&](size_t i) {
+      const std::optional<long long> v =
+          ParseWholeNumber(f[i], 0.0, std::numeric_limits<int>::max());
+      if (!v) {
+        throw ConfigError(Located(csv_path, number) + "column '" + header[i] +
+                          "': expected a whole number >= 0, got '" + f[i] + "'");
+      }
+      return static_cast<int>(*v);
+    };
     DatasetFrame d;
-    d.frame = static_cast<int>(number_at(frame));
+    d.frame = count_at(frame);
     d.marker = f[marker];
     if (!dataset.markers.count(d.marker)) {
       throw ConfigError(Located(csv_path, number) + "marker '" + d.marker +
@@ -134,8 +145,13 @@ Dataset ReadDataset(const std::string& dir) {
     }
     d.sweep_parameter = f[parameter].empty() ? "pose" : f[parameter];
     d.sweep_value = f[parameter].empty() ? d.frame : number_at(value);
-    d.trial = f[parameter].empty() ? 0 : static_cast<int>(number_at(trial));
-    d.seed = static_cast<uint64_t>(number_at(seed));
+    d.trial = f[parameter].empty() ? 0 : count_at(trial);
+    const std::optional<uint64_t> seed_value = ParseUnsigned64(f[seed]);
+    if (!seed_value) {
+      throw ConfigError(Located(csv_path, number) +
+                        "column 'seed': expected a whole number, got '" + f[seed] + "'");
+    }
+    d.seed = *seed_value;
     for (int k = 0; k < 9; ++k)
       d.truth.rotation(k / 3, k % 3) = number_at(pose[static_cast<size_t>(k)]);
     for (int k = 0; k < 3; ++k)

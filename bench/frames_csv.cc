@@ -1,6 +1,5 @@
 #include "bench/frames_csv.h"
 
-#include <charconv>
 #include <cmath>
 #include <limits>
 #include <stdexcept>
@@ -55,23 +54,22 @@ double ParseNumber(const std::vector<std::string>& f, size_t i, bool optional) {
 
 // A whole number in [0, INT_MAX] (trial, frame, hypotheses).
 int ParseCount(const std::vector<std::string>& f, size_t i) {
-  const double v = ParseNumber(f, i, false);
-  if (!(v >= 0.0 && v <= std::numeric_limits<int>::max()) || v != std::floor(v)) {
+  const std::optional<long long> v = ParseWholeNumber(f[i], 0.0, std::numeric_limits<int>::max());
+  if (!v) {
     throw std::runtime_error("column '" + Columns()[i] + "': expected a whole number >= 0, got '" +
                              f[i] + "'");
   }
-  return static_cast<int>(v);
+  return static_cast<int>(*v);
 }
 
 // The scenario seed: a whole decimal number of 64 bits.
 uint64_t ParseSeed(const std::vector<std::string>& f, size_t i) {
-  uint64_t seed = 0;
-  const auto [end, error] = std::from_chars(f[i].data(), f[i].data() + f[i].size(), seed);
-  if (error != std::errc() || end != f[i].data() + f[i].size() || f[i].empty()) {
+  const std::optional<uint64_t> seed = ParseUnsigned64(f[i]);
+  if (!seed) {
     throw std::runtime_error("column '" + Columns()[i] + "': expected a whole number, got '" +
                              f[i] + "'");
   }
-  return seed;
+  return *seed;
 }
 
 Rigid3 ParsePose(const std::vector<std::string>& f, size_t first) {

@@ -2,7 +2,6 @@
 
 #include <sys/resource.h>
 
-#include <cmath>
 #include <filesystem>
 #include <limits>
 #include <map>
@@ -118,10 +117,10 @@ struct ShardCursor {
 
 int FrameOf(const std::string& line, const LineReader& reader, size_t column) {
   const std::vector<std::string> f = SplitCsvLine(line);
-  const std::optional<double> frame =
-      f.size() > column ? ParseFiniteNumber(f[column]) : std::nullopt;
-  if (!frame || !(*frame >= 0.0 && *frame <= std::numeric_limits<int>::max()) ||
-      *frame != std::floor(*frame)) {
+  const std::optional<long long> frame =
+      f.size() > column ? ParseWholeNumber(f[column], 0.0, std::numeric_limits<int>::max())
+                        : std::nullopt;
+  if (!frame) {
     throw ConfigError(reader.path() + ":" + std::to_string(reader.line_number()) +
                       ": expected a frame number in column " + std::to_string(column + 1));
   }

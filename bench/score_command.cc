@@ -2,6 +2,7 @@
 
 #include <filesystem>
 #include <fstream>
+#include <limits>
 #include <map>
 
 #include "bench/atomic_file.h"
@@ -50,9 +51,9 @@ std::map<int, Estimate> ReadEstimates(const std::string& path, const Dataset& da
       throw ConfigError(at + "expected " + std::to_string(timed ? 15 : 14) + " fields, got " +
                         std::to_string(f.size()));
     }
-    const std::optional<double> frame_number = ParseFiniteNumber(f[0]);
-    if (!frame_number || *frame_number != static_cast<int>(*frame_number) ||
-        !known.count(static_cast<int>(*frame_number))) {
+    const std::optional<long long> frame_number =
+        ParseWholeNumber(f[0], 0.0, std::numeric_limits<int>::max());
+    if (!frame_number || !known.count(static_cast<int>(*frame_number))) {
       throw ConfigError(at + "column 'frame': '" + f[0] + "' is not a frame of the dataset");
     }
     const int frame = static_cast<int>(*frame_number);

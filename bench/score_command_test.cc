@@ -5,7 +5,9 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <filesystem>
+#include <fstream>
 #include <sstream>
 
 #include "bench/dataset.h"
@@ -76,6 +78,33 @@ TEST(Dataset, RenderWritesASelfContainedDataset) {
   }
 }
 
+// A damaged groundtruth.csv: frame numbers and seeds out of range are located errors.
+TEST(Dataset, CountsOutOfRangeAreErrors) {
+  for (const auto& [column, value] : std::vector<std::pair<std::string, std::string>>{
+           {"frame", "1e300"}, {"frame", "-1"}, {"seed", "-3"}, {"seed", "1.5"}}) {
+    const std::string copy = fs::path(WriteTestFile("unused", "")).parent_path() / "damaged";
+    fs::remove_all(copy);
+    fs::copy(DatasetDir(), copy, fs::copy_options::recursive);
+    std::ifstream in(copy + "/groundtruth.csv");
+    std::string header, row, rest;
+    std::getline(in, header);
+    std::getline(in, row);
+    for (std::string line; std::getline(in, line);) rest += line + "\n";
+    in.close();
+    std::vector<std::string> names = SplitCsvLine(header), fields = SplitCsvLine(row);
+    const size_t at = std::find(names.begin(), names.end(), column) - names.begin();
+    ASSERT_LT(at, names.size());
+    fields[at] = value;
+    std::string line;
+    for (const std::string& f : fields) line += (line.empty() ? "" : ",") + CsvField(f);
+    std::ofstream(copy + "/groundtruth.csv") << header << "\n" << line << "\n" << rest;
+    EXPECT_THAT([&] { ReadDataset(copy); },
+                ::testing::ThrowsMessage<ConfigError>(HasSubstr(
+                    "groundtruth.csv:2: column '" + column + "': expected a whole number")))
+        << column << " " << value;
+  }
+}
+
 TEST(Score, EstimatesBecomeARunThatReportReads) {
   const Dataset dataset = ReadDataset(DatasetDir());
   Rigid3 shifted = dataset.frames[0].truth;
@@ -127,6 +156,8 @@ TEST(Score, BadEstimatesNameTheirLine) {
            {"frame,status\n", ":1: expected the header"},
            {EstimatesHeader() + "\n0,ok" + good + "\n99,ok" + good + "\n",
             ":3: column 'frame': '99' is not a frame of the dataset"},
+           {EstimatesHeader() + "\n1e300,ok" + good + "\n",
+            ":2: column 'frame': '1e300' is not a frame of the dataset"},
            {EstimatesHeader() + "\n0,fine" + good + "\n", ":2: column 'status'"},
            {EstimatesHeader() + "\n0,ok,x" + good.substr(good.find(',', 1)) + "\n",
             ":2: column 'r11': expected a number, got 'x'"},

@@ -4,6 +4,7 @@
 
 #include <charconv>
 #include <cmath>
+#include <cstdint>
 #include <cstdio>
 #include <cstdlib>
 #include <optional>
@@ -38,6 +39,27 @@ inline std::optional<double> ParseFiniteNumber(std::string text) {
   char* end = nullptr;
   const double value = std::strtod(text.c_str(), &end);
   if (*end != '\0' || !std::isfinite(value)) return std::nullopt;
+  return value;
+}
+
+// `text` read whole as a whole number in [lo, hi] ("12" and "12.0" alike); nullopt otherwise,
+// never an out-of-range cast. For counts and frame numbers (|values| < 2^53).
+inline std::optional<long long> ParseWholeNumber(const std::string& text, double lo, double hi) {
+  const std::optional<double> value = ParseFiniteNumber(text);
+  if (!value || !(*value >= lo && *value <= hi) || *value != std::floor(*value)) {
+    return std::nullopt;
+  }
+  return static_cast<long long>(*value);
+}
+
+// `text` read whole as a decimal unsigned 64-bit number (a seed: every bit kept); nullopt
+// for a sign, a fraction, an exponent or an overflow.
+inline std::optional<uint64_t> ParseUnsigned64(const std::string& text) {
+  uint64_t value = 0;
+  const auto [end, error] = std::from_chars(text.data(), text.data() + text.size(), value);
+  if (text.empty() || error != std::errc() || end != text.data() + text.size()) {
+    return std::nullopt;
+  }
   return value;
 }
 

@@ -35,6 +35,23 @@ TEST(NumberText, ReadsBackExactly) {
   }
 }
 
+// Out of range is nullopt, never an undefined cast (loaders_fuzz found one in frames.csv).
+TEST(ParseWholeNumber, ReadsWholeNumbersInRangeOnly) {
+  EXPECT_EQ(ParseWholeNumber("12", 0, 100), 12);
+  EXPECT_EQ(ParseWholeNumber("12.0", 0, 100), 12);
+  for (const char* bad : {"12.5", "-1", "101", "8.65065e+13", "1e300", "", "x"}) {
+    EXPECT_FALSE(ParseWholeNumber(bad, 0, 100).has_value()) << bad;
+  }
+}
+
+TEST(ParseUnsigned64, KeepsEveryBit) {
+  EXPECT_EQ(ParseUnsigned64("18446744073709551615"), UINT64_MAX);
+  EXPECT_EQ(ParseUnsigned64("9007199254740993"), 9007199254740993ull);  // 2^53 + 1
+  for (const char* bad : {"18446744073709551616", "-3", "1.0", "1e3", "", " 1"}) {
+    EXPECT_FALSE(ParseUnsigned64(bad).has_value()) << bad;
+  }
+}
+
 TEST(ParseFiniteNumber, ReadsWholeFieldsOnly) {
   EXPECT_EQ(ParseFiniteNumber("0.6"), 0.6);
   EXPECT_EQ(ParseFiniteNumber("-1e-3\r"), -1e-3);
