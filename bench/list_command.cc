@@ -15,18 +15,6 @@ namespace fs = std::filesystem;
 namespace markerbench {
 namespace {
 
-std::vector<MarkerSpec> MarkerFiles(const std::string& dir) {
-  if (!fs::is_directory(dir)) throw ConfigError(dir + ": no such folder of marker files");
-  std::vector<std::string> paths;
-  for (const auto& entry : fs::directory_iterator(dir)) {
-    if (entry.path().extension() == ".yaml") paths.push_back(entry.path().string());
-  }
-  std::sort(paths.begin(), paths.end());
-  std::vector<MarkerSpec> markers;
-  for (const std::string& path : paths) markers.push_back(LoadMarkerYaml(path));
-  return markers;
-}
-
 std::string Joined(const std::vector<std::string>& items) {
   std::string text;
   for (const std::string& item : items) text += (text.empty() ? "" : ", ") + item;
@@ -35,11 +23,23 @@ std::string Joined(const std::vector<std::string>& items) {
 
 }  // namespace
 
+std::vector<std::string> MarkerFilesIn(const std::string& dir) {
+  if (!fs::is_directory(dir)) throw ConfigError(dir + ": no such folder of marker files");
+  std::vector<std::string> paths;
+  for (const auto& entry : fs::directory_iterator(dir)) {
+    if (entry.path().extension() == ".yaml") paths.push_back(entry.path().string());
+  }
+  std::sort(paths.begin(), paths.end());
+  return paths;
+}
+
 void ListCommand(const std::string& what, const std::string& markers_dir, std::ostream& out) {
   if (what != "trackers" && what != "markers") {
     throw ConfigError("list: expected 'trackers' or 'markers', got '" + what + "'");
   }
-  const std::vector<MarkerSpec> markers = MarkerFiles(markers_dir);
+  std::vector<MarkerSpec> markers;
+  for (const std::string& path : MarkerFilesIn(markers_dir))
+    markers.push_back(LoadMarkerYaml(path));
   const std::vector<std::string> names = TrackerNames();
   std::vector<std::unique_ptr<Tracker>> trackers;
   for (const std::string& name : names) trackers.push_back(MakeTracker(name, nullptr));

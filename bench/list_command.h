@@ -5,8 +5,13 @@
 
 #include <ostream>
 #include <string>
+#include <vector>
 
 namespace markerbench {
+
+// The *.yaml files of `dir`, sorted by name (the marker files of list and markers). Throws
+// ConfigError when `dir` is not a folder.
+std::vector<std::string> MarkerFilesIn(const std::string& dir);
 
 // `what`: "trackers" or "markers"; `markers_dir`: the folder of marker YAML files to match
 // trackers with. Throws ConfigError for another `what` or a bad marker file.

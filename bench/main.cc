@@ -1,8 +1,6 @@
 // markerbench command line (architecture.md, "CLI"). Bad input: message naming the file and
 // key, exit status 2.
 #include <CLI/CLI.hpp>
-#include <algorithm>
-#include <filesystem>
 #include <iomanip>
 #include <iostream>
 #include <optional>
@@ -39,15 +37,6 @@ CLI::Validator FiniteRange(double lo, double hi) {
         return expected.str();
       },
       "");
-}
-
-std::vector<std::string> YamlFilesIn(const std::string& dir) {
-  std::vector<std::string> files;
-  for (const auto& entry : std::filesystem::directory_iterator(dir)) {
-    if (entry.path().extension() == ".yaml") files.push_back(entry.path().string());
-  }
-  std::sort(files.begin(), files.end());
-  return files;
 }
 
 }  // namespace
@@ -284,7 +273,7 @@ int main(int argc, char** argv) {
                                                        : Channels::kAuto;
       std::cerr << RunCrlbCommand(crlb_options) << '\n';
     } else if (markers->parsed()) {
-      if (marker_files.empty()) marker_files = YamlFilesIn(markers_dir);
+      if (marker_files.empty()) marker_files = MarkerFilesIn(markers_dir);
       for (const std::string& path : WriteMarkerSheets(marker_files, markers_out)) {
         std::cout << path << '\n';
       }
