@@ -39,7 +39,7 @@ class TrackCsv {
   explicit TrackCsv(std::ostream* out) : out_(*out) {
     out_ << "image,tracker,status";
     for (const char* c : kPoseColumns) out_ << ',' << c;
-    out_ << ",cam_x,cam_y,cam_z,time_ms,message\n";
+    out_ << ",cam_x_m,cam_y_m,cam_z_m,time_ms,message\n";
   }
 
   void Write(const std::string& image,

@@ -96,7 +96,7 @@ void ExpectCentresThroughVideo(const std::string& tracker,
   const std::vector<std::string> rows = ReadLines(options.out_csv);
   ASSERT_EQ(rows.size(), poses.size() + 1);
   const std::vector<std::string> header = SplitCsvLine(rows[0]);
-  const size_t cam_x = std::find(header.begin(), header.end(), "cam_x") - header.begin();
+  const size_t cam_x = std::find(header.begin(), header.end(), "cam_x_m") - header.begin();
   ASSERT_LT(cam_x + 2, header.size());
   for (size_t i = 0; i < poses.size(); ++i) {
     const std::vector<std::string> row = SplitCsvLine(rows[i + 1]);
