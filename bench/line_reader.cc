@@ -46,7 +46,7 @@ bool LineReader::Fill() {
     text_.append(chunk, n);
     return n > 0;
   }
-  std::string output(ZSTD_DStreamOutSize(), '\0');
+  output_.resize(ZSTD_DStreamOutSize());
   while (true) {
     bool at_end = false;
     if (input_pos_ == input_.size()) {
@@ -59,7 +59,7 @@ bool LineReader::Fill() {
     }
     // At the end of the file the decoder may still hold output of the last frame.
     ZSTD_inBuffer in{input_.data(), input_.size(), input_pos_};
-    ZSTD_outBuffer out{output.data(), output.size(), 0};
+    ZSTD_outBuffer out{output_.data(), output_.size(), 0};
     const size_t hint = ZSTD_decompressStream(static_cast<ZSTD_DCtx*>(zstd_), &out, &in);
     if (ZSTD_isError(hint)) {
       throw ConfigError(path_ + ":" + std::to_string(line_number_ + 1) +
@@ -67,7 +67,7 @@ bool LineReader::Fill() {
     }
     if (in.pos > input_pos_ || out.pos > 0) frame_open_ = hint != 0;
     input_pos_ = in.pos;
-    text_.append(output.data(), out.pos);
+    text_.append(output_.data(), out.pos);
     if (out.pos > 0) return true;
     if (at_end) {
       if (frame_open_) {

@@ -31,6 +31,7 @@ class LineReader {
   void* zstd_ = nullptr;  // ZSTD_DCtx* for a .zst file
   std::string input_;     // compressed bytes read but not yet decompressed
   size_t input_pos_ = 0;
+  std::string output_;       // the decoder's output buffer, reused
   bool frame_open_ = false;  // the last frame read has not ended
   std::string text_;
   size_t text_pos_ = 0;

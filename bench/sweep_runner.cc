@@ -144,13 +144,12 @@ void TakeOverEarlierRun(PreparedSweep& p, const SweepOptions& options) {
   const Scenario& s = p.scenario;
   const std::string& path = s.path;
   // Both forms exist only when a compression was killed before it removed the plain files.
-  std::optional<std::string> written;
-  for (const char* name : {"frames.csv", "frames.csv.zst"}) {
-    if (!written && fs::exists(p.dir + "/" + name)) written = p.dir + "/" + name;
-  }
-  if (!written) return;
+  const std::string plain = p.dir + "/frames.csv";
+  const bool compressed = !fs::exists(plain) && fs::exists(plain + ".zst");
+  if (!compressed && !fs::exists(plain)) return;
+  const std::string written = compressed ? plain + ".zst" : plain;
   if (!options.resume && !options.overwrite) {
-    throw ConfigError(*written +
+    throw ConfigError(written +
                       ": exists; pass --resume to continue that run or --overwrite to "
                       "start again");
   }
@@ -173,7 +172,7 @@ void TakeOverEarlierRun(PreparedSweep& p, const SweepOptions& options) {
                       "; refusing to --resume shard " + std::to_string(p.shard.index) + "/" +
                       std::to_string(p.shard.count) + " into it");
   }
-  if (written->size() > 4 && written->substr(written->size() - 4) == ".zst") {
+  if (compressed) {
     // Compressed only once complete.
     p.done = p.jobs.size();
     p.compressed = true;
@@ -183,7 +182,7 @@ void TakeOverEarlierRun(PreparedSweep& p, const SweepOptions& options) {
   fs::remove(p.dir + "/timing.csv.zst");
   std::vector<std::string> names;
   for (const TrackerEntry& t : s.trackers) names.push_back(t.name);
-  const WrittenJobs in_frames = ScanWrittenJobs(*written, FramesCsvHeader(), p.jobs, names, 4, 6);
+  const WrittenJobs in_frames = ScanWrittenJobs(written, FramesCsvHeader(), p.jobs, names, 4, 6);
   const WrittenJobs in_timing =
       ScanWrittenJobs(p.dir + "/timing.csv", TimingCsvHeader(), p.jobs, names, 0, 1);
   // Continue after the jobs that both files hold whole.
