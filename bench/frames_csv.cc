@@ -175,15 +175,15 @@ FrameRow ParseFrameRow(const std::string& line) {
   return r;
 }
 
-std::string TimingCsvHeader() { return "frame,tracker,time_ms,round_trip_ms\n"; }
+std::string TimingCsvHeader() { return "frame,scenario,tracker,success,time_ms,round_trip_ms\n"; }
 
-std::string FormatTimingRow(int frame,
-                            const std::string& tracker,
-                            double time_ms,
-                            double round_trip_ms) {
+std::string FormatTimingRow(const FrameRow& row, double time_ms, double round_trip_ms) {
+  const bool success = IsSuccess(
+      row.estimate.has_value(), row.errors.position_error_m, row.distance_m, kSuccessFraction);
   char ms[64];
   std::snprintf(ms, sizeof(ms), "%.4f,%.4f", time_ms, round_trip_ms);
-  return std::to_string(frame) + ',' + CsvField(tracker) + ',' + ms + '\n';
+  return std::to_string(row.frame) + ',' + CsvField(row.scenario) + ',' + CsvField(row.tracker) +
+         (success ? ",1," : ",0,") + ms + '\n';
 }
 
 }  // namespace markerbench

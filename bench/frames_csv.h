@@ -1,6 +1,6 @@
 // frames.csv (architecture.md, "Per-frame results"): one tidy row per frame × tracker. Every
 // column is a function of the scenario and seed, so the file is byte-identical across runs
-// and thread counts; the measured call times go to timing.csv (frame, tracker, time_ms).
+// and thread counts; the measured call times go to timing.csv.
 #pragma once
 
 #include <cmath>
@@ -48,15 +48,18 @@ std::string FormatFrameRow(const FrameRow& row);
 // Parses one data line (without its '\n'); throws std::runtime_error naming the column.
 FrameRow ParseFrameRow(const std::string& line);
 
-// timing.csv: one row per frames.csv row, in the same order.
+// timing.csv: one row per frames.csv row, in the same order: frame, scenario, tracker,
+// success (1 when the row's pose is within kSuccessFraction of the distance, else 0), time_ms,
+// round_trip_ms.
 std::string TimingCsvHeader();
+inline constexpr size_t kTimingFrameColumn = 0;
+inline constexpr size_t kTimingTrackerColumn = 2;
+inline constexpr size_t kTimingTimeColumn = 4;
+inline constexpr size_t kTimingColumnCount = 6;
 // time_ms: the tracker's own time when it reports one (an isolated worker, an external
 // tracker's time_ms), else the round trip; round_trip_ms: Track() as the runner timed it,
 // process I/O included.
-std::string FormatTimingRow(int frame,
-                            const std::string& tracker,
-                            double time_ms,
-                            double round_trip_ms);
+std::string FormatTimingRow(const FrameRow& row, double time_ms, double round_trip_ms);
 
 // One field, in RFC 4180 quotes when it holds a comma or a quote; line breaks become spaces
 // (one row per line).

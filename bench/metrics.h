@@ -33,7 +33,8 @@ PoseErrors ComputePoseErrors(const std::vector<Rigid3>& hypotheses, const Rigid3
 double DistanceToMarker(const Rigid3& cam_from_marker, const MarkerSpec& marker);
 
 // Success (experiments.md): a pose, with a position error of at most
-// `fraction` × the true camera-to-marker distance.
+// `fraction` × the true camera-to-marker distance; the experiments' fraction is kSuccessFraction.
+inline constexpr double kSuccessFraction = 0.1;
 bool IsSuccess(bool has_pose, double position_error_m, double distance_m, double fraction);
 
 // Order statistics over the entries of `values` that are not NaN (NaN: no value; +inf, e.g.

@@ -13,6 +13,7 @@
 #include "bench/atomic_file.h"
 #include "bench/manifest.h"
 #include "bench/progress.h"
+#include "bench/report_html.h"
 #include "bench/reproduction_table.h"
 #include "bench/run_results.h"
 #include "core/number_text.h"
@@ -215,6 +216,7 @@ void WriteReport(const std::string& dir, const ReportOptions& options) {
     md += ScenarioSection(name, summary, entry, options.summary, dir);
   }
   WriteFileAtomically(dir + "/report.md", md);
+  WriteFileAtomically(dir + "/report.html", ReportHtml(md, dir));
 }
 
 }  // namespace markerbench

@@ -1,5 +1,6 @@
 // markerbench report DIR: summary.csv, report.md (summary tables, breakdown values, the
-// reproduction table of experiments.md, plots) and the success criterion in manifest.json,
+// reproduction table of experiments.md, plots), the same as a self-contained report.html, and
+// the success criterion in manifest.json,
 // from the frames.csv and timing.csv of every scenario folder in DIR.
 #pragma once
 

@@ -2,7 +2,9 @@
 
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
+#include <openssl/evp.h>
 
+#include <algorithm>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -15,6 +17,7 @@ namespace markerbench {
 namespace {
 
 using ::testing::HasSubstr;
+using ::testing::Not;
 namespace fs = std::filesystem;
 
 // A frame of tracker `tracker` whose first hypothesis is `error_m` from the truth along x
@@ -75,6 +78,17 @@ TEST(FramesCsv, RowsRoundTrip) {
   EXPECT_THROW(ParseFrameRow("a,b,c"), std::runtime_error);
 }
 
+// timing.csv names the scenario and says whether the row succeeded (10 % of the distance).
+TEST(TimingCsv, RowsCarryScenarioAndSuccess) {
+  EXPECT_EQ(TimingCsvHeader(), "frame,scenario,tracker,success,time_ms,round_trip_ms\n");
+  EXPECT_EQ(FormatTimingRow(Row("fig6", "circle", 0.1, 2, 0.09), 1.25, 2.5),
+            "2,fig6,circle,1,1.2500,2.5000\n");
+  EXPECT_EQ(FormatTimingRow(Row("fig6", "circle", 0.1, 2, 0.11), 1.25, 2.5),
+            "2,fig6,circle,0,1.2500,2.5000\n");
+  EXPECT_EQ(FormatTimingRow(Row("fig6", "circle", 0.1, 2, NAN), 1.25, 2.5),
+            "2,fig6,circle,0,1.2500,2.5000\n");
+}
+
 // Counts and the seed out of their types' range are errors, not wrapped or undefined casts
 // (found by loaders_fuzz).
 TEST(FramesCsv, CountsOutOfRangeAreErrors) {
@@ -114,7 +128,7 @@ class ReportTest : public ::testing::Test {
       for (size_t trial = 0; trial < errors.size(); ++trial) {
         const FrameRow row = Row("fig6_noise", "apriltag", value, trial, errors[trial]);
         frames += FormatFrameRow(row);
-        timing += FormatTimingRow(row.frame, row.tracker, 1.0 + trial, 1.5 + trial);
+        timing += FormatTimingRow(row, 1.0 + trial, 1.5 + trial);
       }
     }
     std::ofstream(dir_ + "/fig6_noise/frames.csv") << frames;
@@ -238,8 +252,39 @@ TEST_F(ReportTest, StricterSuccessMovesTheBreakdown) {
   EXPECT_THAT(ReadFileBytes(dir_ + "/report.md"), HasSubstr("| apriltag | tag | 0.18 |"));
 }
 
+// report.html stands alone: its plots are inside it (the same bytes as the PNG) and its tables
+// are HTML tables with the sorting script.
+TEST_F(ReportTest, HtmlEmbedsPlotsAndSortableTables) {
+  const std::string png = std::string("\x89PNG\r\n\x1a\n", 8) + "not really an image \xff\x00";
+  std::ofstream(dir_ + "/fig6_noise.png", std::ios::binary) << png;
+  ReportOptions options;
+  options.plots = false;
+  WriteReport(dir_, options);
+  const std::string html = ReadFileBytes(dir_ + "/report.html");
+  EXPECT_EQ(html.rfind("<!DOCTYPE html>", 0), 0u);
+  EXPECT_THAT(html, HasSubstr("<title>markerbench report</title>"));
+  EXPECT_THAT(html, HasSubstr("<th>tracker</th>"));
+  EXPECT_THAT(html, HasSubstr("<td>apriltag</td>"));
+  EXPECT_THAT(html, HasSubstr("addEventListener(\"click\""));
+  EXPECT_THAT(html, Not(HasSubstr("src=\"fig6_noise.png\"")));
+  const std::string prefix = "src=\"data:image/png;base64,";
+  const size_t start = html.find(prefix);
+  ASSERT_NE(start, std::string::npos);
+  const size_t begin = start + prefix.size();
+  const std::string encoded = html.substr(begin, html.find('"', begin) - begin);
+  std::string decoded(encoded.size(), '\0');
+  const int n = EVP_DecodeBlock(reinterpret_cast<unsigned char*>(decoded.data()),
+                                reinterpret_cast<const unsigned char*>(encoded.data()),
+                                static_cast<int>(encoded.size()));
+  ASSERT_GE(n, 0);
+  // EVP_DecodeBlock keeps the padding's zero bytes.
+  const size_t padding = std::count(encoded.end() - 2, encoded.end(), '=');
+  EXPECT_EQ(decoded.substr(0, static_cast<size_t>(n) - padding), png);
+}
+
 TEST_F(ReportTest, MisalignedTimingIsAnError) {
-  std::ofstream(dir_ + "/fig6_noise/timing.csv") << TimingCsvHeader() << "7,apriltag,1.0,1.0\n";
+  std::ofstream(dir_ + "/fig6_noise/timing.csv")
+      << TimingCsvHeader() << "7,fig6_noise,apriltag,1,1.0,1.0\n";
   ReportOptions options;
   options.plots = false;
   EXPECT_THROW(WriteReport(dir_, options), ConfigError);

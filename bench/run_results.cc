@@ -45,8 +45,10 @@ bool ScenarioRowReader::Next(FrameRow* row, double* time_ms) {
   // timing.csv rows follow frames.csv rows one for one; a short file leaves times unknown.
   if (timing_ && timing_->Next(&line_)) {
     const std::vector<std::string> f = SplitCsvLine(line_);
-    const std::optional<double> time = f.size() == 4 ? ParseFiniteNumber(f[2]) : std::nullopt;
-    if (!time || f[0] != std::to_string(row->frame) || f[1] != row->tracker) {
+    const std::optional<double> time =
+        f.size() == kTimingColumnCount ? ParseFiniteNumber(f[kTimingTimeColumn]) : std::nullopt;
+    if (!time || f[kTimingFrameColumn] != std::to_string(row->frame) ||
+        f[kTimingTrackerColumn] != row->tracker) {
       throw ConfigError(timing_->path() + ":" + std::to_string(timing_->line_number()) +
                         ": expected the timing of frames.csv's row " +
                         std::to_string(frames_->line_number()));

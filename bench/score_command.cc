@@ -130,7 +130,6 @@ void RunScoreCommand(const ScoreOptions& o, std::ostream& out) {
     const auto e = estimates.find(d.frame);
     if (e == estimates.end()) {
       ++missing;
-      every_time = false;
       row.message = "no estimate";
     } else {
       row.status = e->second.status;
@@ -138,13 +137,13 @@ void RunScoreCommand(const ScoreOptions& o, std::ostream& out) {
       row.hypotheses = static_cast<int>(hypotheses.size());
       row.errors = ComputePoseErrors(hypotheses, d.truth);
       if (!hypotheses.empty()) row.estimate = hypotheses.front();
-      if (e->second.time_ms) {
-        timing += FormatTimingRow(d.frame, o.tracker, *e->second.time_ms, *e->second.time_ms);
-      } else {
-        every_time = false;
-      }
     }
     frames += FormatFrameRow(row);
+    if (e != estimates.end() && e->second.time_ms) {
+      timing += FormatTimingRow(row, *e->second.time_ms, *e->second.time_ms);
+    } else {
+      every_time = false;
+    }
   }
   WriteFileAtomically(dir + "/frames.csv", frames);
   if (every_time) WriteFileAtomically(dir + "/timing.csv", timing);

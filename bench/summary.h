@@ -14,7 +14,7 @@ namespace markerbench {
 
 struct SummaryOptions {
   // Success: a pose with position error <= success_fraction × the true distance.
-  double success_fraction = 0.1;
+  double success_fraction = kSuccessFraction;
   // Breakdown: the first sweep value whose success rate is below this.
   double breakdown_rate = 0.5;
 };

@@ -183,8 +183,12 @@ void TakeOverEarlierRun(PreparedSweep& p, const SweepOptions& options) {
   std::vector<std::string> names;
   for (const TrackerEntry& t : s.trackers) names.push_back(t.name);
   const WrittenJobs in_frames = ScanWrittenJobs(written, FramesCsvHeader(), p.jobs, names, 4, 6);
-  const WrittenJobs in_timing =
-      ScanWrittenJobs(p.dir + "/timing.csv", TimingCsvHeader(), p.jobs, names, 0, 1);
+  const WrittenJobs in_timing = ScanWrittenJobs(p.dir + "/timing.csv",
+                                                TimingCsvHeader(),
+                                                p.jobs,
+                                                names,
+                                                kTimingFrameColumn,
+                                                kTimingTrackerColumn);
   // Continue after the jobs that both files hold whole.
   p.done = std::min(in_frames.complete, in_timing.complete);
   p.frames_bytes = in_frames.offsets[p.done];
@@ -309,7 +313,7 @@ std::pair<std::string, std::string> RunJob(const PreparedSweep& p,
     row.estimate = has_pose ? std::optional<Rigid3>(result.hypotheses.front()) : std::nullopt;
     row.message = result.message;
     frame_rows += FormatFrameRow(row);
-    timing_rows += FormatTimingRow(f.index, row.tracker, time_ms, round_trip_ms);
+    timing_rows += FormatTimingRow(row, time_ms, round_trip_ms);
   }
   return {frame_rows, timing_rows};
 }
