@@ -39,6 +39,21 @@ CLI::Validator FiniteRange(double lo, double hi) {
       "");
 }
 
+// --set KEY=VALUE (repeatable) and --trackers a,b: a scenario's overrides (bench/scenario.h).
+void AddOverrideOptions(CLI::App* command, markerbench::ScenarioOverrides* overrides) {
+  command
+      ->add_option("--set",
+                   overrides->set,
+                   "Change a scenario key for this run: KEY=VALUE, VALUE in YAML "
+                   "(render.noise_var=0.05, sweep.values=[1,2], trackers[0].options.x=1); "
+                   "repeatable")
+      ->allow_extra_args(false);
+  command
+      ->add_option("--trackers", overrides->trackers, "Run only these of the scenario's trackers")
+      ->delimiter(',')
+      ->allow_extra_args(false);
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -114,6 +129,10 @@ int main(int argc, char** argv) {
   sweep->add_flag("--zstd",
                   sweep_options.compress,
                   "Once complete, write frames.csv.zst and timing.csv.zst instead of plain CSV");
+  AddOverrideOptions(sweep, &sweep_options.overrides);
+  std::string sweep_trials;
+  sweep->add_option("--trials", sweep_trials, "Trials per sweep value (--set trials=N)")
+      ->check(FiniteRange(1.0, 1e6));
 
   CLI::App* merge = app.add_subcommand(
       "merge", "Merge the N shards of sweeps (sweep --shard I/N) into one run folder");
@@ -142,6 +161,8 @@ int main(int argc, char** argv) {
   worker->add_option("--tracker-index", worker_tracker_index)->required();
   std::string worker_fingerprint;
   worker->add_option("--fingerprint", worker_fingerprint)->required();
+  ScenarioOverrides worker_overrides;
+  AddOverrideOptions(worker, &worker_overrides);
 
   CLI::App* report =
       app.add_subcommand("report", "summary.csv, report.md and plots from a sweep's DIR");
@@ -256,13 +277,15 @@ int main(int argc, char** argv) {
       RunTrackCommand(track_options);
     } else if (sweep->parsed()) {
       if (!sweep_shard.empty()) sweep_options.shard = ParseShard(sweep_shard);
+      if (!sweep_trials.empty()) sweep_options.overrides.set.push_back("trials=" + sweep_trials);
       RunSweeps(sweep_scenarios, sweep_options);
     } else if (merge->parsed()) {
       MergeShards(merge_options, std::cerr);
     } else if (score->parsed()) {
       RunScoreCommand(score_options, std::cerr);
     } else if (worker->parsed()) {
-      return RunTrackerWorker(worker_scenario, worker_tracker_index, worker_fingerprint);
+      return RunTrackerWorker(
+          worker_scenario, worker_overrides, worker_tracker_index, worker_fingerprint);
     } else if (report->parsed()) {
       WriteReport(report_dir, report_options);
     } else if (check->parsed()) {

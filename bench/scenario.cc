@@ -117,9 +117,27 @@ int ChannelsFor(Channels channels, const MarkerSpec& marker) {
   }
 }
 
+std::vector<std::string> ScenarioOverrides::Arguments() const {
+  std::vector<std::string> arguments;
+  for (const std::string& s : set) arguments.insert(arguments.end(), {"--set", s});
+  if (!trackers.empty()) {
+    std::string names;
+    for (const std::string& t : trackers) names += (names.empty() ? "" : ",") + t;
+    arguments.insert(arguments.end(), {"--trackers", names});
+  }
+  return arguments;
+}
+
 std::vector<std::string> InputHashes(const Scenario& scenario) {
   std::vector<std::string> hashes;
   for (const std::string& file : scenario.input_files) hashes.push_back(Sha256OfFile(file));
+  if (!scenario.overrides.empty()) {
+    Sha256 overrides;
+    for (const std::string& argument : scenario.overrides.Arguments()) {
+      overrides.Update(argument + '\0');
+    }
+    hashes.push_back(overrides.HexDigest());
+  }
   return hashes;
 }
 
@@ -211,12 +229,32 @@ TrackerEntry ReadExecTracker(const YamlMap& t, const Scenario& s) {
   return entry;
 }
 
+// Keeps the trackers that --trackers names; each name must be one of the scenario's.
+void KeepTrackers(const std::vector<std::string>& names, Scenario* s) {
+  if (names.empty()) return;
+  std::string all;
+  for (const TrackerEntry& t : s->trackers) all += (all.empty() ? "" : ", ") + t.name;
+  for (const std::string& name : names) {
+    const auto named = [&](const TrackerEntry& t) { return t.name == name; };
+    if (std::none_of(s->trackers.begin(), s->trackers.end(), named)) {
+      throw ConfigError("--trackers: " + s->path + " has no tracker '" + name +
+                        "' (its trackers: " + (all.empty() ? "none" : all) + ")");
+    }
+  }
+  const auto unnamed = [&](const TrackerEntry& t) {
+    return std::find(names.begin(), names.end(), t.name) == names.end();
+  };
+  s->trackers.erase(std::remove_if(s->trackers.begin(), s->trackers.end(), unnamed),
+                    s->trackers.end());
+}
+
 }  // namespace
 
-Scenario LoadScenario(const std::string& path) {
-  const YamlMap root = YamlMap::LoadFile(path);
+Scenario LoadScenario(const std::string& path, const ScenarioOverrides& overrides) {
+  const YamlMap root = YamlMap::LoadFile(path, overrides.set);
   Scenario s;
   s.path = path;
+  s.overrides = overrides;
   s.input_files.push_back(path);
   s.name = root.GetOr<std::string>("name", std::filesystem::path(path).stem().string());
   if (!IsFolderName(s.name)) root.Fail("name", kFolderNameRule);
@@ -255,6 +293,7 @@ Scenario LoadScenario(const std::string& path) {
       }
     }
   }
+  KeepTrackers(overrides.trackers, &s);
   const YamlMap poses = root.GetMap("poses");
   s.poses = ReadPoses(poses);
   s.render = root.Has("render") ? ReadRender(root.GetMap("render")) : RenderDefaults{};

@@ -61,11 +61,26 @@ struct TrackerEntry {
   std::vector<std::pair<std::string, std::string>> parameters;
 };
 
+// Command-line changes to a scenario for quick studies (sweep --set, --trials, --trackers).
+// They are applied before the scenario is read, so they are checked as the file's own keys
+// are; they enter the fingerprint, and an isolated tracker's worker gets them too.
+struct ScenarioOverrides {
+  // "key.path=value" in order (YamlMap::LoadFile); --trials N is "trials=N".
+  std::vector<std::string> set;
+  // Keep only the trackers of these names (in the file's order); empty keeps every tracker.
+  std::vector<std::string> trackers;
+
+  bool empty() const { return set.empty() && trackers.empty(); }
+  // As command-line arguments: --set X ... --trackers a,b.
+  std::vector<std::string> Arguments() const;
+};
+
 // The sweep parameters a scenario may vary.
 const std::vector<std::string>& SweepParameters();
 
 struct Scenario {
   std::string path;
+  ScenarioOverrides overrides;
   // The scenario, camera and marker files: what a run's fingerprint hashes.
   std::vector<std::string> input_files;
   std::string name;
@@ -89,10 +104,11 @@ struct Scenario {
 // Throws ConfigError naming the file, line and key. Also checks what can only be checked by
 // trying: every tracker's options, that each tracker can track one of the markers, and that
 // the pose sampler can put every marker in view at every sweep value.
-Scenario LoadScenario(const std::string& path);
+Scenario LoadScenario(const std::string& path, const ScenarioOverrides& overrides = {});
 
-// SHA-256 of each of scenario.input_files, and of those hashes: the fingerprint that a
-// resumed run and an isolated tracker's worker process must find again.
+// SHA-256 of each of scenario.input_files (and of the overrides' arguments, when there are
+// any), and of those hashes: the fingerprint that a resumed run and an isolated tracker's
+// worker process must find again.
 std::vector<std::string> InputHashes(const Scenario& scenario);
 std::string Fingerprint(const std::vector<std::string>& input_hashes);
 

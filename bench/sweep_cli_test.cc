@@ -15,6 +15,7 @@
 
 #include "bench/cli_test.h"
 #include "bench/frames_csv.h"
+#include "bench/manifest.h"
 #include "core/test_files.h"
 
 namespace markerbench {
@@ -400,6 +401,65 @@ TEST_F(SweepCliTest, ResumeRefusesAnotherScenariosFolder) {
   EXPECT_EQ(f.status, 2);
   EXPECT_THAT(f.error, HasSubstr("was written by a different scenario"));
   EXPECT_EQ(Read(out + "/same/frames.csv"), before);
+}
+
+// --set, --trials and --trackers give the run of the scenario file edited that way; they are
+// in the manifest and the fingerprint, and an isolated tracker's worker gets them: apriltag-ippe
+// (third-party C code, so isolated) is the first tracker only after --trackers.
+TEST_F(SweepCliTest, OverridesRunTheEditedScenarioAndAreRecorded) {
+  const std::string out = (work_ / "out").string(), edited = (work_ / "edited").string();
+  ASSERT_EQ(Run({"sweep",
+                 Scenario("quick", 2),
+                 "--out",
+                 out,
+                 "--set",
+                 "render.blur_sigma_px=2",
+                 "--set",
+                 "sweep.values=[0.0, 0.1]",
+                 "--trials",
+                 "3",
+                 "--trackers",
+                 "aruco,apriltag-ippe"})
+                .status,
+            0);
+  std::string text = Read(Scenario("quick", 3));
+  for (const auto& [from, to] : std::vector<std::pair<std::string, std::string>>{
+           {"  - {name: apriltag}\n", ""},
+           {"blur_sigma_px: 1.0", "blur_sigma_px: 2"},
+           {"values: [0.0, 0.05, 0.15]", "values: [0.0, 0.1]"}}) {
+    ASSERT_NE(text.find(from), std::string::npos) << from;
+    text.replace(text.find(from), from.size(), to);
+  }
+  ASSERT_EQ(Run({"sweep", WriteTestFile("quick.yaml", text), "--out", edited}).status, 0);
+  const std::string frames = Read(out + "/quick/frames.csv");
+  EXPECT_EQ(frames, Read(edited + "/quick/frames.csv"));
+  // 2 values x 3 trials x (apriltag-ippe on the AprilTag, aruco on the ArUco marker).
+  EXPECT_EQ(Lines(out + "/quick/frames.csv"), 1u + 2 * 3 * 2);
+  for (const auto& row : FramesTable(frames)) {
+    EXPECT_NE(row.at("tracker"), "apriltag");
+    EXPECT_NE(row.at("status"), "error") << row.at("message");
+  }
+  const nlohmann::json entry = ReadManifest(out + "/manifest.json")["scenarios"]["quick"];
+  EXPECT_EQ(entry["overrides"]["set"],
+            nlohmann::json({"render.blur_sigma_px=2", "sweep.values=[0.0, 0.1]", "trials=3"}));
+  EXPECT_EQ(entry["overrides"]["trackers"], nlohmann::json({"aruco", "apriltag-ippe"}));
+  EXPECT_EQ(entry["trials"], 3);
+  // Resuming without the overrides is resuming another scenario.
+  const Finished resumed = Run({"sweep", Scenario("quick", 2), "--out", out, "--resume"});
+  EXPECT_EQ(resumed.status, 2);
+  EXPECT_THAT(resumed.error, HasSubstr("a different scenario or other overrides"));
+  // A bad override is bad input, named.
+  const Finished bad = Run({"sweep",
+                            Scenario("quick", 2),
+                            "--out",
+                            (work_ / "bad").string(),
+                            "--set",
+                            "render.blur_sigma_px=wide"});
+  EXPECT_EQ(bad.status, 2);
+  EXPECT_THAT(bad.error,
+              HasSubstr("quick.yaml (--set render.blur_sigma_px=wide): key "
+                        "'render.blur_sigma_px': expected"));
+  EXPECT_FALSE(fs::exists(work_ / "bad"));
 }
 
 // Each case: exit status 2, a message naming the file, line and key, and no output folder.

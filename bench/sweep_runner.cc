@@ -110,7 +110,7 @@ WrittenJobs ScanWrittenJobs(const std::string& path,
 // Everything checked before anything is written.
 PreparedSweep Prepare(const std::string& path, const SweepOptions& options) {
   PreparedSweep p;
-  p.scenario = LoadScenario(path);
+  p.scenario = LoadScenario(path, options.overrides);
   const Scenario& s = p.scenario;
   if (s.trackers.empty()) {
     throw ConfigError(path + ": key 'trackers': missing; expected at least one tracker to sweep");
@@ -160,9 +160,9 @@ void TakeOverEarlierRun(PreparedSweep& p, const SweepOptions& options) {
   const std::string run_json = p.dir + "/run.json";
   const nlohmann::json run = ReadManifest(run_json);
   if (run.value("fingerprint", "") != p.fingerprint) {
-    throw ConfigError(p.dir + ": was written by a different scenario (run.json fingerprint " +
-                      run.value("fingerprint", std::string("missing")) + ", " + path + " has " +
-                      p.fingerprint + "); refusing to --resume into it");
+    throw ConfigError(p.dir + ": was written by a different scenario or other overrides " +
+                      "(run.json fingerprint " + run.value("fingerprint", std::string("missing")) +
+                      ", " + path + " has " + p.fingerprint + "); refusing to --resume into it");
   }
   const Shard shard{run.value("/shard/index"_json_pointer, 0),
                     run.value("/shard/count"_json_pointer, 1)};
@@ -325,6 +325,9 @@ nlohmann::json ScenarioManifest(const PreparedSweep& p, int threads) {
   entry["fingerprint"] = p.fingerprint;
   for (size_t i = 0; i < s.input_files.size(); ++i) {
     entry["input_files"].push_back({{"path", s.input_files[i]}, {"sha256", p.input_hashes[i]}});
+  }
+  if (!s.overrides.empty()) {
+    entry["overrides"] = {{"set", s.overrides.set}, {"trackers", s.overrides.trackers}};
   }
   entry["seed"] = s.seed;
   entry["trials"] = s.trials;

@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "bench/scenario.h"
 #include "bench/shard.h"
 
 namespace markerbench {
@@ -23,6 +24,8 @@ struct SweepOptions {
   // Once a scenario is complete, replace frames.csv and timing.csv by frames.csv.zst and
   // timing.csv.zst (every command reads both forms).
   bool compress = false;
+  // Applied to every scenario (bench/scenario.h); recorded in the manifest.
+  ScenarioOverrides overrides;
 };
 
 // Loads and checks every scenario before writing anything (bad input: ConfigError), locks

@@ -67,6 +67,9 @@ std::unique_ptr<Tracker> SweepTrackerContext::MakeTracker(size_t index) const {
                          std::to_string(index),
                          "--fingerprint",
                          fingerprint_};
+  for (const std::string& argument : scenario_.overrides.Arguments()) {
+    options.worker_argv.push_back(argument);
+  }
   options.timeout_s = entry.timeout_s;
   return std::make_unique<IsolatedTracker>(std::move(local), options);
 }

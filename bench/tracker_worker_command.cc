@@ -10,9 +10,10 @@
 namespace markerbench {
 
 int RunTrackerWorker(const std::string& scenario_path,
+                     const ScenarioOverrides& overrides,
                      size_t tracker_index,
                      const std::string& fingerprint) {
-  const Scenario scenario = LoadScenario(scenario_path);
+  const Scenario scenario = LoadScenario(scenario_path, overrides);
   if (Fingerprint(InputHashes(scenario)) != fingerprint) {
     std::fprintf(stderr,
                  "tracker-worker: %s or its files changed since the sweep started; not serving\n",

@@ -5,6 +5,7 @@
 
 #include <bitset>
 #include <filesystem>
+#include <functional>
 
 #include "core/camera_yaml.h"
 #include "core/codes/artkplus_id_code.h"
@@ -191,6 +192,62 @@ TEST(YamlFiles, OnlyRegularFilesAreRead) {
     ADD_FAILURE() << fifo;
   } catch (const ConfigError& e) {
     EXPECT_THAT(e.what(), HasSubstr(fifo + ": expected a regular file, got a FIFO"));
+  }
+}
+
+// Overrides change values, nested maps and list items, create missing keys, and errors about
+// an overridden value name the override instead of a line of the file.
+TEST(YamlFiles, OverridesApplyBeforeReadingAndNameThemselvesInErrors) {
+  const std::string path =
+      WriteTestFile("overrides.yaml", "a: 1\nlist:\n  - {x: 1}\n  - {x: 2}\nnested: {b: text}\n");
+  const YamlMap map = YamlMap::LoadFile(
+      path, {"a=5", "list[1].x=7", "nested.c=[1, 2]", "fresh.deep=0.5", "nested.b={k: v}"});
+  EXPECT_EQ(map.Get<int>("a"), 5);
+  EXPECT_EQ(map.GetMapList("list")[0].Get<int>("x"), 1);
+  EXPECT_EQ(map.GetMapList("list")[1].Get<int>("x"), 7);
+  EXPECT_EQ(map.GetMap("nested").Get<std::vector<int>>("c"), (std::vector<int>{1, 2}));
+  EXPECT_EQ(map.GetMap("nested").GetMap("b").Get<std::string>("k"), "v");
+  EXPECT_DOUBLE_EQ(map.GetMap("fresh").Get<double>("deep"), 0.5);
+  // The last override of a key wins.
+  EXPECT_EQ(YamlMap::LoadFile(path, {"a=5", "a=6"}).Get<int>("a"), 6);
+
+  const auto error_of = [&](const std::vector<std::string>& overrides,
+                            const std::function<void(const YamlMap&)>& read) {
+    try {
+      read(YamlMap::LoadFile(path, overrides));
+    } catch (const ConfigError& e) {
+      return std::string(e.what());
+    }
+    return std::string("no error");
+  };
+  const auto read_a = [](const YamlMap& m) { m.GetDouble("a", 2.0, 3.0); };
+  EXPECT_EQ(error_of({"a=9"}, read_a),
+            path + " (--set a=9): key 'a': expected a number in [2, 3], got '9'");
+  EXPECT_EQ(error_of({}, read_a), path + ":1: key 'a': expected a number in [2, 3], got '1'");
+  const auto read_list = [](const YamlMap& m) { m.GetMapList("list")[1].Get<int>("x"); };
+  EXPECT_THAT(error_of({"list[1].x=seven"}, read_list),
+              HasSubstr("(--set list[1].x=seven): key 'list[1].x': expected an integer"));
+  const auto strict = [](const YamlMap& m) {
+    m.Get<int>("a");
+    m.GetMapList("list");
+    const YamlMap nested = m.GetMap("nested");
+    nested.Get<std::string>("b");
+    nested.RejectUnknownKeys();
+  };
+  EXPECT_THAT(error_of({"nested.typo=1"}, strict),
+              HasSubstr(path + " (--set nested.typo=1): key 'nested.typo': unknown key"));
+  for (const auto& [bad, message] : std::vector<std::pair<std::string, std::string>>{
+           {"a", "expected KEY=VALUE"},
+           {"=1", "an empty key"},
+           {"a..b=1", "an empty key"},
+           {"a.=1", "an empty key"},
+           {"list[x].x=1", "a list index [N]"},
+           {"list[2].x=1", "'list' has no item 2"},
+           {"a.b=1", "'a' is not a mapping"},
+           {"nested[0]=1", "'nested' has no item 0"},
+           {"a=", "expected a value after '='"},
+           {"a=[1, 2", "the value is not valid YAML"}}) {
+    EXPECT_THAT(error_of({bad}, read_a), HasSubstr("--set " + bad + ": " + message)) << bad;
   }
 }
 

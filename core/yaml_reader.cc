@@ -79,9 +79,105 @@ void CheckKeys(const YAML::Node& node, const std::string& path, size_t* visited)
   }
 }
 
+// One step of an override's key path: a key of a mapping or an index of a list.
+struct KeyStep {
+  std::string key;  // empty for an index
+  size_t index = 0;
+};
+
+// "a.b[2].c" as steps; throws on an empty key or a malformed index.
+std::vector<KeyStep> ParseKeyPath(const std::string& path, const std::string& override_text) {
+  std::vector<KeyStep> steps;
+  size_t i = 0;
+  const auto fail = [&](const std::string& what) {
+    throw ConfigError("--set " + override_text + ": " + what +
+                      " (expected KEY=VALUE with KEY like render.noise_var or "
+                      "trackers[0].options.threshold)");
+  };
+  while (true) {
+    const size_t end = path.find_first_of(".[", i);
+    const std::string key = path.substr(i, end == std::string::npos ? end : end - i);
+    if (key.empty()) fail("an empty key");
+    steps.push_back({key, 0});
+    i = end == std::string::npos ? path.size() : end;
+    while (i < path.size() && path[i] == '[') {
+      const size_t close = path.find(']', i);
+      const std::string digits = path.substr(i + 1, close == std::string::npos ? 0 : close - i - 1);
+      if (close == std::string::npos || digits.empty() || digits.size() > 6 ||
+          digits.find_first_not_of("0123456789") != std::string::npos) {
+        fail("a list index [N]");
+      }
+      steps.push_back({"", static_cast<size_t>(std::stoul(digits))});
+      i = close + 1;
+    }
+    if (i == path.size()) break;
+    if (path[i] != '.') fail("'.' or '[' after a key");
+    ++i;
+  }
+  return steps;
+}
+
+void CollectNodes(const YAML::Node& node,
+                  const std::string& text,
+                  std::vector<std::pair<YAML::Node, std::string>>* out) {
+  out->emplace_back(node, text);
+  if (node.IsSequence()) {
+    for (const YAML::Node& item : node) CollectNodes(item, text, out);
+  } else if (node.IsMap()) {
+    for (const auto& entry : node) CollectNodes(entry.second, text, out);
+  }
+}
+
+// Applies "key.path=value" to `root`; appends the nodes it put there to `overridden`.
+void ApplyOverride(YAML::Node root,
+                   const std::string& override_text,
+                   std::vector<std::pair<YAML::Node, std::string>>* overridden) {
+  const size_t equals = override_text.find('=');
+  if (equals == std::string::npos) {
+    throw ConfigError("--set " + override_text + ": expected KEY=VALUE");
+  }
+  const std::vector<KeyStep> steps = ParseKeyPath(override_text.substr(0, equals), override_text);
+  YAML::Node value;
+  try {
+    value = YAML::Load(override_text.substr(equals + 1));
+  } catch (const YAML::Exception& e) {
+    throw ConfigError("--set " + override_text + ": the value is not valid YAML: " + e.msg);
+  }
+  if (!value.IsDefined() || value.IsNull()) {
+    throw ConfigError("--set " + override_text + ": expected a value after '='");
+  }
+  YAML::Node node = root;
+  std::string walked;
+  for (size_t s = 0; s < steps.size(); ++s) {
+    const KeyStep& step = steps[s];
+    const bool last = s + 1 == steps.size();
+    if (!step.key.empty()) {
+      if (!node.IsMap()) {
+        throw ConfigError("--set " + override_text + ": '" + walked + "' is not a mapping");
+      }
+      if (last) {
+        node[step.key] = value;
+      } else if (!node[step.key].IsDefined()) {
+        node[step.key] = YAML::Node(YAML::NodeType::Map);
+      }
+      node.reset(node[step.key]);
+      walked += (walked.empty() ? "" : ".") + step.key;
+    } else {
+      if (!node.IsSequence() || step.index >= node.size()) {
+        throw ConfigError("--set " + override_text + ": '" + walked + "' has no item " +
+                          std::to_string(step.index));
+      }
+      if (last) node[step.index] = value;
+      node.reset(node[step.index]);
+      walked += "[" + std::to_string(step.index) + "]";
+    }
+  }
+  CollectNodes(node, "--set " + override_text, overridden);
+}
+
 }  // namespace
 
-YamlMap YamlMap::LoadFile(const std::string& path) {
+YamlMap YamlMap::LoadFile(const std::string& path, const std::vector<std::string>& overrides) {
   RequireRegularFile(path);
   YAML::Node root;
   try {
@@ -95,9 +191,19 @@ YamlMap YamlMap::LoadFile(const std::string& path) {
   if (!root.IsMap()) {
     throw ConfigError(path + ": expected a YAML mapping at the top level, got " + Describe(root));
   }
+  auto overridden = std::make_shared<Overridden>();
+  for (const std::string& text : overrides) ApplyOverride(root, text, overridden.get());
   size_t visited = 0;
   CheckKeys(root, path, &visited);
-  return YamlMap(root, path, "");
+  YamlMap map(root, path, "");
+  map.overridden_ = std::move(overridden);
+  return map;
+}
+
+YamlMap YamlMap::Child(const YAML::Node& node, std::string key_path) const {
+  YamlMap child(node, file_, std::move(key_path));
+  child.overridden_ = overridden_;
+  return child;
 }
 
 YamlMap::YamlMap(const YAML::Node& node, std::string file, std::string key_path)
@@ -110,6 +216,11 @@ std::string YamlMap::FullKey(const std::string& key) const {
 }
 
 std::string YamlMap::Where(const YAML::Node& node) const {
+  if (overridden_) {
+    for (const auto& [overridden, text] : *overridden_) {
+      if (overridden.is(node)) return file_ + " (" + text + ")";
+    }
+  }
   const YAML::Mark mark = node.Mark();
   if (mark.is_null()) return file_;
   return file_ + ":" + std::to_string(mark.line + 1);
@@ -220,7 +331,7 @@ Eigen::Vector3d YamlMap::GetColor(const std::string& key) const {
 YamlMap YamlMap::GetMap(const std::string& key) const {
   const YAML::Node value = Lookup(key);
   if (!value.IsDefined() || !value.IsMap()) Fail(key, "a mapping");
-  return YamlMap(value, file_, FullKey(key));
+  return Child(value, FullKey(key));
 }
 
 std::vector<YamlMap> YamlMap::GetMapList(const std::string& key) const {
@@ -233,7 +344,7 @@ std::vector<YamlMap> YamlMap::GetMapList(const std::string& key) const {
       throw ConfigError(Where(value[i]) + ": key '" + element_key + "': expected a mapping, got " +
                         Describe(value[i]));
     }
-    out.emplace_back(value[i], file_, element_key);
+    out.push_back(Child(value[i], element_key));
   }
   return out;
 }
@@ -244,7 +355,9 @@ void YamlMap::RejectUnknownKeys() const {
   for (const auto& entry : node_) {
     const std::string key = entry.first.as<std::string>();
     if (read_keys_.count(key) == 0) {
-      throw ConfigError(Where(entry.first) + ": key '" + FullKey(key) +
+      // A key an override added has no line; its value names the override.
+      const bool added = entry.first.Mark().is_null();
+      throw ConfigError(Where(added ? entry.second : entry.first) + ": key '" + FullKey(key) +
                         "': unknown key (check its spelling and the format in README.md)");
     }
   }

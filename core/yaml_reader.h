@@ -6,8 +6,10 @@
 #include <yaml-cpp/yaml.h>
 
 #include <Eigen/Core>
+#include <memory>
 #include <set>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "core/config_error.h"
@@ -16,8 +18,11 @@ namespace markerbench {
 
 class YamlMap {
  public:
-  // Parses `path`, whose top level must be a mapping.
-  static YamlMap LoadFile(const std::string& path);
+  // Parses `path`, whose top level must be a mapping, then applies `overrides` in order:
+  // "key.path=value" with the value in YAML flow form ("render.noise_var=0.05",
+  // "sweep.values=[0.1, 0.2]", "trackers[1].options.threshold=90"); missing keys are created.
+  // Errors about an overridden value name the override, not a line of the file.
+  static YamlMap LoadFile(const std::string& path, const std::vector<std::string>& overrides = {});
 
   YamlMap(const YAML::Node& node, std::string file, std::string key_path);
 
@@ -60,7 +65,11 @@ class YamlMap {
   [[noreturn]] void Fail(const std::string& key, const std::string& expected) const;
 
  private:
+  // Each node an override put in the tree, with the override's text.
+  using Overridden = std::vector<std::pair<YAML::Node, std::string>>;
+
   YAML::Node Lookup(const std::string& key) const;
+  YamlMap Child(const YAML::Node& node, std::string key_path) const;
   std::string Where(const YAML::Node& node) const;
   std::string FullKey(const std::string& key) const;
 
@@ -68,6 +77,7 @@ class YamlMap {
   std::string file_;
   std::string key_path_;
   mutable std::set<std::string> read_keys_;
+  std::shared_ptr<const Overridden> overridden_;
 };
 
 // Ends reading an options map: unknown keys are errors, and so is the complaint of
