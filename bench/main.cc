@@ -8,6 +8,7 @@
 
 #include "bench/check_command.h"
 #include "bench/crlb_command.h"
+#include "bench/data_dir.h"
 #include "bench/list_command.h"
 #include "bench/manifest.h"
 #include "bench/marker_sheets.h"
@@ -65,7 +66,7 @@ int main(int argc, char** argv) {
   CLI::App* list =
       app.add_subcommand("list", "The trackers (options, defaults, markers they read) or markers");
   std::string list_what;
-  std::string list_markers_dir = std::string(MARKERBENCH_SOURCE_DIR) + "/scenarios/markers";
+  std::string list_markers_dir = DataDir() + "/scenarios/markers";
   list->add_option("what", list_what, "trackers or markers")
       ->required()
       ->check(CLI::IsMember({"trackers", "markers"}));
@@ -98,7 +99,7 @@ int main(int argc, char** argv) {
 
   CLI::App* markers = app.add_subcommand("markers", "Print-ready 300 dpi sheets of markers");
   std::string markers_out;
-  std::string markers_dir = std::string(MARKERBENCH_SOURCE_DIR) + "/scenarios/markers";
+  std::string markers_dir = DataDir() + "/scenarios/markers";
   std::vector<std::string> marker_files;
   markers->add_option("--out", markers_out, "Output folder")->required();
   markers->add_option("--markers-dir", markers_dir, "Folder of marker YAML files");

@@ -1,30 +1,18 @@
 #include "bench/manifest.h"
 
-#include <cstdio>
 #include <filesystem>
 #include <fstream>
-#include <memory>
 #include <stdexcept>
 #include <thread>
 
 #include "bench/atomic_file.h"
 #include "bench/build_info.h"
+#include "bench/git_info.h"
 #include "core/regular_file.h"
 #include "core/yaml_reader.h"
 
 namespace markerbench {
 namespace {
-
-// Standard output of a shell command, trailing newline removed; empty on failure.
-std::string CommandOutput(const std::string& command) {
-  std::unique_ptr<FILE, int (*)(FILE*)> pipe(::popen(command.c_str(), "r"), ::pclose);
-  if (!pipe) return "";
-  std::string out;
-  char buffer[256];
-  while (std::fgets(buffer, sizeof(buffer), pipe.get())) out += buffer;
-  while (!out.empty() && out.back() == '\n') out.pop_back();
-  return out;
-}
 
 std::string CpuModel() {
   std::ifstream in("/proc/cpuinfo");
@@ -38,13 +26,10 @@ std::string CpuModel() {
 }  // namespace
 
 nlohmann::json EnvironmentManifest(int threads) {
-  const std::string git = std::string("git -C '") + MARKERBENCH_SOURCE_DIR + "' ";
   nlohmann::json env;
-  env["git_commit"] = CommandOutput(git + "rev-parse HEAD 2>/dev/null");
-  // Changes to tracked files other than results/ (which a run itself rewrites).
-  env["git_dirty"] =
-      !CommandOutput(git + "status --porcelain --untracked-files=no -- . ':!results' 2>/dev/null")
-           .empty();
+  env["git_commit"] = git_info::kCommit;
+  // Changes to tracked files other than results/ (which a run itself rewrites) at build time.
+  env["git_dirty"] = git_info::kDirty;
   env["compiler"] = build_info::kCompiler;
   env["build_type"] = build_info::kBuildType;
   for (const auto& [library, version] : build_info::kLibraries) env["libraries"][library] = version;
@@ -55,8 +40,7 @@ nlohmann::json EnvironmentManifest(int threads) {
 }
 
 std::string VersionText() {
-  const std::string describe = CommandOutput(std::string("git -C '") + MARKERBENCH_SOURCE_DIR +
-                                             "' describe --always --dirty 2>/dev/null");
+  const std::string describe = git_info::kDescribe;
   std::string text = "markerbench " + (describe.empty() ? std::string("(no git)") : describe) +
                      " (" + build_info::kBuildType + ", " + build_info::kCompiler + ")\n";
   for (const auto& [library, version] : build_info::kLibraries) {

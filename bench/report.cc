@@ -11,6 +11,7 @@
 #include <map>
 
 #include "bench/atomic_file.h"
+#include "bench/data_dir.h"
 #include "bench/manifest.h"
 #include "bench/progress.h"
 #include "bench/report_html.h"
@@ -142,7 +143,7 @@ std::string EnvironmentSection(const nlohmann::json& manifest) {
 }
 
 void RunPlots(const std::string& dir) {
-  const std::string script = std::string(MARKERBENCH_SOURCE_DIR) + "/scripts/plot_sweep.py";
+  const std::string script = DataFile("scripts/plot_sweep.py");
   // Debian's interpreter has python3-matplotlib; another python3 on PATH may not.
   const std::string python = fs::exists("/usr/bin/python3") ? "/usr/bin/python3" : "python3";
   // An argument vector, never a shell: a folder name is data, whatever its characters.
