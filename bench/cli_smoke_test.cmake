@@ -124,7 +124,7 @@ if(NOT last_error MATCHES "bad.yaml.*key 'markers': missing")
 endif()
 
 run(0 markers --out ${WORK_DIR}/sheets --marker scenarios/markers/apriltag.yaml)
-if(NOT EXISTS ${WORK_DIR}/sheets/apriltag.png)
+if(NOT EXISTS ${WORK_DIR}/sheets/apriltag.pdf)
   message(FATAL_ERROR "marker sheet missing")
 endif()
 

@@ -3,6 +3,7 @@
 #include <CLI/CLI.hpp>
 #include <iomanip>
 #include <iostream>
+#include <map>
 #include <optional>
 #include <sstream>
 
@@ -97,13 +98,23 @@ int main(int argc, char** argv) {
                    explicit_options.write_float,
                    "Also write frame_NNNNNN.exr (linear float, after noise and clipping)");
 
-  CLI::App* markers = app.add_subcommand("markers", "Print-ready 300 dpi sheets of markers");
+  CLI::App* markers = app.add_subcommand(
+      "markers", "Print-ready sheets of markers (PDF, SVG or 300 dpi PNG) with a check bar");
   std::string markers_out;
   std::string markers_dir = DataDir() + "/scenarios/markers";
   std::vector<std::string> marker_files;
   markers->add_option("--out", markers_out, "Output folder")->required();
   markers->add_option("--markers-dir", markers_dir, "Folder of marker YAML files");
   markers->add_option("--marker", marker_files, "Marker YAML files (instead of the folder)");
+  SheetOptions sheet_options;
+  markers->add_option("--format", sheet_options.format, "pdf (default), svg or png (300 dpi)")
+      ->transform(CLI::CheckedTransformer(std::map<std::string, SheetFormat>{
+          {"pdf", SheetFormat::kPdf}, {"svg", SheetFormat::kSvg}, {"png", SheetFormat::kPng}}));
+  markers->add_option("--paper", sheet_options.paper, "a4 (default), letter or a3")
+      ->check(CLI::IsMember(PaperNames()));
+  markers->add_flag("--tile",
+                    sheet_options.tile,
+                    "Split a marker larger than the page over pages (else it is an error)");
 
   CLI::App* track = app.add_subcommand("track", "Run a tracker on images or video files");
   TrackCommandOptions track_options;
@@ -298,7 +309,7 @@ int main(int argc, char** argv) {
       std::cerr << RunCrlbCommand(crlb_options) << '\n';
     } else if (markers->parsed()) {
       if (marker_files.empty()) marker_files = MarkerFilesIn(markers_dir);
-      for (const std::string& path : WriteMarkerSheets(marker_files, markers_out)) {
+      for (const std::string& path : WriteMarkerSheets(marker_files, markers_out, sheet_options)) {
         std::cout << path << '\n';
       }
     }
