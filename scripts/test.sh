@@ -8,7 +8,7 @@ cd "$(dirname "$0")/.."
 bash scripts/install-deps.sh
 
 echo "== formatting (clang-format)"
-find core renderer trackers bench \( -name '*.h' -o -name '*.cc' \) -print0 |
+find core renderer trackers testing bench \( -name '*.h' -o -name '*.cc' \) -print0 |
   xargs -0 clang-format --dry-run --Werror
 
 echo "== build (Release, -Werror)"

@@ -2,7 +2,7 @@
 // project root.
 #include <benchmark/benchmark.h>
 
-#include "trackers/benchmark_frames.h"
+#include "testing/benchmark_frames.h"
 
 namespace markerbench {
 namespace {

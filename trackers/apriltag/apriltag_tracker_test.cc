@@ -5,7 +5,7 @@
 #include <gtest/gtest.h>
 
 #include "core/marker_yaml.h"
-#include "trackers/square_tracker_testing.h"
+#include "testing/square_tracker_testing.h"
 #include "trackers/tracker_factory.h"
 
 namespace markerbench {

@@ -5,7 +5,7 @@
 
 #include "core/test_files.h"
 #include "core/yaml_reader.h"
-#include "trackers/square_tracker_testing.h"
+#include "testing/square_tracker_testing.h"
 #include "trackers/tracker_factory.h"
 
 namespace markerbench {

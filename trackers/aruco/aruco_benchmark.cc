@@ -1,7 +1,7 @@
 // aruco per-frame time on one thread (results/speed.md). Run from the project root.
 #include <benchmark/benchmark.h>
 
-#include "trackers/benchmark_frames.h"
+#include "testing/benchmark_frames.h"
 
 namespace markerbench {
 namespace {

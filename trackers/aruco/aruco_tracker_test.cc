@@ -5,7 +5,7 @@
 #include <opencv2/aruco.hpp>
 
 #include "core/test_files.h"
-#include "trackers/square_tracker_testing.h"
+#include "testing/square_tracker_testing.h"
 #include "trackers/tracker_factory.h"
 
 namespace markerbench {

@@ -8,7 +8,7 @@
 
 #include "core/marker_scaling.h"
 #include "core/marker_yaml.h"
-#include "trackers/benchmark_frames.h"
+#include "testing/benchmark_frames.h"
 #include "trackers/circle/circle_tracker.h"
 
 namespace markerbench {

@@ -14,7 +14,7 @@
 #include "core/yaml_reader.h"
 #include "renderer/render_frame.h"
 #include "renderer/test_scenes.h"
-#include "trackers/square_tracker_testing.h"
+#include "testing/square_tracker_testing.h"
 #include "trackers/tracker_factory.h"
 
 namespace markerbench {

@@ -3,7 +3,7 @@
 #include <gtest/gtest.h>
 
 #include "core/test_files.h"
-#include "trackers/square_tracker_testing.h"
+#include "testing/square_tracker_testing.h"
 #include "trackers/tracker_factory.h"
 
 namespace markerbench {
