@@ -35,11 +35,16 @@ Color ToColor(const Rgb& rgb, int channels) {
   return c;
 }
 
-// The marker-plane point under a pixel and the local derivative dX/dp (metres per pixel).
+// The marker-plane point under a pixel and the local derivative dX/dp (metres per pixel),
+// and the pixel's signed distance to the horizon (the image of the plane's line at infinity,
+// a curve under distortion), linearised at the pixel: positive beyond it (rays that miss the
+// plane), +-inf when the view has no horizon.
 struct PlanePoint {
   bool on_plane = false;
   Eigen::Vector2d X;
   Eigen::Matrix2d dX_dp;
+  double horizon_px = -INFINITY;
+  Eigen::Vector2d horizon_normal = Eigen::Vector2d::UnitX();  // towards beyond the horizon
 };
 
 // Singular values of dX_dp (largest, smallest).
@@ -67,6 +72,14 @@ class PlaneMapper {
       dn_dp = camera_.DistortJacobian(n).inverse() * dn_dp;
     }
     const Eigen::Vector3d w = plane_from_ray_ * Eigen::Vector3d(n.x(), n.y(), 1.0);
+    // w.z() is linear in the undistorted ray n and zero on the horizon.
+    const Eigen::Vector2d grad = dn_dp.transpose() * plane_from_ray_.row(2).head<2>().transpose();
+    if (grad.norm() > 0.0) {
+      p.horizon_px = -w.z() / grad.norm();
+      p.horizon_normal = -grad / grad.norm();
+    } else {
+      p.horizon_px = w.z() > 0.0 ? -INFINITY : INFINITY;
+    }
     if (!(w.z() > 0.0)) return p;  // the ray meets the plane behind the camera, or never
     p.on_plane = true;
     p.X = w.head<2>() / w.z();
@@ -101,7 +114,8 @@ struct Layer {
   const GridShape* grid = nullptr;
   Color color;  // ink / inside colour
   Color paper;  // grid paper cells, plane paper
-  // kPlane without distortion: the horizon as an image line, |(a, b)| = 1, paper where < 0.
+  // kPlane without distortion: the horizon as an image line, |(a, b)| = 1, paper where < 0
+  // (with distortion: PlanePoint::horizon_px).
   bool has_horizon = false;
   Eigen::Vector3d horizon;
   // Pixels outside this box see the layer as transparent (plane layers: whole canvas).
@@ -140,7 +154,15 @@ Sample EdgeFromPlane(
   return Edge(neg, pos, gi / gn, s / gn);
 }
 
+// A cell the horizon crosses: subdivided (its plane points are not all defined). The slack
+// covers the bend of a distorted horizon across a block.
+bool StraddlesHorizon(const PlanePoint& p, double h) {
+  constexpr double kHorizonSlack = 1.5;
+  return h > 0.0 && std::abs(p.horizon_px) <= kHorizonSlack * kReach * h;
+}
+
 Sample ClassifyConstraints(const Layer& layer, const PlanePoint& p, double h) {
+  if (StraddlesHorizon(p, h)) return Complex();
   if (!p.on_plane) return Uniform(nullptr);
   int crossings = 0;
   bool too_curved = false;
@@ -181,6 +203,7 @@ Sample ClassifyConstraints(const Layer& layer, const PlanePoint& p, double h) {
 }
 
 Sample ClassifyGrid(const Layer& layer, const PlanePoint& p, double h) {
+  if (StraddlesHorizon(p, h)) return Complex();
   if (!p.on_plane) return Uniform(nullptr);
   const GridShape& grid = *layer.grid;
   const double gx = (p.X.x() - grid.top_left.x()) / grid.cell_m;
@@ -236,12 +259,20 @@ Sample ClassifyGrid(const Layer& layer, const PlanePoint& p, double h) {
   return Complex();
 }
 
+// The infinite plane: paper up to the horizon, an exact line without distortion, else the
+// distorted curve linearised per cell (cells near it are subdivided down to pixels, where
+// the curve is straight to well below 1/255 of a pixel's area).
 Sample ClassifyPlane(const Layer& layer, const PlanePoint& p, double u, double v, double h) {
-  if (!layer.has_horizon) return Uniform(p.on_plane ? &layer.paper : nullptr);
-  const double d = layer.horizon.dot(Eigen::Vector3d(u, v, 1.0));
-  if (d > kReach * h) return Uniform(nullptr);
-  if (d < -kReach * h) return Uniform(&layer.paper);
-  return Edge(&layer.paper, nullptr, layer.horizon.head<2>(), d);
+  if (layer.has_horizon) {
+    const double d = layer.horizon.dot(Eigen::Vector3d(u, v, 1.0));
+    if (d > kReach * h) return Uniform(nullptr);
+    if (d < -kReach * h) return Uniform(&layer.paper);
+    return Edge(&layer.paper, nullptr, layer.horizon.head<2>(), d);
+  }
+  if (h > 1.0 && StraddlesHorizon(p, h)) return Complex();
+  if (p.horizon_px > kReach * h) return Uniform(nullptr);
+  if (p.horizon_px < -kReach * h) return Uniform(&layer.paper);
+  return Edge(&layer.paper, nullptr, p.horizon_normal, p.horizon_px);
 }
 
 // Area fraction of an h×h cell where normal·(p - centre) < t (Minkowski sum of two boxes: a

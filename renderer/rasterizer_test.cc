@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <Eigen/LU>
+#include <cmath>
 #include <ctime>
 #include <random>
 
@@ -199,6 +200,59 @@ TEST(Rasterizer, BeyondTheHorizonIsBackdrop) {
   // sky lie towards the bottom of the image.
   EXPECT_NEAR(raster.image.at(320, 479), 0.25, 1e-6);
   EXPECT_NEAR(raster.image.at(320, 0), 1.0, 1e-6);
+}
+
+// Where the horizon's image crosses column u: the plane's directions (cos θ, sin θ, 0)
+// projected through the distorted camera, interpolated at u; NaN when it does not cross.
+double HorizonRow(const Scene& scene, double u) {
+  constexpr int kDirections = 100000;
+  Eigen::Vector2d previous(NAN, NAN);
+  for (int i = 0; i <= kDirections; ++i) {
+    const double theta = 2.0 * M_PI * i / kDirections;
+    const Eigen::Vector3d x =
+        scene.cam_from_marker.rotation * Eigen::Vector3d(std::cos(theta), std::sin(theta), 0.0);
+    if (!(x.z() > 1e-3)) {
+      previous = Eigen::Vector2d(NAN, NAN);
+      continue;
+    }
+    const Eigen::Vector2d px = scene.camera.ImgFromCam(x);
+    if ((previous.x() - u) * (px.x() - u) <= 0.0 && previous.x() != px.x()) {
+      const double t = (u - previous.x()) / (px.x() - previous.x());
+      return previous.y() + t * (px.y() - previous.y());
+    }
+    previous = px;
+  }
+  return NAN;
+}
+
+// With a distorted camera the horizon is the distorted image of the plane's line at infinity,
+// a curve: drawn exactly at every column, not in 16-pixel blocks. Also with a sheet so large
+// that its far edge lies beyond the horizon (then the horizon is sampled at 1/32 px).
+TEST(Rasterizer, DistortedHorizonIsTheDistortedLineAtInfinity) {
+  const MarkerSpec disk = BlackDiskMarker(0.005);
+  for (const bool sheet : {false, true}) {
+    Scene scene = MakeScene(disk, TiltedView(0.5, 84.0, 15.0));
+    scene.camera.distortion = {-0.3, 0.1, 0.0, 0.0, 0.0};
+    scene.backdrop = Rgb::Constant(0.25);
+    if (sheet) scene.sheet_size_m = Eigen::Vector2d(1e6, 1e6);
+    const ImageF image = Rasterize(scene, 1).image;
+    int columns = 0;
+    double worst = 0.0;
+    for (int u = 4; u < scene.camera.width - 4; u += 3) {
+      const double horizon = HorizonRow(scene, u);
+      if (!(horizon > 20.0 && horizon < scene.camera.height - 21.0)) continue;
+      ++columns;
+      // Rows a..b around the curve; the paper covers the part of the column below it.
+      const int a = static_cast<int>(horizon) - 12, b = static_cast<int>(horizon) + 12;
+      const bool paper_below = image.at(u, b) > 0.5;
+      double paper_rows = 0.0;
+      for (int v = a; v <= b; ++v) paper_rows += (image.at(u, v) - 0.25) / 0.75;
+      const double expected = paper_below ? b + 0.5 - horizon : horizon - (a - 0.5);
+      worst = std::max(worst, std::abs(paper_rows - expected));
+    }
+    EXPECT_GT(columns, 100) << "the horizon must cross the view";
+    EXPECT_LT(worst, sheet ? 0.06 : 0.01) << (sheet ? "sheet" : "plane");
+  }
 }
 
 TEST(Rasterizer, FiniteSheetShowsBackdropAroundIt) {
