@@ -18,7 +18,8 @@ std::string Printf(const char* format, double value) {
 }
 
 std::string ValueText(const CellCheck& c) {
-  return c.sweep_parameter.empty() ? "all" : c.sweep_parameter + "=" + NumberText(c.sweep_value);
+  if (c.sweep_parameter.empty()) return "all";
+  return c.sweep_parameter + "=" + NumberText(c.sweep_value) + (c.grid.empty() ? "" : ";" + c.grid);
 }
 
 std::string Amount(const MetricCheck& m, double value) {

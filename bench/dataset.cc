@@ -112,6 +112,8 @@ Dataset ReadDataset(const std::string& dir) {
                trial = column("trial"), seed = column("seed"), size = column("apparent_size_px");
   std::vector<size_t> pose;
   for (const char* c : kPoseColumns) pose.push_back(column(c));
+  // A grid sweep's other axes; datasets written before grids have no such column.
+  const auto grid_at = std::find(header.begin(), header.end(), "grid");
   for (int number = 2; std::getline(in, line); ++number) {
     const std::vector<std::string> f = SplitCsvLine(line);
     if (f.size() != header.size()) {
@@ -146,6 +148,7 @@ Dataset ReadDataset(const std::string& dir) {
     d.sweep_parameter = f[parameter].empty() ? "pose" : f[parameter];
     d.sweep_value = f[parameter].empty() ? d.frame : number_at(value);
     d.trial = f[parameter].empty() ? 0 : count_at(trial);
+    if (grid_at != header.end()) d.grid = f[static_cast<size_t>(grid_at - header.begin())];
     const std::optional<uint64_t> seed_value = ParseUnsigned64(f[seed]);
     if (!seed_value) {
       throw ConfigError(Located(csv_path, number) +

@@ -30,6 +30,7 @@ struct DatasetFrame {
   // The explicit render form has no sweep: each pose is its own cell ("pose", its index).
   std::string sweep_parameter;
   double sweep_value = 0.0;
+  std::string grid;  // a grid sweep's other axes (frames.csv's grid); else empty
   int trial = 0;
   uint64_t seed = 0;
   Rigid3 truth;  // cam_from_marker

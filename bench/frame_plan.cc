@@ -5,6 +5,7 @@
 #include <stdexcept>
 
 #include "bench/pose_sampler.h"
+#include "core/number_text.h"
 #include "core/random.h"
 #include "core/yaml_reader.h"
 
@@ -49,12 +50,33 @@ void ApplySweepValue(const std::string& parameter,
   }
 }
 
+std::string GridText(const std::vector<SweepAxis>& axes, const std::vector<size_t>& indices) {
+  std::string text;
+  for (size_t a = 0; a < axes.size(); ++a) {
+    text += (a == 0 ? "" : ";") + axes[a].parameter + "=" + NumberText(axes[a].values[indices[a]]);
+  }
+  return text;
+}
+
 std::vector<PlannedFrame> PlanFrames(const Scenario& s, int limit) {
   std::vector<PlannedFrame> frames;
-  for (size_t cell = 0; cell < s.sweep_values.size(); ++cell) {
+  size_t combinations = 1;
+  for (const SweepAxis& axis : s.grid_axes) combinations *= axis.values.size();
+  const size_t values = s.sweep_values.size();
+  for (size_t cell = 0; cell < combinations * values; ++cell) {
     PoseSamplerOptions poses = s.poses;
     Degradations degradations = s.render.degradations;
-    ApplySweepValue(s.sweep_parameter, s.sweep_values[cell], &poses, &degradations);
+    // Mixed radix: the first axis fastest, then the grid's axes in order.
+    const size_t value_index = cell % values;
+    std::vector<size_t> indices;
+    for (size_t rest = cell / values; indices.size() < s.grid_axes.size();) {
+      const SweepAxis& axis = s.grid_axes[indices.size()];
+      indices.push_back(rest % axis.values.size());
+      rest /= axis.values.size();
+      ApplySweepValue(axis.parameter, axis.values[indices.back()], &poses, &degradations);
+    }
+    ApplySweepValue(s.sweep_parameter, s.sweep_values[value_index], &poses, &degradations);
+    const std::string grid = GridText(s.grid_axes, indices);
     for (int trial = 0; trial < s.trials; ++trial) {
       const Rigid3 cam_from_center = SamplePairedPose(
           poses, s.camera, s.markers, SeedFor(s.seed, cell, trial, SeedPurpose::kPose));
@@ -65,7 +87,9 @@ std::vector<PlannedFrame> PlanFrames(const Scenario& s, int limit) {
         f.cell = static_cast<int>(cell);
         f.trial = trial;
         f.marker_index = static_cast<int>(m);
-        f.sweep_value = s.sweep_values[cell];
+        f.sweep_value = s.sweep_values[value_index];
+        f.grid = grid;
+        f.example = trial == 0 && f.sweep_value == s.example_value && cell < values;
         f.cam_from_marker = CamFromMarker(cam_from_center, s.markers[m]);
         f.degradations = degradations;
         f.channels = ChannelsFor(s.render.channels, s.markers[m]);

@@ -1,5 +1,6 @@
-// Expands a scenario into its frames: for each sweep value (cell), trial and marker, the
-// pose (paired: the same cam_from_center for every marker), degradations and seeds.
+// Expands a scenario into its frames: for each cell (a value of the first sweep axis at one
+// combination of a grid's other axes), trial and marker, the pose (paired: the same
+// cam_from_center for every marker), degradations and seeds.
 #pragma once
 
 #include <vector>
@@ -16,6 +17,11 @@ struct PlannedFrame {
   int trial = 0;
   int marker_index = 0;
   double sweep_value = 0.0;
+  // The grid's other axes at this cell, "tilt_deg=30;noise_var=0.02" (GridText); empty for
+  // a one-axis sweep.
+  std::string grid;
+  // Trial 0 at the example value (and the grid's first combination): the example image.
+  bool example = false;
   Rigid3 cam_from_marker;
   Degradations degradations;
   int channels = 1;
@@ -35,7 +41,11 @@ void ApplySweepValue(const std::string& parameter,
                      PoseSamplerOptions* poses,
                      Degradations* degradations);
 
-// Frames in (cell, trial, marker) order; at most `limit` (0: all).
+// "p1=v1;p2=v2" for the grid axes' values at `indices`.
+std::string GridText(const std::vector<SweepAxis>& axes, const std::vector<size_t>& indices);
+
+// Frames in (cell, trial, marker) order, cells with the first axis fastest and the grid's
+// axes after it in file order; at most `limit` frames (0: all).
 std::vector<PlannedFrame> PlanFrames(const Scenario& scenario, int limit = 0);
 
 // What to render for `frame`; refers to the scenario's marker and camera.

@@ -36,6 +36,7 @@ const std::vector<std::string>& Columns() {
     for (const char* p : kPoseColumns) c.push_back(std::string("gt_") + p);
     for (const char* p : kPoseColumns) c.push_back(p);
     c.push_back("message");
+    c.push_back("grid");
     return c;
   }();
   return kColumns;
@@ -136,7 +137,7 @@ std::string FormatFrameRow(const FrameRow& r) {
       ',' + NumberTextOrEmpty(r.crlb_rotation_deg) + ',' +
       NumberTextOrEmpty(r.crlb_rotation_med_deg);
   out += PoseFields(r.truth) + (r.estimate ? PoseFields(*r.estimate) : std::string(12, ','));
-  return out + ',' + CsvField(r.message) + '\n';
+  return out + ',' + CsvField(r.message) + ',' + CsvField(r.grid) + '\n';
 }
 
 FrameRow ParseFrameRow(const std::string& line) {
@@ -172,6 +173,7 @@ FrameRow ParseFrameRow(const std::string& line) {
   r.truth = ParsePose(f, 21);
   if (!f[33].empty()) r.estimate = ParsePose(f, 33);
   r.message = f[45];
+  r.grid = f[46];
   return r;
 }
 

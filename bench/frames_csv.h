@@ -19,6 +19,7 @@ struct FrameRow {
   std::string scenario;
   std::string sweep_parameter;
   double sweep_value = 0.0;
+  std::string grid;  // a grid sweep's other axes at this cell (bench/frame_plan.h); else empty
   int trial = 0;
   int frame = 0;  // index in the scenario's frame plan
   std::string marker;

@@ -19,21 +19,24 @@ constexpr double kTruthTolerance = 1e-9;
 // Errors below this (a pose exact to the last bit) are compared as this.
 constexpr double kSmallestError = 1e-15;
 
-using CellId = std::tuple<std::string, std::string, std::string, std::string, double>;
-// (scenario, sweep parameter, sweep value, trial, marker, tracker)
-using FrameId = std::tuple<std::string, std::string, double, int, std::string, std::string>;
+// (scenario, tracker, marker, sweep parameter, grid, sweep value)
+using CellId = std::tuple<std::string, std::string, std::string, std::string, std::string, double>;
+// (scenario, sweep parameter, grid, sweep value, trial, marker, tracker)
+using FrameId =
+    std::tuple<std::string, std::string, std::string, double, int, std::string, std::string>;
 
 CellId CellOf(const std::string& scenario, const FrameRow& r) {
-  return {scenario, r.tracker, r.marker, r.sweep_parameter, r.sweep_value};
+  return {scenario, r.tracker, r.marker, r.sweep_parameter, r.grid, r.sweep_value};
 }
 
 FrameId FrameOf(const std::string& scenario, const FrameRow& r) {
-  return {scenario, r.sweep_parameter, r.sweep_value, r.trial, r.marker, r.tracker};
+  return {scenario, r.sweep_parameter, r.grid, r.sweep_value, r.trial, r.marker, r.tracker};
 }
 
 std::string FrameText(const std::string& scenario, const FrameRow& r) {
-  return scenario + " " + r.sweep_parameter + "=" + NumberText(r.sweep_value) + " trial " +
-         std::to_string(r.trial) + " " + r.marker + " " + r.tracker;
+  return scenario + " " + r.sweep_parameter + "=" + NumberText(r.sweep_value) +
+         (r.grid.empty() ? "" : ";" + r.grid) + " trial " + std::to_string(r.trial) + " " +
+         r.marker + " " + r.tracker;
 }
 
 bool SameTruth(const Rigid3& a, const Rigid3& b) {
@@ -72,6 +75,7 @@ std::vector<Cell> PairFrames(const std::vector<ScenarioResults>& run,
       cell.check.marker = r.marker;
       cell.check.sweep_parameter = r.sweep_parameter;
       cell.check.sweep_value = r.sweep_value;
+      cell.check.grid = r.grid;
       cells.push_back(std::move(cell));
     }
     return cells[it->second];
@@ -194,17 +198,17 @@ void Judge(std::vector<CellCheck>* cells,
 namespace {
 
 // Per-frame time ratios of each (tracker, marker) of one scenario to the speed tracker's time
-// on the same pose (sweep value and trial; the median when it tracks several markers).
+// on the same pose (cell and trial; the median when it tracks several markers).
 std::map<std::pair<std::string, std::string>, std::vector<double>> TimeRatios(
     const ScenarioResults& s, const std::string& speed_tracker, const std::string& side) {
-  std::map<std::pair<double, int>, std::vector<double>> base_times;
+  std::map<std::tuple<std::string, double, int>, std::vector<double>> base_times;
   for (size_t i = 0; i < s.rows.size(); ++i) {
     if (s.rows[i].tracker != speed_tracker) continue;
     if (!std::isfinite(s.time_ms[i])) {
       throw ConfigError(side + " " + s.name + "/timing.csv: the speed check needs the time of " +
                         "every frame");
     }
-    base_times[{s.rows[i].sweep_value, s.rows[i].trial}].push_back(s.time_ms[i]);
+    base_times[{s.rows[i].grid, s.rows[i].sweep_value, s.rows[i].trial}].push_back(s.time_ms[i]);
   }
   if (base_times.empty()) {
     throw ConfigError(side + " " + s.name + ": no frames of the speed tracker '" + speed_tracker +
@@ -213,7 +217,7 @@ std::map<std::pair<std::string, std::string>, std::vector<double>> TimeRatios(
   std::map<std::pair<std::string, std::string>, std::vector<double>> ratios;
   for (size_t i = 0; i < s.rows.size(); ++i) {
     const FrameRow& r = s.rows[i];
-    const auto base = base_times.find({r.sweep_value, r.trial});
+    const auto base = base_times.find({r.grid, r.sweep_value, r.trial});
     if (r.tracker == speed_tracker || base == base_times.end()) continue;
     const double base_ms = Median(base->second);
     if (std::isfinite(s.time_ms[i]) && base_ms > 0.0) {

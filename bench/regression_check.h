@@ -51,6 +51,7 @@ struct CellCheck {
   std::string marker;
   std::string sweep_parameter;  // empty for a speed check (all of a scenario's frames)
   double sweep_value = NAN;
+  std::string grid;  // a grid sweep's other axes; else empty
   int paired = 0;
   bool vanished = false;  // in the reference, no frame of it in the run: a regression
   bool added = false;     // in the run only: listed, not judged

@@ -30,7 +30,8 @@ class GroundTruthCsv {
  public:
   explicit GroundTruthCsv(const std::string& dir) : path_(dir + "/groundtruth.csv"), out_(path_) {
     if (!out_) throw std::runtime_error(path_ + ": cannot write");
-    out_ << "frame,image,marker,sweep_parameter,sweep_value,trial,seed,fx,fy,cx,cy,width,height";
+    out_ << "frame,image,marker,sweep_parameter,sweep_value,grid,trial,seed,fx,fy,cx,cy,width,"
+            "height";
     for (const char* c : kPoseColumns) out_ << ',' << c;
     out_ << ",noise_var,blur_sigma_px,motion_blur_px,motion_blur_angle_deg,gain,offset,"
             "jpeg_quality,channels,apparent_size_px,keypoints_px\n";
@@ -41,15 +42,16 @@ class GroundTruthCsv {
              const std::string& marker,
              const std::string& sweep_parameter,
              const std::string& sweep_value,
+             const std::string& grid,
              const std::string& trial,
              uint64_t seed,
              const Camera& camera,
              const FrameRequest& request,
              const GroundTruth& truth) {
     out_ << frame << ',' << CsvField(image) << ',' << CsvField(marker) << ',' << sweep_parameter
-         << ',' << sweep_value << ',' << trial << ',' << seed << ',' << NumberText(camera.fx) << ','
-         << NumberText(camera.fy) << ',' << NumberText(camera.cx) << ',' << NumberText(camera.cy)
-         << ',' << camera.width << ',' << camera.height;
+         << ',' << sweep_value << ',' << CsvField(grid) << ',' << trial << ',' << seed << ','
+         << NumberText(camera.fx) << ',' << NumberText(camera.fy) << ',' << NumberText(camera.cx)
+         << ',' << NumberText(camera.cy) << ',' << camera.width << ',' << camera.height;
     out_ << PoseFields(truth.cam_from_marker);
     const Degradations& d = request.degradations;
     out_ << ',' << NumberText(d.noise_var) << ',' << NumberText(d.blur_sigma_px) << ','
@@ -111,6 +113,7 @@ void RenderScenario(const std::string& scenario_path,
               request.scene.marker->name,
               scenario.sweep_parameter,
               NumberText(f.sweep_value),
+              f.grid,
               std::to_string(f.trial),
               scenario.seed,
               scenario.camera,
@@ -218,6 +221,7 @@ void RenderPoses(const ExplicitRenderOptions& o) {
     csv.Write(static_cast<int>(i),
               image,
               frames.marker.name,
+              "",
               "",
               "",
               "",

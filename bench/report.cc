@@ -45,12 +45,20 @@ std::string MillimetreRange(const Interval& ci_m) {
   return " (" + Significant(1e3 * ci_m.lo) + "–" + Significant(1e3 * ci_m.hi) + ")";
 }
 
-// (tracker, marker) pairs of one scenario, in order of appearance.
-std::vector<std::pair<std::string, std::string>> SeriesNames(const std::vector<SummaryRow>& rows,
-                                                             const std::string& scenario) {
-  std::vector<std::pair<std::string, std::string>> names;
+// A series of one scenario: tracker, marker and grid combination.
+struct SeriesName {
+  std::string tracker, marker, grid;
+  bool operator==(const SeriesName& o) const {
+    return tracker == o.tracker && marker == o.marker && grid == o.grid;
+  }
+};
+
+// The series of one scenario, in order of appearance.
+std::vector<SeriesName> SeriesNames(const std::vector<SummaryRow>& rows,
+                                    const std::string& scenario) {
+  std::vector<SeriesName> names;
   for (const SummaryRow& r : rows) {
-    const std::pair<std::string, std::string> name{r.tracker, r.marker};
+    const SeriesName name{r.tracker, r.marker, r.grid};
     if (r.scenario == scenario && std::find(names.begin(), names.end(), name) == names.end()) {
       names.push_back(name);
     }
@@ -64,10 +72,14 @@ std::string ScenarioSection(const std::string& scenario,
                             const SummaryOptions& options,
                             const std::string& dir) {
   std::string parameter;
+  bool grid = false;
   for (const SummaryRow& r : summary) {
-    if (r.scenario == scenario) parameter = r.sweep_parameter;
+    if (r.scenario != scenario) continue;
+    parameter = r.sweep_parameter;
+    grid = grid || !r.grid.empty();
   }
-  std::string md = "## " + scenario + " (sweep of `" + parameter + "`)\n\n";
+  std::string md = "## " + scenario + " (" + (grid ? "grid" : "sweep") + " of `" + parameter + "`" +
+                   (grid ? " and the grid's other axes" : "") + ")\n\n";
   if (entry.contains("file")) {
     md += "Scenario `" + entry["file"].get<std::string>() + "`, " +
           std::to_string(entry.value("trials", 0)) + " trials per value, seed " +
@@ -87,28 +99,36 @@ std::string ScenarioSection(const std::string& scenario,
     md += "![" + scenario + ": rotation error and time per frame](" + scenario +
           "_rotation_time.png)\n\n";
   }
+  if (fs::exists(dir + "/" + scenario + "_heatmap.png")) {
+    md += "![" + scenario + ": success rate and median error over the grid](" + scenario +
+          "_heatmap.png)\n\n";
+  }
   if (fs::exists(dir + "/" + scenario + "_examples.png")) {
     md += "![" + scenario + ": example images](" + scenario + "_examples.png)\n\n";
   }
   md += "Breakdown (first value with success rate below " + Percent(options.breakdown_rate) +
-        "):\n\n| tracker | marker | breakdown " + parameter + " |\n|---|---|---|\n";
-  for (const auto& [tracker, marker] : SeriesNames(summary, scenario)) {
-    const std::optional<double> b =
-        BreakdownValue(SeriesOf(summary, scenario, tracker, marker), options);
-    md +=
-        "| " + tracker + " | " + marker + " | " + (b ? FormattedOrDash(*b, "%g") : "none") + " |\n";
+        "):\n\n| tracker | marker | " + (grid ? "grid | " : "") + "breakdown " + parameter +
+        " |\n|---|---|" + (grid ? "---|" : "") + "---|\n";
+  for (const SeriesName& series : SeriesNames(summary, scenario)) {
+    const std::optional<double> b = BreakdownValue(
+        SeriesOf(summary, scenario, series.tracker, series.marker, series.grid), options);
+    md += "| " + series.tracker + " | " + series.marker + " | " +
+          (grid ? series.grid + " | " : "") + (b ? FormattedOrDash(*b, "%g") : "none") + " |\n";
   }
   md += "\nSuccess and median error with their 95 % intervals (Wilson; order statistics).\n";
-  md += "\n| " + parameter + " | tracker | marker | n | size (px) | detected | success" +
+  md += "\n| " + parameter + (grid ? " | grid" : "") +
+        " | tracker | marker | n | size (px) | detected | success" +
         " | median pos. err (mm) | mean (mm) | p90 (mm) | median rot. err (°)" +
         " | oracle median (mm) | flips | median ms | bound (mm) | × bound | rot. × bound |\n" +
+        (grid ? "|---" : "") +
         "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n";
   for (const SummaryRow& r : summary) {
     if (r.scenario != scenario) continue;
-    md += "| " + FormattedOrDash(r.sweep_value, "%g") + " | " + r.tracker + " | " + r.marker +
-          " | " + std::to_string(r.n) + " | " + Significant(r.apparent_size_median_px) + " | " +
-          Percent(r.detection_rate) + " | " + Percent(r.success_rate) + " (" +
-          PercentRange(r.success_rate_ci) + ") | " + Significant(1e3 * r.position_error_median_m) +
+    md += "| " + FormattedOrDash(r.sweep_value, "%g") + (grid ? " | " + r.grid : "") + " | " +
+          r.tracker + " | " + r.marker + " | " + std::to_string(r.n) + " | " +
+          Significant(r.apparent_size_median_px) + " | " + Percent(r.detection_rate) + " | " +
+          Percent(r.success_rate) + " (" + PercentRange(r.success_rate_ci) + ") | " +
+          Significant(1e3 * r.position_error_median_m) +
           MillimetreRange(r.position_error_median_ci_m) + " | " +
           Significant(1e3 * r.position_error_mean_m) + " | " +
           Significant(1e3 * r.position_error_p90_m) + " | " +

@@ -198,15 +198,16 @@ TEST_F(ReportTest, SummaryOfASyntheticSweep) {
   for (const std::vector<double>& want : expected) {
     ASSERT_TRUE(std::getline(summary, line));
     const std::vector<std::string> fields = SplitCsvLine(line);
-    ASSERT_EQ(fields.size(), 28u) << line;
+    ASSERT_EQ(fields.size(), 29u) << line;
     // Five or fewer posed frames: no median interval reaches 95 % (empty fields).
-    for (size_t i = 24; i < 28; ++i) {
+    for (size_t i = 25; i < 29; ++i) {
       EXPECT_EQ(fields[i], "") << line;
     }
-    EXPECT_EQ(fields[0] + fields[3] + fields[4], "fig6_noiseapriltagtag");
+    // scenario, grid (empty: one axis), tracker, marker
+    EXPECT_EQ(fields[0] + "|" + fields[3] + "|" + fields[4] + fields[5], "fig6_noise||apriltagtag");
     for (size_t i = 0; i < want.size(); ++i) {
-      EXPECT_NEAR(std::stod(fields[5 + i]), want[i], i < 15 ? 1e-12 : 5e-5)
-          << line << " column " << 5 + i;
+      EXPECT_NEAR(std::stod(fields[6 + i]), want[i], i < 15 ? 1e-12 : 5e-5)
+          << line << " column " << 6 + i;
     }
   }
   EXPECT_FALSE(std::getline(summary, line));

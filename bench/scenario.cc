@@ -229,6 +229,48 @@ TrackerEntry ReadExecTracker(const YamlMap& t, const Scenario& s) {
   return entry;
 }
 
+// One sweep axis: `parameter` (read from `parameter_key`, for errors) and the values at
+// `values_key` of `map`, each valid for the parameter.
+SweepAxis ReadSweepAxis(const YamlMap& map,
+                        const std::string& parameter_key,
+                        const std::string& parameter,
+                        const std::string& values_key) {
+  const auto& names = SweepParameters();
+  if (std::find(names.begin(), names.end(), parameter) == names.end()) {
+    map.Fail(parameter_key,
+             "one of noise_var, blur_sigma_px, motion_blur_px, distance_m, tilt_deg, gain, "
+             "jpeg_quality");
+  }
+  SweepAxis axis{parameter, map.Get<std::vector<double>>(values_key)};
+  if (axis.values.empty()) map.Fail(values_key, "a non-empty list of numbers");
+  for (const double value : axis.values) {
+    PoseSamplerOptions poses;
+    Degradations degradations;
+    try {
+      ApplySweepValue(parameter, value, &poses, &degradations);
+    } catch (const std::invalid_argument& e) {
+      map.Fail(values_key, "values valid for " + parameter + " (" + e.what() + ")");
+    }
+  }
+  return axis;
+}
+
+// `sweep: {grid: {p1: [...], p2: [...], ...}}`: two or more distinct axes, in file order.
+std::vector<SweepAxis> ReadGrid(const YamlMap& sweep) {
+  const YAML::Node node = sweep.GetNode("grid");
+  const YamlMap grid = sweep.GetMap("grid");
+  if (node.size() < 2) {
+    sweep.Fail("grid", "a mapping of two or more sweep parameters to their values");
+  }
+  std::vector<SweepAxis> axes;
+  for (const auto& entry : node) {
+    const std::string parameter = entry.first.as<std::string>();
+    axes.push_back(ReadSweepAxis(grid, parameter, parameter, parameter));
+  }
+  grid.RejectUnknownKeys();
+  return axes;
+}
+
 // Keeps the trackers that --trackers names; each name must be one of the scenario's.
 void KeepTrackers(const std::vector<std::string>& names, Scenario* s) {
   if (names.empty()) return;
@@ -298,29 +340,24 @@ Scenario LoadScenario(const std::string& path, const ScenarioOverrides& override
   s.poses = ReadPoses(poses);
   s.render = root.Has("render") ? ReadRender(root.GetMap("render")) : RenderDefaults{};
   const YamlMap sweep = root.GetMap("sweep");
-  s.sweep_parameter = sweep.Get<std::string>("parameter");
-  const auto& names = SweepParameters();
-  if (std::find(names.begin(), names.end(), s.sweep_parameter) == names.end()) {
-    sweep.Fail("parameter",
-               "one of noise_var, blur_sigma_px, motion_blur_px, distance_m, tilt_deg, gain, "
-               "jpeg_quality");
+  if (sweep.Has("grid")) {
+    if (sweep.Has("parameter") || sweep.Has("values")) {
+      sweep.Fail("grid", "either parameter and values, or a grid, not both");
+    }
+    const std::vector<SweepAxis> axes = ReadGrid(sweep);
+    s.sweep_parameter = axes.front().parameter;
+    s.sweep_values = axes.front().values;
+    s.grid_axes.assign(axes.begin() + 1, axes.end());
+  } else {
+    const SweepAxis axis =
+        ReadSweepAxis(sweep, "parameter", sweep.Get<std::string>("parameter"), "values");
+    s.sweep_parameter = axis.parameter;
+    s.sweep_values = axis.values;
   }
-  s.sweep_values = sweep.Get<std::vector<double>>("values");
-  if (s.sweep_values.empty()) sweep.Fail("values", "a non-empty list of numbers");
   s.example_value = sweep.GetOr<double>("example_value", s.sweep_values.back());
   if (std::find(s.sweep_values.begin(), s.sweep_values.end(), s.example_value) ==
       s.sweep_values.end()) {
-    sweep.Fail("example_value", "one of the sweep values");
-  }
-  for (double value : s.sweep_values) {
-    PoseSamplerOptions poses = s.poses;
-    Degradations degradations = s.render.degradations;
-    try {
-      ApplySweepValue(s.sweep_parameter, value, &poses, &degradations);
-    } catch (const std::invalid_argument& e) {
-      sweep.Fail("values",
-                 std::string("values valid for ") + s.sweep_parameter + " (" + e.what() + ")");
-    }
+    sweep.Fail("example_value", "one of the sweep values (of a grid's first axis)");
   }
   sweep.RejectUnknownKeys();
   s.trials = root.GetInt("trials", 1, 1000000);
@@ -330,9 +367,14 @@ Scenario LoadScenario(const std::string& path, const ScenarioOverrides& override
   try {
     PlanFrames(s);
   } catch (const std::runtime_error& e) {
-    const bool swept = s.sweep_parameter == "distance_m" || s.sweep_parameter == "tilt_deg";
+    const auto pose_axis = [](const std::string& p) {
+      return p == "distance_m" || p == "tilt_deg";
+    };
+    bool swept = pose_axis(s.sweep_parameter);
+    for (const SweepAxis& axis : s.grid_axes) swept = swept || pose_axis(axis.parameter);
+    const std::string key = s.grid_axes.empty() ? "values" : "grid";
     (swept ? sweep : poses)
-        .Fail(swept ? "values" : "distance_m", std::string("markers in view: ") + e.what());
+        .Fail(swept ? key : "distance_m", std::string("markers in view: ") + e.what());
   }
   return s;
 }

@@ -75,6 +75,12 @@ struct ScenarioOverrides {
   std::vector<std::string> Arguments() const;
 };
 
+// One axis of a sweep: a parameter of SweepParameters() and its values.
+struct SweepAxis {
+  std::string parameter;
+  std::vector<double> values;
+};
+
 // The sweep parameters a scenario may vary.
 const std::vector<std::string>& SweepParameters();
 
@@ -91,9 +97,15 @@ struct Scenario {
   std::vector<TrackerEntry> trackers;
   PoseSamplerOptions poses;
   RenderDefaults render;
+  // The first (or only) axis: frames.csv's sweep_parameter and sweep_value.
   std::string sweep_parameter;
   std::vector<double> sweep_values;
-  double example_value = 0.0;  // the sweep value whose example images the report shows
+  // A grid's other axes (`sweep: {grid: {...}}`, in file order); empty for a one-axis sweep.
+  // Every combination of their values runs the whole first axis (frames.csv's grid column).
+  std::vector<SweepAxis> grid_axes;
+  // The first axis's value whose example images the report shows (at the grid's first
+  // combination).
+  double example_value = 0.0;
   int trials = 1;
   uint64_t seed = 0;
   // Compute every frame's Cramér-Rao bound (frames.csv's crlb_* columns); `crlb: false`

@@ -3,6 +3,9 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include <cmath>
+
+#include "bench/frame_plan.h"
 #include "core/file_bytes.h"
 #include "core/test_files.h"
 #include "core/yaml_reader.h"
@@ -57,6 +60,71 @@ TEST(Scenario, LoadsEveryField) {
   EXPECT_FALSE(s.equal_ink_area_m2.has_value());
   EXPECT_EQ(s.input_files.size(), 3u);
   EXPECT_TRUE(s.crlb);  // default: every frame gets its Cramér-Rao bound
+}
+
+// A grid runs the first axis for every combination of the others; its cells and their grid
+// text follow the plan's order (the first axis fastest), each with its own poses.
+TEST(Scenario, GridSweepsEveryCombination) {
+  const Scenario s = LoadScenario(
+      WriteTestFile("scenario.yaml",
+                    Replace(GoodScenario(),
+                            "sweep:\n  parameter: blur_sigma_px\n  values: [0, 1, 2]\n",
+                            "sweep:\n  grid:\n    distance_m: [0.5, 1]\n    tilt_deg: [0, 30, 60]\n"
+                            "    noise_var: [0, 0.1]\n  example_value: 0.5\n")));
+  EXPECT_EQ(s.sweep_parameter, "distance_m");
+  EXPECT_EQ(s.sweep_values, (std::vector<double>{0.5, 1.0}));
+  ASSERT_EQ(s.grid_axes.size(), 2u);
+  EXPECT_EQ(s.grid_axes[0].parameter, "tilt_deg");
+  EXPECT_EQ(s.grid_axes[1].parameter, "noise_var");
+  const std::vector<PlannedFrame> frames = PlanFrames(s);
+  ASSERT_EQ(frames.size(), 2u * 3 * 2 * 3);  // cells x trials (one marker)
+  EXPECT_EQ(frames[0].grid, "tilt_deg=0;noise_var=0");
+  EXPECT_EQ(frames[3].sweep_value, 1.0);  // the first axis is the fastest
+  EXPECT_EQ(frames[3].grid, "tilt_deg=0;noise_var=0");
+  EXPECT_EQ(frames[6].grid, "tilt_deg=30;noise_var=0");
+  EXPECT_EQ(frames[18].grid, "tilt_deg=0;noise_var=0.1");
+  EXPECT_EQ(frames.back().grid, "tilt_deg=60;noise_var=0.1");
+  int examples = 0;
+  for (const PlannedFrame& f : frames) {
+    EXPECT_EQ(f.cell, f.index / 3);
+    examples += f.example;
+    // The settings of the cell are applied: distance, tilt and noise.
+    const double distance = f.cam_from_marker.translation.norm();
+    EXPECT_NEAR(distance, f.sweep_value, 0.02 * f.sweep_value) << f.index;
+    EXPECT_EQ(f.degradations.noise_var,
+              f.grid.find("noise_var=0.1") != std::string::npos ? 0.1 : 0.0);
+    // Tilt: between the marker's normal and the ray from the marker to the camera.
+    const Eigen::Vector3d& t = f.cam_from_marker.translation;
+    const double tilt =
+        std::acos(std::min(1.0, std::fabs(f.cam_from_marker.rotation.col(2).dot(t)) / t.norm())) *
+        180.0 / M_PI;
+    EXPECT_NEAR(tilt, std::stod(f.grid.substr(f.grid.find('=') + 1)), 0.5) << f.grid;
+  }
+  EXPECT_EQ(examples, 1);
+  EXPECT_TRUE(frames[0].example);
+}
+
+TEST(Scenario, GridErrorsNameTheirKey) {
+  const std::string one_axis = "sweep:\n  parameter: blur_sigma_px\n  values: [0, 1, 2]\n";
+  EXPECT_THAT(ErrorOf(Replace(GoodScenario(), one_axis, "sweep:\n  grid: {tilt_deg: [0, 1]}\n")),
+              HasSubstr("key 'sweep.grid': expected a mapping of two or more sweep parameters"));
+  EXPECT_THAT(
+      ErrorOf(Replace(GoodScenario(), one_axis, "sweep:\n  grid: {tilt_deg: [0], focus: [1]}\n")),
+      HasSubstr("key 'sweep.grid.focus': expected one of noise_var"));
+  EXPECT_THAT(ErrorOf(Replace(
+                  GoodScenario(), one_axis, "sweep:\n  grid: {tilt_deg: [0, 95], gain: [1]}\n")),
+              HasSubstr("key 'sweep.grid.tilt_deg': expected values valid for tilt_deg"));
+  EXPECT_THAT(
+      ErrorOf(Replace(GoodScenario(), one_axis, "sweep:\n  grid: {tilt_deg: [], gain: [1]}\n")),
+      HasSubstr("key 'sweep.grid.tilt_deg': expected a non-empty list"));
+  EXPECT_THAT(
+      ErrorOf(Replace(GoodScenario(), one_axis, one_axis + "  grid: {tilt_deg: [0], gain: [1]}\n")),
+      HasSubstr("key 'sweep.grid': expected either parameter and values, or a grid"));
+  EXPECT_THAT(ErrorOf(Replace(GoodScenario(),
+                              one_axis,
+                              "sweep:\n  grid: {tilt_deg: [0], gain: [1]}\n  example_value: 3\n")),
+              HasSubstr("key 'sweep.example_value': expected one of the sweep values (of "
+                        "a grid's first axis)"));
 }
 
 TEST(Scenario, TheBoundCanBeTurnedOff) {

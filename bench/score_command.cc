@@ -119,6 +119,7 @@ void RunScoreCommand(const ScoreOptions& o, std::ostream& out) {
     row.scenario = dataset.scenario;
     row.sweep_parameter = d.sweep_parameter;
     row.sweep_value = d.sweep_value;
+    row.grid = d.grid;
     row.trial = d.trial;
     row.frame = d.frame;
     row.marker = d.marker;

@@ -12,14 +12,15 @@
 namespace markerbench {
 
 void SummaryBuilder::Add(const FrameRow& r, double time_ms) {
-  if (!open_.empty() && (open_.front().row.scenario != r.scenario ||
-                         open_.front().row.sweep_value != r.sweep_value)) {
+  if (!open_.empty() &&
+      (open_.front().row.scenario != r.scenario || open_.front().row.grid != r.grid ||
+       open_.front().row.sweep_value != r.sweep_value)) {
     CloseCell();
   }
   if (open_.empty()) {
-    if (closed_cells_.count({r.scenario, r.sweep_value})) {
+    if (closed_cells_.count({r.scenario, r.grid, r.sweep_value})) {
       throw ConfigError("a row of " + r.scenario + " at " + r.sweep_parameter + " = " +
-                        NumberText(r.sweep_value) +
+                        NumberText(r.sweep_value) + (r.grid.empty() ? "" : " (" + r.grid + ")") +
                         " after the rows of other values; frames.csv must keep each sweep "
                         "value's rows together, in plan order, as sweep and merge write them");
     }
@@ -32,6 +33,7 @@ void SummaryBuilder::Add(const FrameRow& r, double time_ms) {
     group->row.scenario = r.scenario;
     group->row.sweep_parameter = r.sweep_parameter;
     group->row.sweep_value = r.sweep_value;
+    group->row.grid = r.grid;
     group->row.tracker = r.tracker;
     group->row.marker = r.marker;
   }
@@ -56,7 +58,8 @@ void SummaryBuilder::Add(const FrameRow& r, double time_ms) {
 }
 
 void SummaryBuilder::CloseCell() {
-  closed_cells_.emplace(open_.front().row.scenario, open_.front().row.sweep_value);
+  closed_cells_.emplace(
+      open_.front().row.scenario, open_.front().row.grid, open_.front().row.sweep_value);
   for (Group& g : open_) {
     SummaryRow s = g.row;
     s.apparent_size_median_px = Median(g.sizes);
@@ -84,15 +87,17 @@ void SummaryBuilder::CloseCell() {
 
 std::vector<SummaryRow> SummaryBuilder::Finish() {
   if (!open_.empty()) CloseCell();
-  // Series (scenario, tracker, marker) in order of appearance, values in order within each.
-  std::map<std::tuple<std::string, std::string, std::string>, size_t> series_rank;
-  for (const SummaryRow& r : rows_)
-    series_rank.try_emplace({r.scenario, r.tracker, r.marker}, series_rank.size());
+  // Series (scenario, tracker, marker, grid) in order of appearance, values in order within
+  // each.
+  std::map<std::tuple<std::string, std::string, std::string, std::string>, size_t> series_rank;
+  for (const SummaryRow& r : rows_) {
+    series_rank.try_emplace({r.scenario, r.tracker, r.marker, r.grid}, series_rank.size());
+  }
   std::vector<SummaryRow> summary = std::move(rows_);
   rows_.clear();
   std::stable_sort(summary.begin(), summary.end(), [&](const SummaryRow& a, const SummaryRow& b) {
-    return series_rank.at({a.scenario, a.tracker, a.marker}) <
-           series_rank.at({b.scenario, b.tracker, b.marker});
+    return series_rank.at({a.scenario, a.tracker, a.marker, a.grid}) <
+           series_rank.at({b.scenario, b.tracker, b.marker, b.grid});
   });
   return summary;
 }
@@ -108,17 +113,20 @@ std::optional<double> BreakdownValue(const std::vector<SummaryRow>& rows,
 std::vector<SummaryRow> SeriesOf(const std::vector<SummaryRow>& summary,
                                  const std::string& scenario,
                                  const std::string& tracker,
-                                 const std::string& marker) {
+                                 const std::string& marker,
+                                 const std::string& grid) {
   std::vector<SummaryRow> series;
   for (const SummaryRow& r : summary) {
-    if (r.scenario == scenario && r.tracker == tracker && r.marker == marker) series.push_back(r);
+    if (r.scenario == scenario && r.tracker == tracker && r.marker == marker && r.grid == grid) {
+      series.push_back(r);
+    }
   }
   return series;
 }
 
 std::string SummaryCsv(const std::vector<SummaryRow>& rows) {
   std::string csv =
-      "scenario,sweep_parameter,sweep_value,tracker,marker,n,apparent_size_median_px,"
+      "scenario,sweep_parameter,sweep_value,grid,tracker,marker,n,apparent_size_median_px,"
       "detection_rate,success_rate,"
       "position_error_median_m,position_error_mean_m,position_error_p90_m,"
       "rotation_error_median_deg,best_position_error_median_m,flip_rate,time_median_ms,"
@@ -128,9 +136,10 @@ std::string SummaryCsv(const std::vector<SummaryRow>& rows) {
       "rotation_error_median_lo_deg,rotation_error_median_hi_deg\n";
   for (const SummaryRow& r : rows) {
     csv += CsvField(r.scenario) + ',' + r.sweep_parameter + ',' + NumberText(r.sweep_value) + ',' +
-           CsvField(r.tracker) + ',' + CsvField(r.marker) + ',' + std::to_string(r.n) + ',' +
-           NumberText(r.apparent_size_median_px) + ',' + NumberText(r.detection_rate) + ',' +
-           NumberText(r.success_rate) + ',' + NumberTextOrEmpty(r.position_error_median_m) + ',' +
+           CsvField(r.grid) + ',' + CsvField(r.tracker) + ',' + CsvField(r.marker) + ',' +
+           std::to_string(r.n) + ',' + NumberText(r.apparent_size_median_px) + ',' +
+           NumberText(r.detection_rate) + ',' + NumberText(r.success_rate) + ',' +
+           NumberTextOrEmpty(r.position_error_median_m) + ',' +
            NumberTextOrEmpty(r.position_error_mean_m) + ',' +
            NumberTextOrEmpty(r.position_error_p90_m) + ',' +
            NumberTextOrEmpty(r.rotation_error_median_deg) + ',' +

@@ -1,10 +1,12 @@
-// summary.csv (architecture.md, "Summary"): one row per scenario × tracker × marker × sweep
-// value, and the breakdown value of each tracker.
+// summary.csv (architecture.md, "Summary"): one row per scenario × tracker × marker × cell
+// (a sweep value, at one combination of a grid's other axes), and the breakdown value of each
+// series.
 #pragma once
 
 #include <optional>
 #include <set>
 #include <string>
+#include <tuple>
 #include <vector>
 
 #include "bench/frames_csv.h"
@@ -23,6 +25,7 @@ struct SummaryRow {
   std::string scenario;
   std::string sweep_parameter;
   double sweep_value = 0.0;
+  std::string grid;  // frames.csv's grid: the other axes of a grid sweep; else empty
   std::string tracker;
   std::string marker;
   int n = 0;
@@ -63,8 +66,8 @@ class SummaryBuilder {
   // a cell that ended earlier (the rows are not in plan order).
   void Add(const FrameRow& row, double time_ms);
 
-  // Groups in the order in which they first appear: scenario, then tracker and marker, then
-  // sweep value.
+  // Groups in the order in which they first appear: scenario, then tracker, marker and grid
+  // combination (a series), then sweep value.
   std::vector<SummaryRow> Finish();
 
  private:
@@ -79,21 +82,23 @@ class SummaryBuilder {
   void CloseCell();
 
   SummaryOptions options_;
-  std::set<std::pair<std::string, double>> closed_cells_;  // (scenario, sweep value)
+  std::set<std::tuple<std::string, std::string, double>> closed_cells_;  // scenario, grid, value
   std::vector<Group> open_;  // the open cell's groups, in order of appearance
   std::vector<SummaryRow> rows_;
 };
 
-// The first sweep value of `rows` (one scenario, tracker and marker, in sweep order) whose
+// The first sweep value of `rows` (one series, in sweep order) whose
 // success rate is below the breakdown rate; nullopt when there is none.
 std::optional<double> BreakdownValue(const std::vector<SummaryRow>& rows,
                                      const SummaryOptions& options);
 
-// Rows of `summary` for one scenario, tracker and marker, in sweep order.
+// Rows of `summary` for one series: scenario, tracker, marker and grid combination, in sweep
+// order.
 std::vector<SummaryRow> SeriesOf(const std::vector<SummaryRow>& summary,
                                  const std::string& scenario,
                                  const std::string& tracker,
-                                 const std::string& marker);
+                                 const std::string& marker,
+                                 const std::string& grid = "");
 
 std::string SummaryCsv(const std::vector<SummaryRow>& rows);
 

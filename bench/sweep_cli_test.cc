@@ -462,6 +462,40 @@ TEST_F(SweepCliTest, OverridesRunTheEditedScenarioAndAreRecorded) {
   EXPECT_FALSE(fs::exists(work_ / "bad"));
 }
 
+// A grid sweep: every combination in frames.csv's grid column, a summary row per cell, a heat
+// map in the report, and the regression gate pairs its cells (a run passes against itself).
+TEST_F(SweepCliTest, AGridSweepIsSummarisedPlottedAndGated) {
+  const std::string scenario = WriteTestFile(
+      "grid.yaml",
+      "name: grid\ncamera: " + kRoot + "/scenarios/cameras/default.yaml\nmarkers:\n  - " + kRoot +
+          "/scenarios/markers/circles_a.yaml\ntrackers:\n  - {name: circle}\n"
+          "poses: {sampler: look_at, distance_m: 0.8, tilt_deg: [0, 40]}\n"
+          "render: {noise_var: 0.01}\n"
+          "sweep:\n  grid: {distance_m: [0.5, 1.0], tilt_deg: [10, 50]}\n"
+          "trials: 4\nseed: 3\n");
+  const std::string out = (work_ / "out").string(), reference = (work_ / "ref").string();
+  ASSERT_EQ(Run({"sweep", scenario, "--out", out}).status, 0) << Read(work_ / "stderr.txt");
+  const auto rows = FramesTable(Read(out + "/grid/frames.csv"));
+  ASSERT_EQ(rows.size(), 2u * 2 * 4);
+  std::map<std::pair<std::string, std::string>, int> cells;
+  for (const auto& row : rows) ++cells[{row.at("sweep_value"), row.at("grid")}];
+  EXPECT_EQ(cells,
+            (std::map<std::pair<std::string, std::string>, int>{{{"0.5", "tilt_deg=10"}, 4},
+                                                                {{"1", "tilt_deg=10"}, 4},
+                                                                {{"0.5", "tilt_deg=50"}, 4},
+                                                                {{"1", "tilt_deg=50"}, 4}}));
+  ASSERT_EQ(Run({"report", out}).status, 0) << Read(work_ / "stderr.txt");
+  EXPECT_EQ(Lines(out + "/summary.csv"), 1u + 4);
+  EXPECT_THAT(Read(out + "/summary.csv"), HasSubstr("grid,distance_m,1,tilt_deg=50,circle,"));
+  EXPECT_TRUE(fs::exists(out + "/grid_heatmap.png"));
+  const std::string report = Read(out + "/report.md");
+  EXPECT_THAT(report, HasSubstr("grid_heatmap.png"));
+  EXPECT_THAT(report, HasSubstr("| circle | circles_a | tilt_deg=50 |"));
+  ASSERT_EQ(Run({"check", out, "--reference", reference, "--bless"}).status, 0);
+  EXPECT_EQ(Run({"check", out, "--reference", reference}).status, 0);
+  EXPECT_THAT(Read(work_ / "stdout.txt"), HasSubstr("no regression: 4 cells"));
+}
+
 // Each case: exit status 2, a message naming the file, line and key, and no output folder.
 TEST_F(SweepCliTest, BadInputIsRejectedBeforeAnythingIsWritten) {
   const std::string good = Read(Scenario("bad", 1));

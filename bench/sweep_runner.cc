@@ -131,8 +131,7 @@ PreparedSweep Prepare(const std::string& path, const SweepOptions& options) {
     if (!InShard(f, s.trials, p.shard)) continue;
     const auto& trackers = trackers_of_marker[static_cast<size_t>(f.marker_index)];
     // Markers without a tracker are still rendered for the example-image figure.
-    const bool example = f.trial == 0 && f.sweep_value == s.example_value;
-    if (!trackers.empty() || example) p.jobs.push_back({f, trackers});
+    if (!trackers.empty() || f.example) p.jobs.push_back({f, trackers});
   }
 
   return p;
@@ -271,7 +270,7 @@ std::pair<std::string, std::string> RunJob(const PreparedSweep& p,
   const MarkerSpec& marker = s.markers[static_cast<size_t>(f.marker_index)];
   const FrameRequest request = RequestFor(s, f);
   const RenderedFrame frame = RenderFrame(request);
-  if (f.trial == 0 && f.sweep_value == s.example_value) {
+  if (f.example) {
     WriteImageAtomically(p.dir + "/examples/" + marker.name + ".png", frame.image);
   }
   if (job.trackers.empty()) return {};
@@ -279,6 +278,7 @@ std::pair<std::string, std::string> RunJob(const PreparedSweep& p,
   row.scenario = s.name;
   row.sweep_parameter = s.sweep_parameter;
   row.sweep_value = f.sweep_value;
+  row.grid = f.grid;
   row.trial = f.trial;
   row.frame = f.index;
   row.marker = marker.name;
@@ -335,6 +335,9 @@ nlohmann::json ScenarioManifest(const PreparedSweep& p, int threads) {
   entry["sweep"] = {{"parameter", s.sweep_parameter},
                     {"values", s.sweep_values},
                     {"example_value", s.example_value}};
+  for (const SweepAxis& axis : s.grid_axes) {
+    entry["sweep"]["grid"].push_back({{"parameter", axis.parameter}, {"values", axis.values}});
+  }
   entry["equal_ink_area_m2"] =
       s.equal_ink_area_m2 ? nlohmann::json(*s.equal_ink_area_m2) : nlohmann::json();
   for (const MarkerSpec& m : s.markers) entry["markers"].push_back(m.name);

@@ -13,7 +13,11 @@ writes, for every scenario:
   DIR/<scenario>_rotation_time.png  median rotation error (band, bound dotted) and median
                                time per frame versus the sweep value;
   DIR/<scenario>_examples.png  trial 0 of every marker at the scenario's example value
-                               (DIR/<scenario>/examples/<marker>.png), like panels (a)-(d).
+                               (DIR/<scenario>/examples/<marker>.png), like panels (a)-(d);
+  DIR/<scenario>_heatmap.png   for a grid sweep: success rate and median position error over
+                               the grid (the first axis across, the other axes down), one row
+                               of two heat maps per tracker and marker.
+A grid's series (tracker, marker, combination of the other axes) are separate lines.
 Needs Debian's python3-matplotlib (run with /usr/bin/python3).
 """
 import csv
@@ -54,7 +58,7 @@ def read_summary(path):
     with open(path, newline="") as f:
         for row in csv.DictReader(f):
             series = scenarios.setdefault(row["scenario"], {})
-            key = (row["tracker"], row["marker"])
+            key = (row["tracker"], row["marker"], row.get("grid", ""))
             series.setdefault(key, []).append(row)
     return scenarios
 
@@ -62,15 +66,16 @@ def read_summary(path):
 def plot_errors(directory, scenario, series):
     parameter = next(iter(series.values()))[0]["sweep_parameter"]
     trackers_with_many_markers = {
-        t for t, _ in series if sum(1 for u, _ in series if u == t) > 1
+        t for t, m, _ in series if len({u for v, u, _ in series if v == t}) > 1
     }
     fig, (err_ax, ok_ax) = plt.subplots(
         2, 1, sharex=True, figsize=(9.5, 6), gridspec_kw={"height_ratios": [3, 2]}
     )
     floors = []
-    for (tracker, marker), rows in series.items():
+    for (tracker, marker, grid), rows in series.items():
         x = [number(r["sweep_value"]) for r in rows]
         label = f"{tracker} ({marker})" if tracker in trackers_with_many_markers else tracker
+        label += f", {grid}" if grid else ""
         median = [1e3 * number(r["position_error_median_m"]) for r in rows]
         p90 = [1e3 * number(r["position_error_p90_m"]) for r in rows]
         success = [100 * number(r["success_rate"]) for r in rows]
@@ -114,9 +119,9 @@ def plot_rotation_and_time(directory, scenario, series):
     median time per frame, per tracker."""
     parameter = next(iter(series.values()))[0]["sweep_parameter"]
     fig, (rot_ax, time_ax) = plt.subplots(2, 1, sharex=True, figsize=(9.5, 5.5))
-    for (tracker, marker), rows in series.items():
+    for (tracker, marker, grid), rows in series.items():
         x = [number(r["sweep_value"]) for r in rows]
-        label = f"{tracker} ({marker})"
+        label = f"{tracker} ({marker})" + (f", {grid}" if grid else "")
         (line,) = rot_ax.plot(x, band(rows, "rotation_error_median_deg", 1), "o-", label=label,
                               markersize=4)
         rot_ax.fill_between(x, band(rows, "rotation_error_median_lo_deg", 1),
@@ -138,6 +143,70 @@ def plot_rotation_and_time(directory, scenario, series):
     time_ax.grid(True, which="both", alpha=0.3)
     fig.tight_layout()
     fig.savefig(os.path.join(directory, f"{scenario}_rotation_time.png"), dpi=110)
+    plt.close(fig)
+
+
+def grid_rows(grids):
+    """Tick labels and axis label for the heat maps' rows: the value alone when every
+    combination is one parameter's, else the combinations themselves."""
+    pairs = [g.split(";") for g in grids]
+    names = {p.split("=")[0] for pair in pairs for p in pair}
+    if all(len(pair) == 1 for pair in pairs) and len(names) == 1:
+        name = names.pop()
+        return [pair[0].split("=", 1)[1] for pair in pairs], LABELS.get(name, name)
+    return grids, "grid"
+
+
+def plot_heatmap(directory, scenario, series):
+    """<scenario>_heatmap.png: success rate and median position error over a grid sweep."""
+    from matplotlib.colors import LogNorm
+
+    pairs, grids, values = [], [], []
+    for (tracker, marker, grid), rows in series.items():
+        if (tracker, marker) not in pairs:
+            pairs.append((tracker, marker))
+        if grid not in grids:
+            grids.append(grid)
+        for r in rows:
+            if number(r["sweep_value"]) not in values:
+                values.append(number(r["sweep_value"]))
+    parameter = next(iter(series.values()))[0]["sweep_parameter"]
+    y_ticks, y_label = grid_rows(grids)
+    fig, axes = plt.subplots(len(pairs), 2, squeeze=False,
+                             figsize=(5.5 + 0.5 * len(values), 1.2 + (1.0 + 0.35 * len(grids)) * len(pairs)))
+    for (tracker, marker), (ok_ax, err_ax) in zip(pairs, axes):
+        success = [[math.nan] * len(values) for _ in grids]
+        error = [[math.nan] * len(values) for _ in grids]
+        for i, grid in enumerate(grids):
+            for r in series.get((tracker, marker, grid), []):
+                j = values.index(number(r["sweep_value"]))
+                success[i][j] = 100 * number(r["success_rate"])
+                error[i][j] = 1e3 * number(r["position_error_median_m"])
+        finite = [e for row in error for e in row if math.isfinite(e) and e > 0]
+        panels = [(ok_ax, success, dict(cmap="RdYlGn", vmin=0, vmax=100), "success (%)", "{:.0f}")]
+        if finite:
+            panels.append((err_ax, error, dict(cmap="viridis_r", norm=LogNorm(min(finite), max(finite))),
+                           "median error (mm)", "{:.3g}"))
+        else:
+            err_ax.axis("off")
+        for ax, data, style, title, text in panels:
+            image = ax.imshow(data, aspect="auto", **style)
+            for i, row in enumerate(data):
+                for j, v in enumerate(row):
+                    if math.isfinite(v):
+                        r, g, b, _ = image.cmap(image.norm(v))
+                        dark = 0.299 * r + 0.587 * g + 0.114 * b < 0.45
+                        ax.text(j, i, text.format(v), ha="center", va="center", fontsize=7,
+                                color="white" if dark else "black")
+            ax.set_xticks(range(len(values)), [f"{v:g}" for v in values], fontsize=8)
+            ax.set_yticks(range(len(grids)), y_ticks, fontsize=8)
+            ax.set_xlabel(LABELS.get(parameter, parameter), fontsize=8)
+            ax.set_ylabel(y_label, fontsize=8)
+            ax.set_title(f"{tracker} ({marker}): {title}", fontsize=9)
+            fig.colorbar(image, ax=ax)
+    fig.suptitle(f"{scenario}: success rate and median camera-centre error over the grid")
+    fig.tight_layout()
+    fig.savefig(os.path.join(directory, f"{scenario}_heatmap.png"), dpi=100)
     plt.close(fig)
 
 
@@ -181,6 +250,8 @@ def main():
     for scenario, series in read_summary(os.path.join(directory, "summary.csv")).items():
         plot_errors(directory, scenario, series)
         plot_rotation_and_time(directory, scenario, series)
+        if any(grid for _, _, grid in series):
+            plot_heatmap(directory, scenario, series)
         if os.path.isdir(os.path.join(directory, scenario, "examples")):
             plot_examples(directory, scenario, manifest.get("scenarios", {}).get(scenario, {}))
 

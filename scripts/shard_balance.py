@@ -1,6 +1,6 @@
 #!/usr/bin/env python3
 """How evenly `sweep --shard I/N` spreads a sweep's work (results/speed.md): from a run's
-frames.csv and timing.csv, the trackers' time per pose group (sweep value, trial), summed per
+frames.csv and timing.csv, the trackers' time per pose group (cell, trial), summed per
 shard under the interleaved split markerbench uses (group mod N) and under contiguous blocks
 of the plan, for several N. Reported: the slowest shard's time over the mean shard's; 1.00
 is a perfect split, and the whole job waits for the slowest shard.
@@ -20,14 +20,15 @@ def group_costs(folder):
         times = [float(row["time_ms"]) for row in csv.DictReader(f)]
     if len(frames) != len(times):
         sys.exit(f"shard_balance: {folder}: frames.csv and timing.csv differ in length")
-    values = []
+    cells = []  # (grid combination, sweep value) in plan order
     costs = {}
     for row, time_ms in zip(frames, times):
-        if row["sweep_value"] not in values:
-            values.append(row["sweep_value"])
-        key = (values.index(row["sweep_value"]), int(row["trial"]))
+        cell = (row.get("grid", ""), row["sweep_value"])
+        if cell not in cells:
+            cells.append(cell)
+        key = (cells.index(cell), int(row["trial"]))
         costs[key] = costs.get(key, 0.0) + time_ms
-    return [costs[key] for key in sorted(costs)], len(values)
+    return [costs[key] for key in sorted(costs)], len(cells)
 
 
 def imbalance(loads):
@@ -41,7 +42,7 @@ def main():
     counts = [int(n) for n in sys.argv[2:]] or [2, 4, 8, 16]
     costs, cells = group_costs(folder)
     groups = len(costs)
-    print(f"{os.path.basename(folder.rstrip('/'))}: {groups} pose groups over {cells} sweep values, "
+    print(f"{os.path.basename(folder.rstrip('/'))}: {groups} pose groups over {cells} cells, "
           f"{sum(costs) / 1000:.1f} s of tracker time")
     print()
     print("| N | interleaved (markerbench) | blocks |")
