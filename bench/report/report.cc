@@ -1,0 +1,243 @@
+#include "bench/report/report.h"
+
+#include <spawn.h>
+#include <sys/wait.h>
+
+#include <cerrno>
+#include <cmath>
+#include <cstdlib>
+#include <cstring>
+#include <filesystem>
+#include <map>
+
+#include "bench/io/atomic_file.h"
+#include "bench/io/data_dir.h"
+#include "bench/io/progress.h"
+#include "bench/report/report_html.h"
+#include "bench/report/reproduction_table.h"
+#include "bench/run/manifest.h"
+#include "bench/run/run_results.h"
+#include "core/number_text.h"
+#include "core/yaml_reader.h"
+
+namespace fs = std::filesystem;
+
+extern char** environ;
+
+namespace markerbench {
+namespace {
+
+std::string Percent(double rate) { return FormattedOrDash(100.0 * rate, "%.0f%%"); }
+
+// "31–83%": a rate's interval.
+std::string PercentRange(const Interval& ci) {
+  return FormattedOrDash(100.0 * ci.lo, "%.0f") + "–" + FormattedOrDash(100.0 * ci.hi, "%.0f%%");
+}
+
+// Three significant digits for tables (1.42, 0.0812, 108), whole numbers from 1000 on.
+std::string Significant(double value) {
+  return FormattedOrDash(value, std::fabs(value) >= 1000.0 ? "%.0f" : "%.3g");
+}
+
+// " (1.2–3.4)": a median error's interval in mm; nothing when the sample is too small.
+std::string MillimetreRange(const Interval& ci_m) {
+  if (std::isnan(ci_m.lo)) return "";
+  return " (" + Significant(1e3 * ci_m.lo) + "–" + Significant(1e3 * ci_m.hi) + ")";
+}
+
+// A series of one scenario: tracker, marker and grid combination.
+struct SeriesName {
+  std::string tracker, marker, grid;
+  bool operator==(const SeriesName& o) const {
+    return tracker == o.tracker && marker == o.marker && grid == o.grid;
+  }
+};
+
+// The series of one scenario, in order of appearance.
+std::vector<SeriesName> SeriesNames(const std::vector<SummaryRow>& rows,
+                                    const std::string& scenario) {
+  std::vector<SeriesName> names;
+  for (const SummaryRow& r : rows) {
+    const SeriesName name{r.tracker, r.marker, r.grid};
+    if (r.scenario == scenario && std::find(names.begin(), names.end(), name) == names.end()) {
+      names.push_back(name);
+    }
+  }
+  return names;
+}
+
+std::string ScenarioSection(const std::string& scenario,
+                            const std::vector<SummaryRow>& summary,
+                            const nlohmann::json& entry,
+                            const SummaryOptions& options,
+                            const std::string& dir) {
+  std::string parameter;
+  bool grid = false;
+  for (const SummaryRow& r : summary) {
+    if (r.scenario != scenario) continue;
+    parameter = r.sweep_parameter;
+    grid = grid || !r.grid.empty();
+  }
+  std::string md = "## " + scenario + " (" + (grid ? "grid" : "sweep") + " of `" + parameter + "`" +
+                   (grid ? " and the grid's other axes" : "") + ")\n\n";
+  if (entry.contains("file")) {
+    md += "Scenario `" + entry["file"].get<std::string>() + "`, " +
+          std::to_string(entry.value("trials", 0)) + " trials per value, seed " +
+          std::to_string(entry.value("seed", 0)) + ".";
+    if (entry.contains("wall_s")) {
+      md += " Ran " + std::to_string(entry.value("frames", 0)) + " frames in " +
+            DurationText(entry["wall_s"].get<double>()) + " (" +
+            FormattedOrDash(entry["frames_per_s"].get<double>(), "%.1f") + " frames/s, " +
+            std::to_string(entry.value("threads", 0)) + " threads).";
+    }
+    md += "\n\n";
+  }
+  if (fs::exists(dir + "/" + scenario + ".png")) {
+    md += "![" + scenario + ": error and success rate](" + scenario + ".png)\n\n";
+  }
+  if (fs::exists(dir + "/" + scenario + "_rotation_time.png")) {
+    md += "![" + scenario + ": rotation error and time per frame](" + scenario +
+          "_rotation_time.png)\n\n";
+  }
+  if (fs::exists(dir + "/" + scenario + "_heatmap.png")) {
+    md += "![" + scenario + ": success rate and median error over the grid](" + scenario +
+          "_heatmap.png)\n\n";
+  }
+  if (fs::exists(dir + "/" + scenario + "_examples.png")) {
+    md += "![" + scenario + ": example images](" + scenario + "_examples.png)\n\n";
+  }
+  md += "Breakdown (first value with success rate below " + Percent(options.breakdown_rate) +
+        "):\n\n| tracker | marker | " + (grid ? "grid | " : "") + "breakdown " + parameter +
+        " |\n|---|---|" + (grid ? "---|" : "") + "---|\n";
+  for (const SeriesName& series : SeriesNames(summary, scenario)) {
+    const std::optional<double> b = BreakdownValue(
+        SeriesOf(summary, scenario, series.tracker, series.marker, series.grid), options);
+    md += "| " + series.tracker + " | " + series.marker + " | " +
+          (grid ? series.grid + " | " : "") + (b ? FormattedOrDash(*b, "%g") : "none") + " |\n";
+  }
+  md += "\nSuccess and median error with their 95 % intervals (Wilson; order statistics).\n";
+  md += "\n| " + parameter + (grid ? " | grid" : "") +
+        " | tracker | marker | n | size (px) | detected | success" +
+        " | median pos. err (mm) | mean (mm) | p90 (mm) | median rot. err (°)" +
+        " | oracle median (mm) | flips | median ms | bound (mm) | × bound | rot. × bound |\n" +
+        (grid ? "|---" : "") +
+        "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n";
+  for (const SummaryRow& r : summary) {
+    if (r.scenario != scenario) continue;
+    md += "| " + FormattedOrDash(r.sweep_value, "%g") + (grid ? " | " + r.grid : "") + " | " +
+          r.tracker + " | " + r.marker + " | " + std::to_string(r.n) + " | " +
+          Significant(r.apparent_size_median_px) + " | " + Percent(r.detection_rate) + " | " +
+          Percent(r.success_rate) + " (" + PercentRange(r.success_rate_ci) + ") | " +
+          Significant(1e3 * r.position_error_median_m) +
+          MillimetreRange(r.position_error_median_ci_m) + " | " +
+          Significant(1e3 * r.position_error_mean_m) + " | " +
+          Significant(1e3 * r.position_error_p90_m) + " | " +
+          Significant(r.rotation_error_median_deg) + " | " +
+          Significant(1e3 * r.best_position_error_median_m) + " | " + Percent(r.flip_rate) + " | " +
+          Significant(r.time_median_ms) + " | " + Significant(1e3 * r.crlb_position_median_m) +
+          " | " + Significant(r.efficiency) + " | " + Significant(r.rotation_efficiency) + " |\n";
+  }
+  return md + "\n";
+}
+
+std::string EnvironmentSection(const nlohmann::json& manifest) {
+  if (!manifest.contains("environment")) return "";
+  const nlohmann::json& env = manifest["environment"];
+  std::string md = "Built from commit `" + env.value("git_commit", std::string("?")) + "`" +
+                   (env.value("git_dirty", false) ? " (with local changes)" : "") + ", " +
+                   env.value("compiler", std::string("?")) + ", " +
+                   env.value("build_type", std::string("?")) + "; run on " +
+                   env.value("cpu_model", std::string("?")) + " with " +
+                   std::to_string(env.value("threads", 0)) + " threads";
+  double wall_s = 0.0, frames = 0.0;
+  const nlohmann::json scenarios = manifest.value("scenarios", nlohmann::json::object());
+  for (const auto& [name, entry] : scenarios.items()) {
+    wall_s += entry.value("wall_s", 0.0);
+    frames += entry.value("frames", 0.0);
+  }
+  if (wall_s > 0.0) {
+    md += ": " + FormattedOrDash(frames, "%.0f") + " frames in " + DurationText(wall_s) + " (" +
+          FormattedOrDash(frames / wall_s, "%.1f") + " frames/s)";
+  }
+  return md + ". Details: `manifest.json`.\n\n";
+}
+
+void RunPlots(const std::string& dir) {
+  const std::string script = DataFile("scripts/plot_sweep.py");
+  // Debian's interpreter has python3-matplotlib; another python3 on PATH may not.
+  const std::string python = fs::exists("/usr/bin/python3") ? "/usr/bin/python3" : "python3";
+  // An argument vector, never a shell: a folder name is data, whatever its characters.
+  std::vector<std::string> args = {python, script, dir};
+  std::vector<char*> argv;
+  for (std::string& a : args) argv.push_back(a.data());
+  argv.push_back(nullptr);
+  pid_t pid = -1;
+  if (const int error = ::posix_spawnp(&pid, argv[0], nullptr, nullptr, argv.data(), environ)) {
+    throw std::runtime_error("plotting failed: cannot start " + python + ": " +
+                             std::strerror(error));
+  }
+  int status = 0;
+  while (::waitpid(pid, &status, 0) < 0 && errno == EINTR) {
+  }
+  if (!WIFEXITED(status) || WEXITSTATUS(status) != 0) {
+    throw std::runtime_error("plotting failed: " + python + " " + script + " " + dir);
+  }
+}
+
+}  // namespace
+
+void WriteReport(const std::string& dir, const ReportOptions& options) {
+  // Streamed: memory grows with a sweep cell, not with frames.csv (results/speed.md).
+  const std::vector<std::string> folders = ScenarioFolders(dir);
+  SummaryBuilder builder(options.summary);
+  for (const std::string& folder : folders) {
+    ScenarioRowReader reader(folder);
+    FrameRow row;
+    double time_ms = NAN;
+    while (reader.Next(&row, &time_ms)) {
+      try {
+        builder.Add(row, time_ms);
+      } catch (const ConfigError& e) {
+        throw ConfigError(reader.location() + ": " + e.what());
+      }
+    }
+  }
+  const std::vector<SummaryRow> summary = builder.Finish();
+  WriteFileAtomically(dir + "/summary.csv", SummaryCsv(summary));
+  nlohmann::json manifest = ReadManifest(dir + "/manifest.json");
+  manifest["report"] = {{"success_position_fraction_of_distance", options.summary.success_fraction},
+                        {"breakdown_success_rate", options.summary.breakdown_rate}};
+  WriteManifest(dir + "/manifest.json", manifest);
+  if (options.plots) RunPlots(dir);
+
+  std::string md = "# markerbench report\n\n";
+  md += EnvironmentSection(manifest);
+  md += "Success: a pose whose camera-centre error is at most " +
+        Percent(options.summary.success_fraction) +
+        " of the true distance. Breakdown: the first sweep value whose success rate is below " +
+        Percent(options.summary.breakdown_rate) +
+        ". Errors are over the frames with a pose; `oracle` takes the hypothesis nearest the "
+        "truth in rotation; `flips` counts first hypotheses more than 30° off while another "
+        "is within 5°. `bound` is the physical limit: the median over the cell's frames of the "
+        "camera-centre error that an efficient estimator would have, from each frame's "
+        "Cramér-Rao bound (noise, blur, pixel size, marker and pose); `× bound` is the median "
+        "error divided by the median bound over the same frames (1 is the limit; a better "
+        "algorithm cannot go below it, only a bigger marker, a closer camera or less noise "
+        "can).\n\n";
+  const std::vector<ClaimResult> claims = ReproduceClaims(summary, options.summary);
+  if (!claims.empty()) {
+    md += "## The paper's claims beside ours\n\n" + ReproductionTableMarkdown(claims) + "\n";
+  }
+  for (const std::string& folder : folders) {
+    const std::string name = fs::path(folder).filename().string();
+    const nlohmann::json entry =
+        manifest.contains("scenarios") && manifest["scenarios"].contains(name)
+            ? manifest["scenarios"][name]
+            : nlohmann::json::object();
+    md += ScenarioSection(name, summary, entry, options.summary, dir);
+  }
+  WriteFileAtomically(dir + "/report.md", md);
+  WriteFileAtomically(dir + "/report.html", ReportHtml(md, dir));
+}
+
+}  // namespace markerbench

@@ -1,0 +1,334 @@
+#include "bench/report/report.h"
+
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+#include <openssl/evp.h>
+
+#include <algorithm>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+#include "bench/run/frames_csv.h"
+#include "core/file_bytes.h"
+#include "core/yaml_reader.h"
+
+namespace markerbench {
+namespace {
+
+using ::testing::HasSubstr;
+using ::testing::Not;
+namespace fs = std::filesystem;
+
+// A frame of tracker `tracker` whose first hypothesis is `error_m` from the truth along x
+// (NaN: not detected), at 1 m; its bound's median position error is (trial + 1) cm.
+FrameRow Row(const std::string& scenario,
+             const std::string& tracker,
+             double value,
+             int trial,
+             double error_m) {
+  FrameRow r;
+  r.scenario = scenario;
+  r.sweep_parameter = "noise_var";
+  r.sweep_value = value;
+  r.trial = trial;
+  r.frame = trial;
+  r.marker = "tag";
+  r.tracker = tracker;
+  r.seed = 1;
+  r.apparent_size_px = 60.0;
+  r.distance_m = 1.0;
+  r.truth.translation = Eigen::Vector3d(0.0, 0.0, 1.0);
+  r.crlb_position_m = 0.012 * (trial + 1);
+  r.crlb_position_med_m = 0.01 * (trial + 1);
+  r.crlb_rotation_deg = 0.6;
+  r.crlb_rotation_med_deg = 0.5;
+  if (std::isnan(error_m)) {
+    r.status = TrackStatus::kNotDetected;
+    r.errors = {NAN, NAN, NAN, NAN, false};
+    r.message = "no \"tag\", sorry";  // quotes and a comma survive the round trip
+  } else {
+    r.status = TrackStatus::kOk;
+    r.hypotheses = 1;
+    Rigid3 estimate = r.truth;
+    estimate.translation.x() -= error_m;  // camera centre moves by +error_m along x
+    r.estimate = estimate;
+    r.errors = {error_m, 0.0, error_m, 0.0, false};
+  }
+  return r;
+}
+
+TEST(FramesCsv, RowsRoundTrip) {
+  FrameRow unobservable = Row("s", "x", 0.2, 1, NAN);
+  unobservable.crlb_position_m = unobservable.crlb_position_med_m = INFINITY;
+  FrameRow without_bound = Row("s", "y", 0.2, 1, NAN);
+  without_bound.crlb_position_m = without_bound.crlb_position_med_m = NAN;
+  without_bound.crlb_rotation_deg = without_bound.crlb_rotation_med_deg = NAN;
+  for (const FrameRow& row : {Row("s", "apriltag", 0.1, 3, 0.02), unobservable, without_bound}) {
+    std::string line = FormatFrameRow(row);
+    ASSERT_EQ(line.back(), '\n');
+    line.pop_back();
+    const FrameRow back = ParseFrameRow(line);
+    EXPECT_EQ(FormatFrameRow(back), FormatFrameRow(row));
+    EXPECT_EQ(back.message, row.message);
+    EXPECT_EQ(back.estimate.has_value(), row.estimate.has_value());
+    EXPECT_EQ(std::isinf(back.crlb_position_m), std::isinf(row.crlb_position_m));
+    EXPECT_EQ(std::isnan(back.crlb_rotation_med_deg), std::isnan(row.crlb_rotation_med_deg));
+  }
+  EXPECT_THROW(ParseFrameRow("a,b,c"), std::runtime_error);
+}
+
+// timing.csv names the scenario and says whether the row succeeded (10 % of the distance).
+TEST(TimingCsv, RowsCarryScenarioAndSuccess) {
+  EXPECT_EQ(TimingCsvHeader(), "frame,scenario,tracker,success,time_ms,round_trip_ms\n");
+  EXPECT_EQ(FormatTimingRow(Row("fig6", "circle", 0.1, 2, 0.09), 1.25, 2.5),
+            "2,fig6,circle,1,1.2500,2.5000\n");
+  EXPECT_EQ(FormatTimingRow(Row("fig6", "circle", 0.1, 2, 0.11), 1.25, 2.5),
+            "2,fig6,circle,0,1.2500,2.5000\n");
+  EXPECT_EQ(FormatTimingRow(Row("fig6", "circle", 0.1, 2, NAN), 1.25, 2.5),
+            "2,fig6,circle,0,1.2500,2.5000\n");
+}
+
+// Counts and the seed out of their types' range are errors, not wrapped or undefined casts
+// (found by loaders_fuzz).
+TEST(FramesCsv, CountsOutOfRangeAreErrors) {
+  const std::string good = FormatFrameRow(Row("s", "t", 0.1, 3, 0.02));
+  const std::vector<std::string> fields = SplitCsvLine(good.substr(0, good.size() - 1));
+  const auto with = [&](size_t column, const std::string& value) {
+    std::vector<std::string> f = fields;
+    f[column] = value;
+    std::string line;
+    for (const std::string& v : f) line += (line.empty() ? "" : ",") + CsvField(v);
+    return line;
+  };
+  EXPECT_NO_THROW(ParseFrameRow(with(3, "7")));
+  for (const auto& [column, value] : std::vector<std::pair<size_t, std::string>>{
+           {3, "8.65065e+13"}, {3, "-1"}, {4, "2.5"}, {11, "1e300"}, {7, "-3"}, {7, "1x"}}) {
+    EXPECT_THAT([&] { ParseFrameRow(with(column, value)); },
+                ::testing::ThrowsMessage<std::runtime_error>(HasSubstr("expected a whole number")))
+        << column << " " << value;
+  }
+}
+
+class ReportTest : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    dir_ =
+        (fs::temp_directory_path() / ("markerbench_report_" + std::to_string(::getpid()))).string();
+    fs::remove_all(dir_);
+    fs::create_directories(dir_ + "/fig6_noise");
+    // apriltag: 5 trials at σ² = 0.1, 0.18, 0.2 with 5, 3 and 2 successes (error ≤ 0.1 m).
+    const std::vector<std::pair<double, std::vector<double>>> cells = {
+        {0.1, {0.01, 0.02, 0.03, 0.04, 0.05}},
+        {0.18, {0.01, 0.05, 0.09, 0.2, NAN}},
+        {0.2, {0.02, 0.08, 0.5, NAN, NAN}},
+    };
+    std::string frames = FramesCsvHeader(), timing = TimingCsvHeader();
+    for (const auto& [value, errors] : cells) {
+      for (size_t trial = 0; trial < errors.size(); ++trial) {
+        const FrameRow row = Row("fig6_noise", "apriltag", value, trial, errors[trial]);
+        frames += FormatFrameRow(row);
+        timing += FormatTimingRow(row, 1.0 + trial, 1.5 + trial);
+      }
+    }
+    std::ofstream(dir_ + "/fig6_noise/frames.csv") << frames;
+    std::ofstream(dir_ + "/fig6_noise/timing.csv") << timing;
+  }
+  void TearDown() override { fs::remove_all(dir_); }
+
+  std::string dir_;
+};
+
+TEST_F(ReportTest, SummaryOfASyntheticSweep) {
+  ReportOptions options;
+  options.plots = false;
+  WriteReport(dir_, options);
+  std::istringstream summary(ReadFileBytes(dir_ + "/summary.csv"));
+  std::string line;
+  std::getline(summary, line);  // header
+  // scenario .. marker, then n, median apparent size, detection, success, median / mean / p90
+  // error, median rotation, oracle median, flip rate, median time (of every call: 1..5 ms),
+  // median bound (1..5 cm over all trials: 3 cm), efficiency (median error / median bound of
+  // the posed trials), median rotation bound, rotation efficiency (no rotation error: 0);
+  // then the Wilson intervals of detection and success (5/5: 0.5655-1, 4/5: 0.3755-0.9638,
+  // 3/5: 0.2307-0.8824, 2/5: 0.1176-0.7693).
+  const std::vector<std::vector<double>> expected = {
+      {5, 60, 1.0, 1.0, 0.03, 0.03, 0.046, 0, 0.03, 0, 3, 0.03, 1.0, 0.5, 0, 0.5655, 1, 0.5655, 1},
+      // Posed errors 0.01, 0.05, 0.09, 0.2: median 0.07, mean 0.0875, p90 0.167; posed
+      // bounds 1-4 cm: efficiency 0.07 / 0.025.
+      {5,
+       60,
+       0.8,
+       0.6,
+       0.07,
+       0.0875,
+       0.167,
+       0,
+       0.07,
+       0,
+       3,
+       0.03,
+       2.8,
+       0.5,
+       0,
+       0.3755,
+       0.9638,
+       0.2307,
+       0.8824},
+      // Posed errors 0.02, 0.08, 0.5: median 0.08, mean 0.2, p90 0.416; bounds 1-3 cm.
+      {5,
+       60,
+       0.6,
+       0.4,
+       0.08,
+       0.2,
+       0.416,
+       0,
+       0.08,
+       0,
+       3,
+       0.03,
+       4.0,
+       0.5,
+       0,
+       0.2307,
+       0.8824,
+       0.1176,
+       0.7693}};
+  for (const std::vector<double>& want : expected) {
+    ASSERT_TRUE(std::getline(summary, line));
+    const std::vector<std::string> fields = SplitCsvLine(line);
+    ASSERT_EQ(fields.size(), 29u) << line;
+    // Five or fewer posed frames: no median interval reaches 95 % (empty fields).
+    for (size_t i = 25; i < 29; ++i) {
+      EXPECT_EQ(fields[i], "") << line;
+    }
+    // scenario, grid (empty: one axis), tracker, marker
+    EXPECT_EQ(fields[0] + "|" + fields[3] + "|" + fields[4] + fields[5], "fig6_noise||apriltagtag");
+    for (size_t i = 0; i < want.size(); ++i) {
+      EXPECT_NEAR(std::stod(fields[6 + i]), want[i], i < 15 ? 1e-12 : 5e-5)
+          << line << " column " << 6 + i;
+    }
+  }
+  EXPECT_FALSE(std::getline(summary, line));
+
+  const std::string report = ReadFileBytes(dir_ + "/report.md");
+  // Breakdown: the first value under 50% success is 0.2, the paper says "fails above 0.18".
+  EXPECT_THAT(report, HasSubstr("| apriltag | tag | 0.2 |"));
+  EXPECT_THAT(report,
+              HasSubstr("| AprilTag noise breakdown | σ² > 0.18 | breaks down at noise_var = 0.2 "
+                        "| agrees |"));
+  EXPECT_THAT(report, HasSubstr("not run: no `artkplus` rows in `fig6_noise`"));
+  EXPECT_THAT(report,
+              HasSubstr("| 0.18 | apriltag | tag | 5 | 60 | 80% | 60% (23–88%) | 70 | 87.5 |"));
+  EXPECT_THAT(report, HasSubstr("| 3 | 30 | 2.8 | 0 |\n"));  // ms, bound, × bound
+  // The circle method's own claims, not run here.
+  EXPECT_THAT(report, HasSubstr("| circle method blur | works up to σ = 10 | not run"));
+  EXPECT_THAT(ReadFileBytes(dir_ + "/manifest.json"),
+              HasSubstr("\"success_position_fraction_of_distance\": 0.1"));
+}
+
+// A user's own scenario gets its sections, not nine "not run" claims of the paper.
+TEST_F(ReportTest, AUsersScenarioMakesNoClaimsOfThePaper) {
+  fs::create_directories(dir_ + "/mine");
+  std::string frames = FramesCsvHeader();
+  for (int trial = 0; trial < 3; ++trial)
+    frames += FormatFrameRow(Row("mine", "circle", 0.1, trial, 0.01));
+  std::ofstream(dir_ + "/mine/frames.csv") << frames;
+  fs::remove_all(dir_ + "/fig6_noise");
+  ReportOptions options;
+  options.plots = false;
+  WriteReport(dir_, options);
+  const std::string report = ReadFileBytes(dir_ + "/report.md");
+  EXPECT_THAT(report, ::testing::Not(HasSubstr("The paper's claims")));
+  EXPECT_THAT(report, HasSubstr("## mine (sweep of `noise_var`)"));
+  EXPECT_THAT(report, HasSubstr("| 0.1 | circle | tag | 3 |"));
+}
+
+TEST_F(ReportTest, StricterSuccessMovesTheBreakdown) {
+  ReportOptions options;
+  options.plots = false;
+  options.summary.success_fraction = 0.045;  // 0.1: 4 of 5 succeed; 0.18: 1 of 5
+  WriteReport(dir_, options);
+  EXPECT_THAT(ReadFileBytes(dir_ + "/report.md"), HasSubstr("| apriltag | tag | 0.18 |"));
+}
+
+// report.html stands alone: its plots are inside it (the same bytes as the PNG) and its tables
+// are HTML tables with the sorting script.
+TEST_F(ReportTest, HtmlEmbedsPlotsAndSortableTables) {
+  const std::string png = std::string("\x89PNG\r\n\x1a\n", 8) + "not really an image \xff\x00";
+  std::ofstream(dir_ + "/fig6_noise.png", std::ios::binary) << png;
+  ReportOptions options;
+  options.plots = false;
+  WriteReport(dir_, options);
+  const std::string html = ReadFileBytes(dir_ + "/report.html");
+  EXPECT_EQ(html.rfind("<!DOCTYPE html>", 0), 0u);
+  EXPECT_THAT(html, HasSubstr("<title>markerbench report</title>"));
+  EXPECT_THAT(html, HasSubstr("<th>tracker</th>"));
+  EXPECT_THAT(html, HasSubstr("<td>apriltag</td>"));
+  EXPECT_THAT(html, HasSubstr("addEventListener(\"click\""));
+  EXPECT_THAT(html, Not(HasSubstr("src=\"fig6_noise.png\"")));
+  const std::string prefix = "src=\"data:image/png;base64,";
+  const size_t start = html.find(prefix);
+  ASSERT_NE(start, std::string::npos);
+  const size_t begin = start + prefix.size();
+  const std::string encoded = html.substr(begin, html.find('"', begin) - begin);
+  std::string decoded(encoded.size(), '\0');
+  const int n = EVP_DecodeBlock(reinterpret_cast<unsigned char*>(decoded.data()),
+                                reinterpret_cast<const unsigned char*>(encoded.data()),
+                                static_cast<int>(encoded.size()));
+  ASSERT_GE(n, 0);
+  // EVP_DecodeBlock keeps the padding's zero bytes.
+  const size_t padding = std::count(encoded.end() - 2, encoded.end(), '=');
+  EXPECT_EQ(decoded.substr(0, static_cast<size_t>(n) - padding), png);
+}
+
+TEST_F(ReportTest, MisalignedTimingIsAnError) {
+  std::ofstream(dir_ + "/fig6_noise/timing.csv")
+      << TimingCsvHeader() << "7,fig6_noise,apriltag,1,1.0,1.0\n";
+  ReportOptions options;
+  options.plots = false;
+  EXPECT_THROW(WriteReport(dir_, options), ConfigError);
+}
+
+TEST(Report, EmptyFolderIsAnError) {
+  ReportOptions options;
+  options.plots = false;
+  EXPECT_THROW(WriteReport(fs::temp_directory_path().string() + "/no_such_results", options),
+               ConfigError);
+}
+
+}  // namespace
+}  // namespace markerbench
+
+namespace markerbench {
+namespace {
+
+// The summary is built one sweep cell at a time: trackers may interleave within a cell, but
+// a cell that comes back after another is refused (its groups were already summarised).
+TEST(SummaryBuilderTest, SummarisesCellByCellAndRefusesACellThatComesBack) {
+  SummaryBuilder builder({});
+  builder.Add(Row("s", "a", 0.0, 0, 0.001), 1.0);
+  builder.Add(Row("s", "b", 0.0, 0, NAN), 2.0);
+  builder.Add(Row("s", "a", 0.0, 1, 0.003), 3.0);
+  builder.Add(Row("s", "a", 0.1, 0, 0.002), 4.0);
+  const std::vector<SummaryRow> summary = builder.Finish();
+  // Series in order of appearance (a, then b), values in order within each.
+  ASSERT_EQ(summary.size(), 3u);
+  EXPECT_EQ(summary[0].tracker, "a");
+  EXPECT_EQ(summary[0].n, 2);
+  EXPECT_DOUBLE_EQ(summary[0].position_error_median_m, 0.002);
+  EXPECT_EQ(summary[1].tracker, "a");
+  EXPECT_EQ(summary[1].sweep_value, 0.1);
+  EXPECT_EQ(summary[2].tracker, "b");
+  EXPECT_EQ(summary[2].detection_rate, 0.0);
+
+  SummaryBuilder out_of_order({});
+  out_of_order.Add(Row("s", "a", 0.0, 0, 0.001), 1.0);
+  out_of_order.Add(Row("s", "a", 0.1, 0, 0.001), 1.0);
+  EXPECT_THAT([&] { out_of_order.Add(Row("s", "a", 0.0, 1, 0.001), 1.0); },
+              ::testing::ThrowsMessage<ConfigError>(HasSubstr("after the rows of other values")));
+}
+
+}  // namespace
+}  // namespace markerbench

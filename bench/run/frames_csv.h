@@ -1,0 +1,72 @@
+// frames.csv (architecture.md, "Per-frame results"): one tidy row per frame × tracker. Every
+// column is a function of the scenario and seed, so the file is byte-identical across runs
+// and thread counts; the measured call times go to timing.csv.
+#pragma once
+
+#include <cmath>
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "bench/metrics/metrics.h"
+#include "core/rigid3.h"
+#include "trackers/tracker.h"
+
+namespace markerbench {
+
+struct FrameRow {
+  std::string scenario;
+  std::string sweep_parameter;
+  double sweep_value = 0.0;
+  std::string grid;  // a grid sweep's other axes at this cell (bench/plan/frame_plan.h); else empty
+  int trial = 0;
+  int frame = 0;  // index in the scenario's frame plan
+  std::string marker;
+  std::string tracker;
+  uint64_t seed = 0;  // the scenario seed
+  double apparent_size_px = 0.0;
+  double distance_m = 0.0;  // true distance from the camera centre to the marker centre
+  TrackStatus status = TrackStatus::kNotDetected;
+  int hypotheses = 0;
+  PoseErrors errors{};
+  // The frame's Cramér-Rao bound (renderer/pose_crlb.h), the same for every tracker: RMS and
+  // median camera-centre error, RMS and median rotation error of an efficient estimator.
+  // NaN when the scenario turns the bound off, +inf when the pose is unobservable.
+  double crlb_position_m = NAN;
+  double crlb_position_med_m = NAN;
+  double crlb_rotation_deg = NAN;
+  double crlb_rotation_med_deg = NAN;
+  Rigid3 truth;
+  std::optional<Rigid3> estimate;  // the first hypothesis, when the status is ok
+  std::string message;
+};
+
+// The header line and one row, each ending in '\n'.
+std::string FramesCsvHeader();
+std::string FormatFrameRow(const FrameRow& row);
+
+// Parses one data line (without its '\n'); throws std::runtime_error naming the column.
+FrameRow ParseFrameRow(const std::string& line);
+
+// timing.csv: one row per frames.csv row, in the same order: frame, scenario, tracker,
+// success (1 when the row's pose is within kSuccessFraction of the distance, else 0), time_ms,
+// round_trip_ms.
+std::string TimingCsvHeader();
+inline constexpr size_t kTimingFrameColumn = 0;
+inline constexpr size_t kTimingTrackerColumn = 2;
+inline constexpr size_t kTimingTimeColumn = 4;
+inline constexpr size_t kTimingColumnCount = 6;
+// time_ms: the tracker's own time when it reports one (an isolated worker, an external
+// tracker's time_ms), else the round trip; round_trip_ms: Track() as the runner timed it,
+// process I/O included.
+std::string FormatTimingRow(const FrameRow& row, double time_ms, double round_trip_ms);
+
+// One field, in RFC 4180 quotes when it holds a comma or a quote; line breaks become spaces
+// (one row per line).
+std::string CsvField(std::string text);
+
+// Fields of one CSV line, with RFC 4180 quotes.
+std::vector<std::string> SplitCsvLine(const std::string& line);
+
+}  // namespace markerbench
