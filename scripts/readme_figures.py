@@ -1,0 +1,165 @@
+#!/usr/bin/env python3
+"""The README's figure tables, generated from the committed results so that they cannot drift.
+
+Each table sits in README.md between
+    <!-- readme_figures.py: NAME -->   and   <!-- end NAME -->
+and is computed from results/ (summary.csv of results/circle_accuracy and results/paper).
+
+    readme_figures.py --check   exit 1 naming each table that differs from results/ (ctest)
+    readme_figures.py --write   rewrite the tables in README.md
+"""
+import csv
+import math
+import pathlib
+import re
+import sys
+
+ROOT = pathlib.Path(__file__).resolve().parent.parent
+README = ROOT / "README.md"
+
+
+def read_summary(path):
+    with open(ROOT / path, newline="") as f:
+        return list(csv.DictReader(f))
+
+
+def number(text):
+    return float(text) if text not in ("", None) else math.nan
+
+
+def significant(value, digits=3):
+    """3 significant digits, trailing zeros kept (1.41, 2.00, 0.158, 102), whole numbers from
+    1000 on; '-' for NaN."""
+    if math.isnan(value):
+        return "-"
+    if abs(value) >= 10 ** digits:
+        return f"{value:.0f}"
+    return f"{value:#.{digits}g}".rstrip(".")
+
+
+def cell(rows, scenario, value, tracker=None):
+    return [r for r in rows if r["scenario"] == scenario and number(r["sweep_value"]) == value
+            and r.get("grid", "") == "" and (tracker is None or r["tracker"] == tracker)]
+
+
+# (scenario, sweep value, condition, target as text, minimum success, maximum median error
+# in mm or None): the targets of results/circle_accuracy.md; a value that misses is bold.
+CIRCLE_ACCURACY = [
+    ("circle_accuracy_0.6m_noise", 0.0, "0.6 m, no noise or blur", "≤ 0.5 mm, 100 %", 1.0, 0.5),
+    ("circle_accuracy_0.6m_noise", 0.02, "0.6 m, σ² = 0.02", "≤ 3 mm, 100 %", 1.0, 3.0),
+    ("circle_accuracy_0.6m_noise", 0.3, "0.6 m, σ² = 0.3", "≥ 95 %", 0.95, None),
+    ("circle_accuracy_1m_blur10", 10.0, "1.0 m, σ² = 0.02, blur σ = 10", "≥ 95 %, ≤ 10 mm", 0.95,
+     10.0),
+    ("circle_accuracy_3.5m", 3.5, "3.5 m, σ² = 0.02", "≥ 95 %", 0.95, None),
+]
+
+
+def circle_accuracy():
+    rows = read_summary("results/circle_accuracy/summary.csv")
+    lines = ["| condition | target | success (95 % interval) | median camera-centre error (95 % interval) |",
+             "|---|---|---|---|"]
+    for scenario, value, condition, target, min_success, max_mm in CIRCLE_ACCURACY:
+        (r,) = cell(rows, scenario, value, "circle")
+        success = number(r["success_rate"])
+        median_mm = 1e3 * number(r["position_error_median_m"])
+        success_text = (f"{100 * success:.0f} % ({100 * number(r['success_rate_lo']):.0f}–"
+                        f"{100 * number(r['success_rate_hi']):.0f})")
+        median_text = (f"{significant(median_mm)} mm "
+                       f"({significant(1e3 * number(r['position_error_median_lo_m']))}–"
+                       f"{significant(1e3 * number(r['position_error_median_hi_m']))})")
+        if success < min_success:
+            success_text = f"**{success_text}**"
+        if max_mm is not None and median_mm > max_mm:
+            median_text = f"**{median_text}**"
+        lines.append(f"| {condition} | {target} | {success_text} | {median_text} |")
+    return lines
+
+
+# (scenario, sweep value, the cell's name in the table)
+EFFICIENCY_CELLS = [
+    ("fig6_noise", 0.02, "0.6 m, σ² = 0.02"),
+    ("fig6_noise", 0.3, "0.6 m, σ² = 0.3"),
+    ("fig7_blur", 0.0, "1 m, blur 0"),
+    ("fig7_blur", 5.0, "1 m, blur σ = 5"),
+    ("fig7_blur", 10.0, "1 m, blur σ = 10"),
+    ("fig8_distance", 2.5, "2.5 m, σ² = 0.02"),
+]
+TRACKERS = ["circle", "apriltag", "apriltag-ippe", "artkplus", "runetag", "aruco"]
+
+
+def efficiency():
+    rows = read_summary("results/paper/summary.csv")
+    lines = ["| cell | " + " | ".join(f"`{t}`" for t in TRACKERS) + " | median bound |",
+             "|---|" + "---|" * (len(TRACKERS) + 1)]
+    for scenario, value, name in EFFICIENCY_CELLS:
+        values, bounds = [], []
+        for tracker in TRACKERS:
+            found = cell(rows, scenario, value, tracker)
+            ratio = number(found[0]["efficiency"]) if found else math.nan
+            values.append(significant(ratio))
+            if found and not math.isnan(ratio):
+                bounds.append((1e3 * number(found[0]["crlb_position_median_m"]), found[0]["marker"]))
+        if len(bounds) == 1:
+            bound = f"{significant(bounds[0][0])} mm (`{bounds[0][1]}`)"
+        else:
+            lo, hi = min(b for b, _ in bounds), max(b for b, _ in bounds)
+            bound = f"{significant(lo, 2)}-{significant(hi, 2)} mm"
+        lines.append(f"| {name} | " + " | ".join(values) + f" | {bound} |")
+    return lines
+
+
+BREAKDOWN_SWEEPS = [("fig6_noise", "noise σ²"), ("fig7_blur", "blur σ (px)"),
+                    ("fig8_distance", "distance (m)")]
+
+
+def breakdowns():
+    """Per tracker of the paper runs: the first sweep value with success below 50 % (the
+    report's breakdown), or the last value reached; and the median time per call."""
+    rows = read_summary("results/paper/summary.csv")
+    lines = ["| tracker | " + " | ".join(f"breakdown: {label}" for _, label in BREAKDOWN_SWEEPS) +
+             " | median ms per call |",
+             "|---|" + "---|" * (len(BREAKDOWN_SWEEPS) + 1)]
+    for tracker in TRACKERS:
+        texts, times = [], []
+        for scenario, _ in BREAKDOWN_SWEEPS:
+            series = [r for r in rows if r["scenario"] == scenario and r["tracker"] == tracker]
+            times += [number(r["time_median_ms"]) for r in series]
+            failed = [r for r in series if number(r["success_rate"]) < 0.5]
+            texts.append(f"{number(failed[0]['sweep_value']):g}" if failed
+                         else f"none to {number(series[-1]['sweep_value']):g}")
+        lines.append(f"| `{tracker}` | " + " | ".join(texts) +
+                     f" | {significant(min(times), 2)}-{significant(max(times), 2)} |")
+    return lines
+
+
+TABLES = {"circle_accuracy": circle_accuracy, "efficiency": efficiency,
+          "breakdowns": breakdowns}
+
+
+def main():
+    if len(sys.argv) != 2 or sys.argv[1] not in ("--check", "--write"):
+        sys.exit(__doc__)
+    text = README.read_text()
+    problems = []
+    for name, make in TABLES.items():
+        pattern = re.compile(rf"(<!-- readme_figures.py: {name} -->\n)(.*?)(<!-- end {name} -->)",
+                             re.S)
+        match = pattern.search(text)
+        if not match:
+            problems.append(f"README.md: no table '{name}' (<!-- readme_figures.py: {name} -->)")
+            continue
+        table = "\n".join(make()) + "\n"
+        if match.group(2) != table:
+            problems.append(f"README.md: table '{name}' differs from results/:\n{table}")
+            text = text[:match.start(2)] + table + text[match.end(2):]
+    if sys.argv[1] == "--write":
+        README.write_text(text)
+        print(f"readme_figures: wrote {len(TABLES)} tables")
+        return
+    if problems:
+        sys.exit("\n".join(problems) + "\nRun scripts/readme_figures.py --write after new results.")
+    print(f"readme_figures: {len(TABLES)} tables match results/")
+
+
+if __name__ == "__main__":
+    main()
