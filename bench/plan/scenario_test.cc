@@ -259,9 +259,22 @@ TEST(Scenario, ShippedScenariosLoad) {
                            "scenarios/paper/fig7_blur.yaml",
                            "scenarios/paper/fig8_distance.yaml",
                            "scenarios/examples/all_markers.yaml",
-                           "scenarios/examples/circle_e.yaml"}) {
+                           "scenarios/render_only/circle_e.yaml"}) {
     EXPECT_NO_THROW(LoadScenario(path)) << path;
   }
+}
+
+// Every example can be swept: it loads and names at least one tracker (sweep's only further
+// requirement); markers no tracker reads live in scenarios/render_only/.
+TEST(Scenario, EveryExampleCanBeSwept) {
+  int examples = 0;
+  for (const auto& entry : std::filesystem::directory_iterator("scenarios/examples")) {
+    if (entry.path().extension() != ".yaml") continue;
+    ++examples;
+    const Scenario s = LoadScenario(entry.path().string());
+    EXPECT_FALSE(s.trackers.empty()) << entry.path();
+  }
+  EXPECT_GE(examples, 8);
 }
 
 TEST(Scenario, UnknownKey) {
