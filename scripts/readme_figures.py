@@ -132,8 +132,55 @@ def breakdowns():
     return lines
 
 
+def clean_accuracy():
+    """Every tracker on the clean frames of Fig. 6 (0.6 m, σ² = 0, tilt 0-40°)."""
+    rows = read_summary("results/paper/summary.csv")
+    lines = ["| tracker | success (95 % interval) | median camera-centre error, mm (95 % interval) "
+             "| p90, mm | median rotation error, ° |",
+             "|---|---|---|---|---|"]
+    for tracker in TRACKERS:
+        (r,) = cell(rows, "fig6_noise", 0.0, tracker)
+        lines.append(
+            f"| `{tracker}` | {100 * number(r['success_rate']):.0f} % "
+            f"({100 * number(r['success_rate_lo']):.0f}–{100 * number(r['success_rate_hi']):.0f}) | "
+            f"{significant(1e3 * number(r['position_error_median_m']))} "
+            f"({significant(1e3 * number(r['position_error_median_lo_m']))}–"
+            f"{significant(1e3 * number(r['position_error_median_hi_m']))}) | "
+            f"{significant(1e3 * number(r['position_error_p90_m']))} | "
+            f"{significant(number(r['rotation_error_median_deg']))} |")
+    return lines
+
+
+# (what, a pattern of results/speed.md whose group 1 is the median): each must match once.
+SPEED = [
+    ("render a grey tag36h11 frame (blur σ = 2, noise)",
+     r"\(`BM_RenderTag36h11Grey`\) \| [^|]* \| ([^|]+?) \|"),
+    ("render an RGB `circles_a` frame", r"\(`BM_RenderCirclesAColour`\) \| [^|]* \| ([^|]+?) \|"),
+    ("`circle`, full detection, analytic pose and refinement",
+     r"\(`BM_CircleFullDetection`\) \| [^|]* \| ([0-9.]+ ms)"),
+    ("`circle`, tracking mode", r"\(`BM_CircleTrackingMode`\) \| [^|]* \| ([0-9.]+ ms)"),
+    ("`apriltag` (the same frames, run alongside `circle`)",
+     r"\| `apriltag` on the same poses[^|]*\|[^|]*\| *([^|]+?) *\|"),
+    ("`apriltag-ippe` (the same frames)", r"\| `apriltag-ippe` \| +\| ([^|]+?) \|"),
+    ("`artkplus`", r"`BM_ArtkPlusRobustPlanarPose`\) \| ([^|]+?) \|"),
+    ("`runetag`", r"\*\*([0-9.]+ ms) per frame\*\*"),
+    ("`aruco`", r"\| `aruco` \(OpenCV[^|]*\| ([^|]+?) \|"),
+]
+
+
+def speed():
+    text = (ROOT / "results/speed.md").read_text()
+    lines = ["| one thread, 640x480, 0.6 m, σ² = 0.02 | median per frame |", "|---|---|"]
+    for what, pattern in SPEED:
+        found = re.findall(pattern, text)
+        if len(found) != 1:
+            raise SystemExit(f"readme_figures: results/speed.md: {len(found)} matches for {what}")
+        lines.append(f"| {what} | {found[0].strip()} |")
+    return lines
+
+
 TABLES = {"circle_accuracy": circle_accuracy, "efficiency": efficiency,
-          "breakdowns": breakdowns}
+          "breakdowns": breakdowns, "clean_accuracy": clean_accuracy, "speed": speed}
 
 
 def main():
