@@ -45,6 +45,12 @@ const char* ToString(MarkerKind kind) {
   return "unknown";
 }
 
+std::vector<std::string> MarkerKindNames() {
+  std::vector<std::string> names;
+  for (const auto& [kind, name] : kKindNames) names.emplace_back(name);
+  return names;
+}
+
 std::optional<MarkerKind> MarkerKindFromString(const std::string& name) {
   for (const auto& [k, n] : kKindNames) {
     if (name == n) return k;

@@ -29,6 +29,8 @@ enum class MarkerKind {
 
 const char* ToString(MarkerKind kind);
 std::optional<MarkerKind> MarkerKindFromString(const std::string& name);
+// Every kind's name, in the enum's order.
+std::vector<std::string> MarkerKindNames();
 bool IsCircleKind(MarkerKind kind);
 bool IsSquareKind(MarkerKind kind);
 

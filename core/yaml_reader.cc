@@ -86,11 +86,11 @@ struct KeyStep {
 };
 
 // "a.b[2].c" as steps; throws on an empty key or a malformed index.
-std::vector<KeyStep> ParseKeyPath(const std::string& path, const std::string& override_text) {
+std::vector<KeyStep> ParseKeyPath(const std::string& path, const std::string& setting) {
   std::vector<KeyStep> steps;
   size_t i = 0;
   const auto fail = [&](const std::string& what) {
-    throw ConfigError("--set " + override_text + ": " + what +
+    throw ConfigError(setting + ": " + what +
                       " (expected KEY=VALUE with KEY like render.noise_var or "
                       "trackers[0].options.threshold)");
   };
@@ -128,23 +128,24 @@ void CollectNodes(const YAML::Node& node,
   }
 }
 
-// Applies "key.path=value" to `root`; appends the nodes it put there to `overridden`.
+// Applies "key.path=value" (given with `flag`) to `root`; appends the nodes it put there to
+// `overridden`.
 void ApplyOverride(YAML::Node root,
+                   const std::string& flag,
                    const std::string& override_text,
                    std::vector<std::pair<YAML::Node, std::string>>* overridden) {
+  const std::string setting = flag + " " + override_text;
   const size_t equals = override_text.find('=');
-  if (equals == std::string::npos) {
-    throw ConfigError("--set " + override_text + ": expected KEY=VALUE");
-  }
-  const std::vector<KeyStep> steps = ParseKeyPath(override_text.substr(0, equals), override_text);
+  if (equals == std::string::npos) throw ConfigError(setting + ": expected KEY=VALUE");
+  const std::vector<KeyStep> steps = ParseKeyPath(override_text.substr(0, equals), setting);
   YAML::Node value;
   try {
     value = YAML::Load(override_text.substr(equals + 1));
   } catch (const YAML::Exception& e) {
-    throw ConfigError("--set " + override_text + ": the value is not valid YAML: " + e.msg);
+    throw ConfigError(setting + ": the value is not valid YAML: " + e.msg);
   }
   if (!value.IsDefined() || value.IsNull()) {
-    throw ConfigError("--set " + override_text + ": expected a value after '='");
+    throw ConfigError(setting + ": expected a value after '='");
   }
   YAML::Node node = root;
   std::string walked;
@@ -153,7 +154,7 @@ void ApplyOverride(YAML::Node root,
     const bool last = s + 1 == steps.size();
     if (!step.key.empty()) {
       if (!node.IsMap()) {
-        throw ConfigError("--set " + override_text + ": '" + walked + "' is not a mapping");
+        throw ConfigError(setting + ": '" + walked + "' is not a mapping");
       }
       if (last) {
         node[step.key] = value;
@@ -164,15 +165,14 @@ void ApplyOverride(YAML::Node root,
       walked += (walked.empty() ? "" : ".") + step.key;
     } else {
       if (!node.IsSequence() || step.index >= node.size()) {
-        throw ConfigError("--set " + override_text + ": '" + walked + "' has no item " +
-                          std::to_string(step.index));
+        throw ConfigError(setting + ": '" + walked + "' has no item " + std::to_string(step.index));
       }
       if (last) node[step.index] = value;
       node.reset(node[step.index]);
       walked += "[" + std::to_string(step.index) + "]";
     }
   }
-  CollectNodes(node, "--set " + override_text, overridden);
+  CollectNodes(node, setting, overridden);
 }
 
 }  // namespace
@@ -192,10 +192,21 @@ YamlMap YamlMap::LoadFile(const std::string& path, const std::vector<std::string
     throw ConfigError(path + ": expected a YAML mapping at the top level, got " + Describe(root));
   }
   auto overridden = std::make_shared<Overridden>();
-  for (const std::string& text : overrides) ApplyOverride(root, text, overridden.get());
+  for (const std::string& text : overrides) ApplyOverride(root, "--set", text, overridden.get());
   size_t visited = 0;
   CheckKeys(root, path, &visited);
   YamlMap map(root, path, "");
+  map.overridden_ = std::move(overridden);
+  return map;
+}
+
+YamlMap YamlMap::FromSettings(const std::string& source,
+                              const std::string& flag,
+                              const std::vector<std::string>& settings) {
+  YAML::Node root(YAML::NodeType::Map);
+  auto overridden = std::make_shared<Overridden>();
+  for (const std::string& text : settings) ApplyOverride(root, flag, text, overridden.get());
+  YamlMap map(root, source, "");
   map.overridden_ = std::move(overridden);
   return map;
 }

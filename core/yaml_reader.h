@@ -23,6 +23,11 @@ class YamlMap {
   // "sweep.values=[0.1, 0.2]", "trackers[1].options.threshold=90"); missing keys are created.
   // Errors about an overridden value name the override, not a line of the file.
   static YamlMap LoadFile(const std::string& path, const std::vector<std::string>& overrides = {});
+  // A mapping made only of settings in the same "key.path=value" form, given on a command line
+  // with `flag` (errors name "source (flag key=value)").
+  static YamlMap FromSettings(const std::string& source,
+                              const std::string& flag,
+                              const std::vector<std::string>& settings);
 
   YamlMap(const YAML::Node& node, std::string file, std::string key_path);
 

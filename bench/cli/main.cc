@@ -20,8 +20,10 @@
 #include "bench/report/report.h"
 #include "bench/run/manifest.h"
 #include "bench/run/sweep_runner.h"
+#include "core/marker_spec.h"
 #include "core/number_text.h"
 #include "core/yaml_reader.h"
+#include "trackers/tracker_factory.h"
 
 namespace {
 
@@ -39,6 +41,12 @@ CLI::Validator FiniteRange(double lo, double hi) {
         return expected.str();
       },
       "");
+}
+
+std::string Joined(const std::vector<std::string>& names) {
+  std::string text;
+  for (const std::string& name : names) text += (text.empty() ? "" : ", ") + name;
+  return text;
 }
 
 // --set KEY=VALUE (repeatable) and --trackers a,b: a scenario's overrides (bench/plan/scenario.h).
@@ -118,11 +126,26 @@ int main(int argc, char** argv) {
 
   CLI::App* track = app.add_subcommand("track", "Run a tracker on images or video files");
   TrackCommandOptions track_options;
-  track->add_option("--tracker", track_options.tracker, "A tracker (markerbench list trackers)")
+  track
+      ->add_option("--tracker",
+                   track_options.tracker,
+                   "One of " + Joined(TrackerNames()) + " (markerbench list trackers)")
       ->required();
-  track->add_option("--marker", track_options.marker_path, "Marker YAML")->required();
+  track
+      ->add_option(
+          "--marker", track_options.marker_path, "Marker YAML of kind " + Joined(MarkerKindNames()))
+      ->required();
   track->add_option("--camera", track_options.camera_path, "Camera YAML")->required();
   track->add_option("--out", track_options.out_csv, "Output CSV (default: standard output)");
+  track
+      ->add_option("--option",
+                   track_options.tracker_options,
+                   "A tracker option KEY=VALUE, as in a scenario's options: (repeatable)")
+      ->allow_extra_args(false);
+  track->add_flag("--sequence",
+                  track_options.sequence,
+                  "The images are one sequence (tracking mode); else each is independent");
+  track->add_option("--tum", track_options.tum_path, "Also write a TUM trajectory to this file");
   track->add_option("inputs", track_options.inputs, "Images or videos")->required();
 
   CLI::App* sweep = app.add_subcommand(

@@ -1,5 +1,6 @@
 #include "bench/cli/track_command.h"
 
+#include <Eigen/Geometry>
 #include <algorithm>
 #include <cerrno>
 #include <chrono>
@@ -12,6 +13,7 @@
 #include <opencv2/imgproc.hpp>
 #include <opencv2/videoio.hpp>
 
+#include "bench/io/atomic_file.h"
 #include "bench/run/frames_csv.h"
 #include "bench/run/pose_columns.h"
 #include "core/camera_yaml.h"
@@ -37,16 +39,17 @@ bool IsImageFile(const std::string& path) {
 class TrackCsv {
  public:
   explicit TrackCsv(std::ostream* out) : out_(*out) {
-    out_ << "image,tracker,status";
+    out_ << "image,tracker,status,hypotheses";
     for (const char* c : kPoseColumns) out_ << ',' << c;
-    out_ << ",cam_x_m,cam_y_m,cam_z_m,time_ms,message\n";
+    out_ << ",cam_x_m,cam_y_m,cam_z_m,time_ms,message,keypoints_px\n";
   }
 
   void Write(const std::string& image,
              const std::string& tracker,
              const TrackResult& result,
              double time_ms) {
-    out_ << CsvField(image) << ',' << tracker << ',' << ToString(result.status);
+    out_ << CsvField(image) << ',' << tracker << ',' << ToString(result.status) << ','
+         << result.hypotheses.size();
     if (result.status == TrackStatus::kOk && !result.hypotheses.empty()) {
       const Rigid3& pose = result.hypotheses.front();
       out_ << PoseFields(pose);
@@ -56,7 +59,13 @@ class TrackCsv {
       out_ << std::string(15, ',');
     }
     out_ << ',' << (std::isnan(time_ms) ? "" : NumberText(time_ms)) << ','
-         << CsvField(result.message) << '\n';
+         << CsvField(result.message) << ',';
+    // The detected keypoints, "u v" pairs separated by ';' (as groundtruth.csv's).
+    for (size_t k = 0; k < result.keypoints_px.size(); ++k) {
+      out_ << (k ? ";" : "") << NumberText(result.keypoints_px[k].x()) << ' '
+           << NumberText(result.keypoints_px[k].y());
+    }
+    out_ << '\n';
     out_.flush();
   }
 
@@ -65,7 +74,7 @@ class TrackCsv {
 };
 
 // Refuses, before anything is written, inputs that are not regular files and an output that
-// would overwrite one of the command's own inputs.
+// is a folder or would overwrite one of the command's own inputs or the other output.
 void CheckFiles(const TrackCommandOptions& o) {
   std::vector<std::string> read = o.inputs;
   read.push_back(o.marker_path);
@@ -73,19 +82,59 @@ void CheckFiles(const TrackCommandOptions& o) {
   for (const std::string& input : o.inputs) {
     if (std::filesystem::exists(input)) RequireRegularFile(input);
   }
-  if (o.out_csv.empty()) return;
-  if (std::filesystem::is_directory(o.out_csv)) {
-    throw ConfigError("--out " + o.out_csv + ": expected a file, but it is a folder");
-  }
-  std::error_code error;
-  for (const std::string& input : read) {
-    if (std::filesystem::equivalent(o.out_csv, input, error) ||
-        std::filesystem::weakly_canonical(o.out_csv, error) ==
-            std::filesystem::weakly_canonical(input, error)) {
-      throw ConfigError("--out " + o.out_csv + " is also an input (" + input +
-                        "); it would be overwritten");
+  const auto same = [](const std::string& a, const std::string& b) {
+    std::error_code error;
+    return std::filesystem::equivalent(a, b, error) ||
+           std::filesystem::weakly_canonical(a, error) ==
+               std::filesystem::weakly_canonical(b, error);
+  };
+  for (const auto& [flag, output] : {std::pair<std::string, std::string>{"--out", o.out_csv},
+                                     std::pair<std::string, std::string>{"--tum", o.tum_path}}) {
+    if (output.empty()) continue;
+    if (std::filesystem::is_directory(output)) {
+      throw ConfigError(flag + " " + output + ": expected a file, but it is a folder");
+    }
+    for (const std::string& input : read) {
+      if (same(output, input)) {
+        throw ConfigError(flag + " " + output + " is also an input (" + input +
+                          "); it would be overwritten");
+      }
     }
   }
+  if (!o.out_csv.empty() && !o.tum_path.empty() && same(o.out_csv, o.tum_path)) {
+    throw ConfigError("--tum " + o.tum_path + " is also the --out file");
+  }
+}
+
+// The tracker named in the options, with its --option settings, checked against the marker.
+std::unique_ptr<Tracker> MakeCommandTracker(const TrackCommandOptions& o,
+                                            const MarkerSpec& marker) {
+  const YamlMap options = YamlMap::FromSettings("track", "--option", o.tracker_options);
+  std::unique_ptr<Tracker> tracker =
+      MakeTracker(o.tracker, o.tracker_options.empty() ? nullptr : &options);
+  if (!tracker->CanTrack(marker)) {
+    throw ConfigError("--tracker " + o.tracker + " cannot track " + o.marker_path + " (a " +
+                      ToString(marker.kind) + " marker); markerbench list trackers shows the " +
+                      "markers each tracker reads");
+  }
+  return tracker;
+}
+
+// TUM trajectory lines: the camera's pose in the marker frame.
+std::string TumLine(double time_s, const Rigid3& cam_from_marker) {
+  const Rigid3 marker_from_cam = cam_from_marker.Inverse();
+  const Eigen::Quaterniond q(marker_from_cam.rotation);
+  std::string line = NumberText(time_s);
+  for (const double v : {marker_from_cam.translation.x(),
+                         marker_from_cam.translation.y(),
+                         marker_from_cam.translation.z(),
+                         q.x(),
+                         q.y(),
+                         q.z(),
+                         q.w()}) {
+    line += ' ' + NumberText(v);
+  }
+  return line + '\n';
 }
 
 }  // namespace
@@ -94,15 +143,16 @@ void RunTrackCommand(const TrackCommandOptions& o) {
   CheckFiles(o);
   const MarkerSpec marker = LoadMarkerYaml(o.marker_path);
   const Camera camera = LoadCameraYaml(o.camera_path);
-  std::unique_ptr<Tracker> tracker = MakeTracker(o.tracker, nullptr);
+  std::unique_ptr<Tracker> tracker = MakeCommandTracker(o, marker);
   std::ofstream file;
   if (!o.out_csv.empty()) {
     file.open(o.out_csv);
     if (!file) throw std::runtime_error(o.out_csv + ": cannot write: " + std::strerror(errno));
   }
   TrackCsv csv(o.out_csv.empty() ? &std::cout : &file);
+  std::string tum;
 
-  auto track = [&](const std::string& name, const Image8& image) {
+  auto track = [&](const std::string& name, const Image8& image, double time_s) {
     if (image.width != camera.width || image.height != camera.height) {
       csv.Write(name,
                 o.tracker,
@@ -117,11 +167,18 @@ void RunTrackCommand(const TrackCommandOptions& o) {
     const double ms =
         std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
     csv.Write(name, o.tracker, result, ms);
+    if (result.status == TrackStatus::kOk && !result.hypotheses.empty()) {
+      tum += TumLine(time_s, result.hypotheses.front());
+    }
   };
 
   int inputs_read = 0;
-  for (const std::string& input : o.inputs) {
+  for (size_t index = 0; index < o.inputs.size(); ++index) {
+    const std::string& input = o.inputs[index];
     if (IsImageFile(input)) {
+      // Independent frames: no state from the previous image (no false lock on a pose that
+      // belongs to another picture), unless the images are a sequence.
+      if (!o.sequence) tracker->Reset();
       Image8 image;
       try {
         image = ReadImage(input);
@@ -130,7 +187,7 @@ void RunTrackCommand(const TrackCommandOptions& o) {
         continue;
       }
       ++inputs_read;
-      track(input, image);
+      track(input, image, static_cast<double>(index));
       continue;
     }
     // FFmpeg reads every common container; the default would also try GStreamer, which leaks
@@ -143,6 +200,7 @@ void RunTrackCommand(const TrackCommandOptions& o) {
     }
     ++inputs_read;
     tracker->Reset();  // a video is one sequence
+    const double fps = video.get(cv::CAP_PROP_FPS);
     int frame = 0;
     do {
       cv::cvtColor(bgr, rgb, cv::COLOR_BGR2RGB);
@@ -151,13 +209,16 @@ void RunTrackCommand(const TrackCommandOptions& o) {
       image.height = rgb.rows;
       image.channels = 3;
       image.pixels.assign(rgb.data, rgb.data + rgb.total() * 3);
-      track(input + "#" + std::to_string(frame++), image);
+      const double time_s = fps > 0.0 ? frame / fps : frame;
+      track(input + "#" + std::to_string(frame), image, time_s);
+      ++frame;
     } while (video.read(bgr));
   }
   if (inputs_read == 0) {
     throw ConfigError("track: none of the " + std::to_string(o.inputs.size()) +
                       " inputs could be read as an image or a video");
   }
+  if (!o.tum_path.empty()) WriteFileAtomically(o.tum_path, tum);
 }
 
 }  // namespace markerbench

@@ -1,5 +1,6 @@
 // `markerbench track`: runs one tracker on images or video files and writes one CSV row per
-// frame (architecture.md, "CLI").
+// frame. Images are independent frames (the tracker is Reset before each) unless `sequence`;
+// a video is a sequence. Optionally a TUM trajectory of the tracked frames.
 #pragma once
 
 #include <string>
@@ -13,8 +14,19 @@ struct TrackCommandOptions {
   std::string camera_path;
   std::string out_csv;  // empty: standard output
   std::vector<std::string> inputs;
+  // Tracker options "key=value" (the value in YAML), as in a scenario's `options:`.
+  std::vector<std::string> tracker_options;
+  // The images are one sequence, in the order given: the tracker keeps its state (tracking
+  // mode) from one to the next.
+  bool sequence = false;
+  // TUM trajectory (`timestamp tx ty tz qx qy qz qw`, the camera in the marker frame) of the
+  // frames with a pose; a video frame's time is its index over the video's frame rate, an
+  // image's its index in the inputs, in seconds. Empty: none.
+  std::string tum_path;
 };
 
+// Checks the tracker, its options, the marker, the camera and the files before any frame
+// (ConfigError); a frame that cannot be read or tracked is a row.
 void RunTrackCommand(const TrackCommandOptions& options);
 
 }  // namespace markerbench

@@ -3,11 +3,13 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include <Eigen/Geometry>
 #include <algorithm>
 #include <filesystem>
 #include <fstream>
 #include <opencv2/imgproc.hpp>
 #include <opencv2/videoio.hpp>
+#include <sstream>
 #include <string>
 #include <vector>
 
@@ -30,6 +32,19 @@ std::vector<std::string> ReadLines(const std::string& path) {
   std::vector<std::string> lines;
   for (std::string line; std::getline(in, line);) lines.push_back(line);
   return lines;
+}
+
+// Options for `tracker` on the marker file `marker_path`, the default camera, the CSV in a
+// test file `out_name` (empty: standard output).
+TrackCommandOptions OptionsFor(const std::string& tracker,
+                               const std::string& marker_path,
+                               const std::string& out_name) {
+  TrackCommandOptions options;
+  options.tracker = tracker;
+  options.marker_path = marker_path;
+  options.camera_path = "scenarios/cameras/default.yaml";
+  options.out_csv = out_name.empty() ? "" : WriteTestFile(out_name, "");
+  return options;
 }
 
 // An MJPEG video of a marker seen from `poses`, written with OpenCV's built-in encoder.
@@ -59,11 +74,8 @@ std::string WriteVideo(const std::string& marker_path,
 }
 
 TEST(TrackCommand, TracksEveryFrameOfAVideo) {
-  TrackCommandOptions options;
-  options.tracker = "apriltag";
-  options.marker_path = "scenarios/markers/apriltag.yaml";
-  options.camera_path = "scenarios/cameras/default.yaml";
-  options.out_csv = WriteTestFile("track.csv", "");
+  TrackCommandOptions options =
+      OptionsFor("apriltag", "scenarios/markers/apriltag.yaml", "track.csv");
   options.inputs = {WriteVideo(
       "scenarios/markers/apriltag.yaml",
       "tag.avi",
@@ -71,7 +83,7 @@ TEST(TrackCommand, TracksEveryFrameOfAVideo) {
   RunTrackCommand(options);
   const std::vector<std::string> rows = ReadLines(options.out_csv);
   ASSERT_EQ(rows.size(), 4u);
-  EXPECT_EQ(rows[0].rfind("image,tracker,status,r11", 0), 0u);
+  EXPECT_EQ(rows[0].rfind("image,tracker,status,hypotheses,r11", 0), 0u);
   for (int i = 0; i < 3; ++i) {
     EXPECT_NE(
         rows[static_cast<size_t>(i + 1)].find("tag.avi#" + std::to_string(i) + ",apriltag,ok,"),
@@ -86,11 +98,7 @@ void ExpectCentresThroughVideo(const std::string& tracker,
                                const std::string& marker_path,
                                const std::vector<Rigid3>& poses,
                                double center_tolerance_m) {
-  TrackCommandOptions options;
-  options.tracker = tracker;
-  options.marker_path = marker_path;
-  options.camera_path = "scenarios/cameras/default.yaml";
-  options.out_csv = WriteTestFile(tracker + "_track.csv", "");
+  TrackCommandOptions options = OptionsFor(tracker, marker_path, tracker + "_track.csv");
   options.inputs = {WriteVideo(options.marker_path, tracker + ".avi", poses)};
   RunTrackCommand(options);
   const std::vector<std::string> rows = ReadLines(options.out_csv);
@@ -148,12 +156,7 @@ std::string WriteTagImage(const std::string& name) {
 }
 
 TrackCommandOptions TagOptions(const std::string& out_name) {
-  TrackCommandOptions options;
-  options.tracker = "apriltag";
-  options.marker_path = "scenarios/markers/apriltag.yaml";
-  options.camera_path = "scenarios/cameras/default.yaml";
-  options.out_csv = out_name.empty() ? "" : WriteTestFile(out_name, "");
-  return options;
+  return OptionsFor("apriltag", "scenarios/markers/apriltag.yaml", out_name);
 }
 
 std::string ConfigErrorOf(const TrackCommandOptions& options) {
@@ -209,17 +212,134 @@ TEST(TrackCommand, BadImagesAreRowsAndTheRestIsTracked) {
   RunTrackCommand(options);
   const std::vector<std::string> rows = ReadLines(options.out_csv);
   ASSERT_EQ(rows.size(), options.inputs.size() + 1);
+  const std::vector<std::string> header = SplitCsvLine(rows[0]);
+  const size_t message = std::find(header.begin(), header.end(), "message") - header.begin();
   for (size_t i = 0; i + 1 < options.inputs.size(); ++i) {
     const std::vector<std::string> row = SplitCsvLine(rows[i + 1]);
     EXPECT_EQ(row[0], options.inputs[i]);
     EXPECT_EQ(row[2], "error") << rows[i + 1];
-    EXPECT_FALSE(row.back().empty()) << "the message says why: " << rows[i + 1];
+    ASSERT_LT(message, row.size());
+    EXPECT_FALSE(row[message].empty()) << "the message says why: " << rows[i + 1];
   }
   EXPECT_THAT(rows[4], HasSubstr("image is 320x240 but"));
   EXPECT_EQ(SplitCsvLine(rows.back())[2], "ok") << rows.back();
 
   options.inputs = {options.inputs[0], options.inputs[1], options.inputs[2], options.inputs[4]};
   EXPECT_THAT(ConfigErrorOf(options), HasSubstr("none of the 4 inputs could be read"));
+}
+
+// A PNG of circles_a seen from `pose`.
+std::string WriteCirclesImage(const std::string& name, const Rigid3& pose) {
+  const MarkerSpec marker = LoadMarkerYaml("scenarios/markers/circles_a.yaml");
+  FrameRequest request;
+  request.scene.marker = &marker;
+  request.scene.cam_from_marker = pose;
+  request.channels = 3;
+  request.degradations.noise_var = 0.01;
+  const std::string path = WriteTestFile(name, "");
+  WriteImage(path, RenderFrame(request).image);
+  return path;
+}
+
+// The rows of a track CSV after its header, without the time column (a measurement).
+std::vector<std::string> RowsWithoutTime(const std::string& csv) {
+  std::vector<std::string> rows = ReadLines(csv);
+  const std::vector<std::string> header = SplitCsvLine(rows.at(0));
+  const size_t time = std::find(header.begin(), header.end(), "time_ms") - header.begin();
+  std::vector<std::string> kept;
+  for (size_t i = 1; i < rows.size(); ++i) {
+    std::vector<std::string> row = SplitCsvLine(rows[i]);
+    row.erase(row.begin() + static_cast<std::ptrdiff_t>(time));
+    std::string line;
+    for (const std::string& field : row) line += field + "|";
+    kept.push_back(line);
+  }
+  return kept;
+}
+
+// Images are independent frames: a picture gives the same row whatever came before it (the
+// circle tracker's tracking mode would otherwise start from the previous picture's pose).
+// With --sequence the tracker keeps its state.
+TEST(TrackCommand, ImagesAreIndependentUnlessASequence) {
+  const std::string a = WriteCirclesImage("a.png", TiltedView(0.6, 20.0, 10.0));
+  const std::string b = WriteCirclesImage("b.png", TiltedView(0.6, 23.0, 13.0));
+  TrackCommandOptions options =
+      OptionsFor("circle", "scenarios/markers/circles_a.yaml", "alone.csv");
+  options.inputs = {a};
+  RunTrackCommand(options);
+  const std::vector<std::string> alone = RowsWithoutTime(options.out_csv);
+  ASSERT_EQ(alone.size(), 1u);
+  EXPECT_THAT(alone[0], HasSubstr("|circle|ok|1|"));
+
+  options.out_csv = WriteTestFile("independent.csv", "");
+  options.inputs = {b, a};
+  RunTrackCommand(options);
+  EXPECT_EQ(RowsWithoutTime(options.out_csv).at(1), alone[0]);
+
+  options.out_csv = WriteTestFile("sequence.csv", "");
+  options.sequence = true;
+  RunTrackCommand(options);
+  const std::vector<std::string> sequence = RowsWithoutTime(options.out_csv);
+  EXPECT_THAT(sequence.at(1), HasSubstr("|circle|ok|1|"));
+  EXPECT_NE(sequence.at(1), alone[0]) << "tracking mode starts from b's pose";
+}
+
+// The tracker, its options and the marker are checked before any frame is read.
+TEST(TrackCommand, TrackerOptionsAndMarkerAreCheckedFirst) {
+  TrackCommandOptions options = TagOptions("checked.csv");
+  options.inputs = {"/nonexistent/never_read.png"};
+  options.tracker_options = {"quad_decimate=fast"};
+  EXPECT_THAT(ConfigErrorOf(options),
+              HasSubstr("track (--option quad_decimate=fast): key 'quad_decimate': expected a "
+                        "number, got 'fast'"));
+  options.tracker_options = {"quad_decimation=2"};
+  EXPECT_THAT(ConfigErrorOf(options), HasSubstr("key 'quad_decimation': unknown key"));
+  options.tracker_options = {"quad_decimate"};
+  EXPECT_THAT(ConfigErrorOf(options), HasSubstr("--option quad_decimate: expected KEY=VALUE"));
+  options.tracker_options = {"quad_decimate=[1"};
+  EXPECT_THAT(ConfigErrorOf(options), HasSubstr("the value is not valid YAML"));
+  options.tracker_options = {};
+  options.marker_path = "scenarios/markers/circles_a.yaml";
+  EXPECT_THAT(ConfigErrorOf(options), HasSubstr("--tracker apriltag cannot track"));
+  EXPECT_TRUE(ReadFileBytes(options.out_csv).empty()) << "nothing written";
+  // A valid option reaches the tracker.
+  options = TagOptions("decimated.csv");
+  options.inputs = {WriteTagImage("decimated.png")};
+  options.tracker_options = {"quad_decimate=1.0"};
+  RunTrackCommand(options);
+  EXPECT_THAT(ReadLines(options.out_csv).at(1), HasSubstr(",apriltag,ok,"));
+}
+
+// --tum: one line per tracked frame, the camera in the marker frame (the CSV's camera centre
+// and the inverse of its rotation), so that evo and the TUM tools read it.
+TEST(TrackCommand, TumTrajectoryOfAVideo) {
+  TrackCommandOptions options =
+      OptionsFor("circle", "scenarios/markers/circles_a.yaml", "tum_track.csv");
+  options.tum_path = WriteTestFile("track.tum", "");
+  const std::vector<Rigid3> poses = MovingView(kVideoDistanceM);
+  options.inputs = {WriteVideo(options.marker_path, "tum.avi", poses)};
+  RunTrackCommand(options);
+  const std::vector<std::string> rows = ReadLines(options.out_csv);
+  const std::vector<std::string> tum = ReadLines(options.tum_path);
+  ASSERT_EQ(tum.size(), poses.size());
+  const std::vector<std::string> header = SplitCsvLine(rows[0]);
+  const size_t r11 = std::find(header.begin(), header.end(), "r11") - header.begin();
+  const size_t cam_x = std::find(header.begin(), header.end(), "cam_x_m") - header.begin();
+  for (size_t i = 0; i < poses.size(); ++i) {
+    const std::vector<std::string> row = SplitCsvLine(rows[i + 1]);
+    std::istringstream line(tum[i]);
+    double t, x, y, z, qx, qy, qz, qw;
+    ASSERT_TRUE(line >> t >> x >> y >> z >> qx >> qy >> qz >> qw) << tum[i];
+    EXPECT_NEAR(t, i / 10.0, 1e-9);  // the video's 10 frames/s
+    EXPECT_NEAR(x, std::stod(row[cam_x]), 1e-12);
+    EXPECT_NEAR(y, std::stod(row[cam_x + 1]), 1e-12);
+    EXPECT_NEAR(z, std::stod(row[cam_x + 2]), 1e-12);
+    const Eigen::Quaterniond q(qw, qx, qy, qz);
+    EXPECT_NEAR(q.norm(), 1.0, 1e-12);
+    Eigen::Matrix3d cam_from_marker;
+    for (int k = 0; k < 9; ++k) cam_from_marker(k / 3, k % 3) = std::stod(row[r11 + k]);
+    EXPECT_LT((q.toRotationMatrix() - cam_from_marker.transpose()).norm(), 1e-9) << i;
+  }
 }
 
 TEST(TrackCommand, FileNamesAreQuoted) {
