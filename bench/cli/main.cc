@@ -146,6 +146,9 @@ int main(int argc, char** argv) {
                   track_options.sequence,
                   "The images are one sequence (tracking mode); else each is independent");
   track->add_option("--tum", track_options.tum_path, "Also write a TUM trajectory to this file");
+  track->add_option("--overlay",
+                    track_options.overlay_path,
+                    "Also write a video (MP4) of the frames with the pose's axes and a cube drawn");
   track->add_option("inputs", track_options.inputs, "Images or videos")->required();
 
   CLI::App* sweep = app.add_subcommand(

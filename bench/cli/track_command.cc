@@ -13,6 +13,7 @@
 #include <opencv2/imgproc.hpp>
 #include <opencv2/videoio.hpp>
 
+#include "bench/cli/pose_overlay.h"
 #include "bench/io/atomic_file.h"
 #include "bench/run/frames_csv.h"
 #include "bench/run/pose_columns.h"
@@ -88,8 +89,9 @@ void CheckFiles(const TrackCommandOptions& o) {
            std::filesystem::weakly_canonical(a, error) ==
                std::filesystem::weakly_canonical(b, error);
   };
-  for (const auto& [flag, output] : {std::pair<std::string, std::string>{"--out", o.out_csv},
-                                     std::pair<std::string, std::string>{"--tum", o.tum_path}}) {
+  const std::vector<std::pair<std::string, std::string>> outputs = {
+      {"--out", o.out_csv}, {"--tum", o.tum_path}, {"--overlay", o.overlay_path}};
+  for (const auto& [flag, output] : outputs) {
     if (output.empty()) continue;
     if (std::filesystem::is_directory(output)) {
       throw ConfigError(flag + " " + output + ": expected a file, but it is a folder");
@@ -101,8 +103,14 @@ void CheckFiles(const TrackCommandOptions& o) {
       }
     }
   }
-  if (!o.out_csv.empty() && !o.tum_path.empty() && same(o.out_csv, o.tum_path)) {
-    throw ConfigError("--tum " + o.tum_path + " is also the --out file");
+  for (size_t i = 0; i < outputs.size(); ++i) {
+    for (size_t j = i + 1; j < outputs.size(); ++j) {
+      if (!outputs[i].second.empty() && !outputs[j].second.empty() &&
+          same(outputs[i].second, outputs[j].second)) {
+        throw ConfigError(outputs[j].first + " " + outputs[j].second + " is also the " +
+                          outputs[i].first + " file");
+      }
+    }
   }
 }
 
@@ -151,8 +159,12 @@ void RunTrackCommand(const TrackCommandOptions& o) {
   }
   TrackCsv csv(o.out_csv.empty() ? &std::cout : &file);
   std::string tum;
+  std::unique_ptr<PoseOverlay> overlay;
+  if (!o.overlay_path.empty())
+    overlay = std::make_unique<PoseOverlay>(o.overlay_path, camera, marker);
 
-  auto track = [&](const std::string& name, const Image8& image, double time_s) {
+  // Frame `index` of a sequence at `fps` (images: 1 frame/s).
+  auto track = [&](const std::string& name, const Image8& image, int index, double fps) {
     if (image.width != camera.width || image.height != camera.height) {
       csv.Write(name,
                 o.tracker,
@@ -168,8 +180,9 @@ void RunTrackCommand(const TrackCommandOptions& o) {
         std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
     csv.Write(name, o.tracker, result, ms);
     if (result.status == TrackStatus::kOk && !result.hypotheses.empty()) {
-      tum += TumLine(time_s, result.hypotheses.front());
+      tum += TumLine(index / fps, result.hypotheses.front());
     }
+    if (overlay) overlay->Add(image, result, fps);
   };
 
   int inputs_read = 0;
@@ -187,7 +200,7 @@ void RunTrackCommand(const TrackCommandOptions& o) {
         continue;
       }
       ++inputs_read;
-      track(input, image, static_cast<double>(index));
+      track(input, image, static_cast<int>(index), 1.0);
       continue;
     }
     // FFmpeg reads every common container; the default would also try GStreamer, which leaks
@@ -200,7 +213,8 @@ void RunTrackCommand(const TrackCommandOptions& o) {
     }
     ++inputs_read;
     tracker->Reset();  // a video is one sequence
-    const double fps = video.get(cv::CAP_PROP_FPS);
+    const double video_fps = video.get(cv::CAP_PROP_FPS);
+    const double fps = video_fps > 0.0 ? video_fps : 1.0;
     int frame = 0;
     do {
       cv::cvtColor(bgr, rgb, cv::COLOR_BGR2RGB);
@@ -209,8 +223,7 @@ void RunTrackCommand(const TrackCommandOptions& o) {
       image.height = rgb.rows;
       image.channels = 3;
       image.pixels.assign(rgb.data, rgb.data + rgb.total() * 3);
-      const double time_s = fps > 0.0 ? frame / fps : frame;
-      track(input + "#" + std::to_string(frame), image, time_s);
+      track(input + "#" + std::to_string(frame), image, frame, fps);
       ++frame;
     } while (video.read(bgr));
   }

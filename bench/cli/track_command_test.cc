@@ -13,7 +13,9 @@
 #include <string>
 #include <vector>
 
+#include "bench/cli/pose_overlay.h"
 #include "bench/run/frames_csv.h"
+#include "core/camera_yaml.h"
 #include "core/config_error.h"
 #include "core/file_bytes.h"
 #include "core/marker_yaml.h"
@@ -340,6 +342,47 @@ TEST(TrackCommand, TumTrajectoryOfAVideo) {
     for (int k = 0; k < 9; ++k) cam_from_marker(k / 3, k % 3) = std::stod(row[r11 + k]);
     EXPECT_LT((q.toRotationMatrix() - cam_from_marker.transpose()).norm(), 1e-9) << i;
   }
+}
+
+// --overlay: every frame with the pose drawn; the y axis (green; circles_a has no green)
+// lies where the true pose projects it.
+TEST(TrackCommand, OverlayDrawsTheAxesWhereTheTruthProjectsThem) {
+  TrackCommandOptions options =
+      OptionsFor("circle", "scenarios/markers/circles_a.yaml", "overlay_track.csv");
+  options.overlay_path = WriteTestFile("overlay.mp4", "");
+  const std::vector<Rigid3> poses = MovingView(kVideoDistanceM);
+  options.inputs = {WriteVideo(options.marker_path, "overlay_in.avi", poses)};
+  RunTrackCommand(options);
+  const MarkerSpec marker = LoadMarkerYaml(options.marker_path);
+  const Camera camera = LoadCameraYaml(options.camera_path);
+  const double axis_m = PoseOverlay(options.overlay_path, camera, marker).AxisLengthM();
+  cv::VideoCapture video(options.overlay_path, cv::CAP_FFMPEG);
+  ASSERT_TRUE(video.isOpened());
+  const auto green_near = [](const cv::Mat& bgr, const Eigen::Vector2d& px) {
+    for (int dy = -2; dy <= 2; ++dy) {
+      for (int dx = -2; dx <= 2; ++dx) {
+        const cv::Vec3b c = bgr.at<cv::Vec3b>(static_cast<int>(std::lround(px.y())) + dy,
+                                              static_cast<int>(std::lround(px.x())) + dx);
+        if (c[1] > 150 && c[0] < 110 && c[2] < 110) return true;
+      }
+    }
+    return false;
+  };
+  cv::Mat bgr;
+  size_t frames = 0;
+  for (; video.read(bgr); ++frames) {
+    ASSERT_LT(frames, poses.size());
+    const Rigid3& truth = poses[frames];
+    for (const double t : {0.3, 0.6, 0.9}) {
+      const Eigen::Vector2d on_axis = camera.ImgFromCam(truth * Eigen::Vector3d(0, t * axis_m, 0));
+      EXPECT_TRUE(green_near(bgr, on_axis)) << "frame " << frames << " at " << t;
+    }
+    // Beside the axis (a tenth of its length away along x), no green.
+    const Eigen::Vector2d beside =
+        camera.ImgFromCam(truth * Eigen::Vector3d(0.1 * axis_m, 0.6 * axis_m, 0));
+    EXPECT_FALSE(green_near(bgr, beside)) << "frame " << frames;
+  }
+  EXPECT_EQ(frames, poses.size());
 }
 
 TEST(TrackCommand, FileNamesAreQuoted) {
