@@ -312,14 +312,20 @@ TEST(TrackCommand, TrackerOptionsAndMarkerAreCheckedFirst) {
   EXPECT_THAT(ReadLines(options.out_csv).at(1), HasSubstr(",apriltag,ok,"));
 }
 
+// circle on a circles_a video of the MovingView poses; the CSV is `name`.csv.
+TrackCommandOptions CirclesVideoOptions(const std::string& name) {
+  TrackCommandOptions options =
+      OptionsFor("circle", "scenarios/markers/circles_a.yaml", name + ".csv");
+  options.inputs = {WriteVideo(options.marker_path, name + ".avi", MovingView(kVideoDistanceM))};
+  return options;
+}
+
 // --tum: one line per tracked frame, the camera in the marker frame (the CSV's camera centre
 // and the inverse of its rotation), so that evo and the TUM tools read it.
 TEST(TrackCommand, TumTrajectoryOfAVideo) {
-  TrackCommandOptions options =
-      OptionsFor("circle", "scenarios/markers/circles_a.yaml", "tum_track.csv");
+  TrackCommandOptions options = CirclesVideoOptions("tum");
   options.tum_path = WriteTestFile("track.tum", "");
   const std::vector<Rigid3> poses = MovingView(kVideoDistanceM);
-  options.inputs = {WriteVideo(options.marker_path, "tum.avi", poses)};
   RunTrackCommand(options);
   const std::vector<std::string> rows = ReadLines(options.out_csv);
   const std::vector<std::string> tum = ReadLines(options.tum_path);
@@ -347,11 +353,9 @@ TEST(TrackCommand, TumTrajectoryOfAVideo) {
 // --overlay: every frame with the pose drawn; the y axis (green; circles_a has no green)
 // lies where the true pose projects it.
 TEST(TrackCommand, OverlayDrawsTheAxesWhereTheTruthProjectsThem) {
-  TrackCommandOptions options =
-      OptionsFor("circle", "scenarios/markers/circles_a.yaml", "overlay_track.csv");
+  TrackCommandOptions options = CirclesVideoOptions("overlay_in");
   options.overlay_path = WriteTestFile("overlay.mp4", "");
   const std::vector<Rigid3> poses = MovingView(kVideoDistanceM);
-  options.inputs = {WriteVideo(options.marker_path, "overlay_in.avi", poses)};
   RunTrackCommand(options);
   const MarkerSpec marker = LoadMarkerYaml(options.marker_path);
   const Camera camera = LoadCameraYaml(options.camera_path);
