@@ -191,19 +191,22 @@ YamlMap YamlMap::LoadFile(const std::string& path, const std::vector<std::string
   if (!root.IsMap()) {
     throw ConfigError(path + ": expected a YAML mapping at the top level, got " + Describe(root));
   }
-  auto overridden = std::make_shared<Overridden>();
-  for (const std::string& text : overrides) ApplyOverride(root, "--set", text, overridden.get());
+  YamlMap map = WithSettings(root, path, "--set", overrides);
   size_t visited = 0;
   CheckKeys(root, path, &visited);
-  YamlMap map(root, path, "");
-  map.overridden_ = std::move(overridden);
   return map;
 }
 
 YamlMap YamlMap::FromSettings(const std::string& source,
                               const std::string& flag,
                               const std::vector<std::string>& settings) {
-  YAML::Node root(YAML::NodeType::Map);
+  return WithSettings(YAML::Node(YAML::NodeType::Map), source, flag, settings);
+}
+
+YamlMap YamlMap::WithSettings(YAML::Node root,
+                              const std::string& source,
+                              const std::string& flag,
+                              const std::vector<std::string>& settings) {
   auto overridden = std::make_shared<Overridden>();
   for (const std::string& text : settings) ApplyOverride(root, flag, text, overridden.get());
   YamlMap map(root, source, "");

@@ -73,6 +73,11 @@ class YamlMap {
   // Each node an override put in the tree, with the override's text.
   using Overridden = std::vector<std::pair<YAML::Node, std::string>>;
 
+  // `root` with the settings applied, errors about them naming "source (flag key=value)".
+  static YamlMap WithSettings(YAML::Node root,
+                              const std::string& source,
+                              const std::string& flag,
+                              const std::vector<std::string>& settings);
   YAML::Node Lookup(const std::string& key) const;
   YamlMap Child(const YAML::Node& node, std::string key_path) const;
   std::string Where(const YAML::Node& node) const;
