@@ -166,8 +166,8 @@ execute_process(COMMAND ${MARKERBENCH} track --tracker apriltag --marker scenari
                 --camera scenarios/cameras/default.yaml ${WORK_DIR}/smoke/frame_000001.png
                 ${WORK_DIR}/smoke/frame_000000.png
                 WORKING_DIRECTORY ${SOURCE_DIR} RESULT_VARIABLE status OUTPUT_VARIABLE out ERROR_VARIABLE err)
-if(NOT status EQUAL 0 OR NOT out MATCHES "frame_000001.png,apriltag,ok," OR
-   NOT out MATCHES "frame_000000.png,apriltag,not_detected,,,")
+if(NOT status EQUAL 0 OR NOT out MATCHES "frame_000001.png,apriltag,ok,1," OR
+   NOT out MATCHES "frame_000000.png,apriltag,not_detected,0,,,")
   message(FATAL_ERROR "track output unexpected (${status}):\n${out}\n${err}")
 endif()
 run(2 track --tracker nosuch --marker scenarios/markers/apriltag.yaml
