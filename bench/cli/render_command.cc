@@ -141,26 +141,9 @@ std::vector<Rigid3> LoadPosesCsv(const std::string& path) {
   while (std::getline(in, line)) {
     ++line_number;
     if (line.empty() || line == "\r") continue;
-    std::stringstream fields(line);
-    double v[12];
-    for (int i = 0; i < 12; ++i) {
-      std::string field;
-      const bool have = static_cast<bool>(std::getline(fields, field, ','));
-      const std::optional<double> number = ParseFiniteNumber(field);
-      v[i] = number.value_or(NAN);
-      if (!have || !number) {
-        throw ConfigError(path + ":" + std::to_string(line_number) + ": column '" +
-                          kPoseColumns[i] + "': expected a number, got '" + field + "'");
-      }
-    }
-    Rigid3 pose;
-    pose.rotation << v[0], v[1], v[2], v[3], v[4], v[5], v[6], v[7], v[8];
-    pose.translation << v[9], v[10], v[11];
-    if (!IsRotation(pose.rotation)) {
-      throw ConfigError(path + ":" + std::to_string(line_number) +
-                        ": columns 'r11'..'r33': expected a rotation matrix (orthonormal, "
-                        "det +1)");
-    }
+    if (line.back() == '\r') line.pop_back();
+    const Rigid3 pose = PoseFromFields(
+        SplitCsvLine(line), ConsecutiveColumns(0), path + ":" + std::to_string(line_number) + ": ");
     if (!(pose.translation.z() > 0.0)) {
       throw ConfigError(path + ":" + std::to_string(line_number) +
                         ": column 'tz': expected the marker in front of the camera (tz > 0)");

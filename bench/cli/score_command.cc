@@ -80,23 +80,7 @@ std::map<int, Estimate> ReadEstimates(const std::string& path, const Dataset& da
       }
     }
     if (*status != TrackStatus::kOk) continue;
-    double v[12];
-    for (size_t i = 0; i < 12; ++i) {
-      const std::optional<double> number_i = ParseFiniteNumber(f[2 + i]);
-      if (!number_i) {
-        throw ConfigError(at + "column '" + kPoseColumns[i] + "': expected a number, got '" +
-                          f[2 + i] + "'");
-      }
-      v[i] = *number_i;
-    }
-    Rigid3 pose;
-    pose.rotation << v[0], v[1], v[2], v[3], v[4], v[5], v[6], v[7], v[8];
-    pose.translation << v[9], v[10], v[11];
-    if (!IsRotation(pose.rotation)) {
-      throw ConfigError(at +
-                        "columns 'r11'..'r33': expected a rotation matrix (orthonormal, det +1)");
-    }
-    e.hypotheses.push_back(pose);
+    e.hypotheses.push_back(PoseFromFields(f, ConsecutiveColumns(2), at));
   }
   return estimates;
 }

@@ -110,8 +110,8 @@ Dataset ReadDataset(const std::string& dir) {
   const size_t frame = column("frame"), marker = column("marker"),
                parameter = column("sweep_parameter"), value = column("sweep_value"),
                trial = column("trial"), seed = column("seed"), size = column("apparent_size_px");
-  std::vector<size_t> pose;
-  for (const char* c : kPoseColumns) pose.push_back(column(c));
+  std::array<size_t, 12> pose;
+  for (size_t k = 0; k < 12; ++k) pose[k] = column(kPoseColumns[k]);
   // A grid sweep's other axes; datasets written before grids have no such column.
   const auto grid_at = std::find(header.begin(), header.end(), "grid");
   for (int number = 2; std::getline(in, line); ++number) {
@@ -155,10 +155,7 @@ Dataset ReadDataset(const std::string& dir) {
                         "column 'seed': expected a whole number, got '" + f[seed] + "'");
     }
     d.seed = *seed_value;
-    for (int k = 0; k < 9; ++k)
-      d.truth.rotation(k / 3, k % 3) = number_at(pose[static_cast<size_t>(k)]);
-    for (int k = 0; k < 3; ++k)
-      d.truth.translation[k] = number_at(pose[static_cast<size_t>(9 + k)]);
+    d.truth = PoseFromFields(f, pose, Located(csv_path, number));
     d.apparent_size_px = number_at(size);
     dataset.frames.push_back(d);
   }

@@ -73,13 +73,6 @@ uint64_t ParseSeed(const std::vector<std::string>& f, size_t i) {
   return *seed;
 }
 
-Rigid3 ParsePose(const std::vector<std::string>& f, size_t first) {
-  Rigid3 pose;
-  for (int k = 0; k < 9; ++k) pose.rotation(k / 3, k % 3) = ParseNumber(f, first + k, false);
-  for (int k = 0; k < 3; ++k) pose.translation[k] = ParseNumber(f, first + 9 + k, false);
-  return pose;
-}
-
 }  // namespace
 
 std::string CsvField(std::string text) {
@@ -170,8 +163,10 @@ FrameRow ParseFrameRow(const std::string& line) {
   r.crlb_position_med_m = ParseNumber(f, 18, true);
   r.crlb_rotation_deg = ParseNumber(f, 19, true);
   r.crlb_rotation_med_deg = ParseNumber(f, 20, true);
-  r.truth = ParsePose(f, 21);
-  if (!f[33].empty()) r.estimate = ParsePose(f, 33);
+  // Poses as sweep wrote them: trackers' estimates need not be exact rotations.
+  r.truth = PoseFromFields(f, ConsecutiveColumns(21), "", RotationCheck::kNone, "gt_");
+  if (!f[33].empty())
+    r.estimate = PoseFromFields(f, ConsecutiveColumns(33), "", RotationCheck::kNone);
   r.message = f[45];
   r.grid = f[46];
   return r;
