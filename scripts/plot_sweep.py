@@ -250,8 +250,11 @@ def main():
     for scenario, series in read_summary(os.path.join(directory, "summary.csv")).items():
         plot_errors(directory, scenario, series)
         plot_rotation_and_time(directory, scenario, series)
+        heatmap = os.path.join(directory, f"{scenario}_heatmap.png")
         if any(grid for _, _, grid in series):
             plot_heatmap(directory, scenario, series)
+        elif os.path.exists(heatmap):
+            os.remove(heatmap)  # an earlier run of the same name was a grid
         if os.path.isdir(os.path.join(directory, scenario, "examples")):
             plot_examples(directory, scenario, manifest.get("scenarios", {}).get(scenario, {}))
 
