@@ -5,8 +5,8 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include <cstdio>
 #include <filesystem>
-#include <regex>
 
 #include "bench/cli/list_command.h"
 #include "core/config_error.h"
@@ -117,11 +117,14 @@ TEST(MarkerSheets, CheckBarMeasuresFiftyMillimetres) {
 // "/MediaBox [ 0 0 w h ]" of each page of a cairo PDF, in points.
 std::vector<std::pair<double, double>> PdfPages(const std::string& pdf) {
   std::vector<std::pair<double, double>> pages;
-  const std::regex media_box(R"(/MediaBox \[ *0 0 ([0-9.]+) ([0-9.]+) *\])");
-  for (auto it = std::sregex_iterator(pdf.begin(), pdf.end(), media_box);
-       it != std::sregex_iterator();
-       ++it) {
-    pages.emplace_back(std::stod((*it)[1]), std::stod((*it)[2]));
+  const std::string key = "/MediaBox [";
+  for (size_t at = pdf.find(key); at != std::string::npos; at = pdf.find(key, at + 1)) {
+    double x0 = 0, y0 = 0, width = 0, height = 0;
+    if (std::sscanf(pdf.c_str() + at + key.size(), "%lf %lf %lf %lf", &x0, &y0, &width, &height) ==
+            4 &&
+        x0 == 0.0 && y0 == 0.0) {
+      pages.emplace_back(width, height);
+    }
   }
   return pages;
 }
