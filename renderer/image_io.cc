@@ -2,6 +2,7 @@
 
 #include <OpenImageIO/imageio.h>
 
+#include <filesystem>
 #include <stdexcept>
 #include <vector>
 
@@ -10,14 +11,27 @@
 namespace markerbench {
 namespace {
 
+// Writes a temporary file beside `path` (the same extension, so the same format) and renames
+// it over `path`: a killed program never leaves half an image.
 void Write(const std::string& path,
            const OIIO::ImageSpec& spec,
            OIIO::TypeDesc type,
            const void* data) {
+  const std::string temporary = path + ".tmp" + std::filesystem::path(path).extension().string();
   auto out = OIIO::ImageOutput::create(path);
   if (!out) throw std::runtime_error(path + ": cannot write: " + OIIO::geterror());
-  if (!out->open(path, spec) || !out->write_image(type, data) || !out->close()) {
-    throw std::runtime_error(path + ": cannot write: " + out->geterror());
+  if (!out->open(temporary, spec) || !out->write_image(type, data) || !out->close()) {
+    const std::string error = out->geterror();
+    std::error_code ignored;
+    std::filesystem::remove(temporary, ignored);
+    throw std::runtime_error(path + ": cannot write: " + error);
+  }
+  std::error_code error;
+  std::filesystem::rename(temporary, path, error);
+  if (error) {
+    const std::string message = error.message();
+    std::filesystem::remove(temporary, error);
+    throw std::runtime_error(path + ": cannot write: " + message);
   }
 }
 

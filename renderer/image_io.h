@@ -9,8 +9,9 @@
 
 namespace markerbench {
 
-// Writes an 8-bit image; dpi, when given, is stored as the file's resolution. Throws
-// std::runtime_error naming the path on failure.
+// Both writers replace the file atomically (a temporary beside it, renamed), so a killed
+// program never leaves half an image, and throw std::runtime_error naming the path.
+// Writes an 8-bit image; dpi, when given, is stored as the file's resolution.
 void WriteImage(const std::string& path, const Image8& image, std::optional<double> dpi = {});
 // Writes a float image (e.g. .exr), channels interleaved on disk.
 void WriteImageFloat(const std::string& path, const ImageF& image);

@@ -254,13 +254,6 @@ class OrderedWriter {
   Progress* progress_;
 };
 
-// Replaces `path` atomically, so a killed run never leaves half an image.
-void WriteImageAtomically(const std::string& path, const Image8& image) {
-  const std::string temporary = path + ".tmp.png";
-  WriteImage(temporary, image);
-  fs::rename(temporary, path);
-}
-
 // Renders one job and runs its trackers; returns the frames.csv and timing.csv rows.
 std::pair<std::string, std::string> RunJob(const PreparedSweep& p,
                                            const Job& job,
@@ -271,7 +264,7 @@ std::pair<std::string, std::string> RunJob(const PreparedSweep& p,
   const FrameRequest request = RequestFor(s, f);
   const RenderedFrame frame = RenderFrame(request);
   if (f.example) {
-    WriteImageAtomically(p.dir + "/examples/" + marker.name + ".png", frame.image);
+    WriteImage(p.dir + "/examples/" + marker.name + ".png", frame.image);
   }
   if (job.trackers.empty()) return {};
   FrameRow row;
