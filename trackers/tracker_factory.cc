@@ -1,5 +1,6 @@
 #include "trackers/tracker_factory.h"
 
+#include "core/joined.h"
 #include "core/yaml_reader.h"
 #include "trackers/apriltag/apriltag_tracker.h"
 #include "trackers/artkplus/artkplus_tracker.h"
@@ -35,9 +36,7 @@ std::unique_ptr<Tracker> MakeTracker(const std::string& name, const YamlMap* opt
   if (name == "aruco") return MakeArucoTracker(ReadOptions<ArucoOptions>(options));
   if (name == "runetag") return MakeRuneTagTracker(ReadOptions<RuneTagOptions>(options));
   if (name == "circle") return MakeCircleTracker(ReadOptions<CircleTrackerOptions>(options));
-  std::string names;
-  for (const std::string& n : TrackerNames()) names += (names.empty() ? "" : ", ") + n;
-  throw ConfigError("unknown tracker '" + name + "'; available: " + names);
+  throw ConfigError("unknown tracker '" + name + "'; available: " + Joined(TrackerNames()));
 }
 
 }  // namespace markerbench

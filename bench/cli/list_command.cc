@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "core/config_error.h"
+#include "core/joined.h"
 #include "core/marker_yaml.h"
 #include "core/number_text.h"
 #include "trackers/tracker_factory.h"
@@ -15,10 +16,8 @@ namespace fs = std::filesystem;
 namespace markerbench {
 namespace {
 
-std::string Joined(const std::vector<std::string>& items) {
-  std::string text;
-  for (const std::string& item : items) text += (text.empty() ? "" : ", ") + item;
-  return text.empty() ? "none" : text;
+std::string JoinedOrNone(const std::vector<std::string>& items) {
+  return items.empty() ? "none" : Joined(items);
 }
 
 }  // namespace
@@ -51,7 +50,7 @@ void ListCommand(const std::string& what, const std::string& markers_dir, std::o
         if (trackers[t]->CanTrack(m)) reads.push_back(m.name + " (" + ToString(m.kind) + ")");
       }
       out << name << (RunsThirdPartyCCode(name) ? "  [isolated in sweeps by default]" : "")
-          << "\n  reads: " << Joined(reads) << "\n  options (defaults):\n";
+          << "\n  reads: " << JoinedOrNone(reads) << "\n  options (defaults):\n";
       for (const auto& [key, value] : trackers[t]->Parameters()) {
         out << "    " << key << ": " << value << "\n";
       }
@@ -76,7 +75,7 @@ void ListCommand(const std::string& what, const std::string& markers_dir, std::o
       out << ", " << m.circles.size() << " circles of radius up to " << NumberText(1e3 * radius_m)
           << " mm";
     }
-    out << "; read by " << Joined(readers) << "\n";
+    out << "; read by " << JoinedOrNone(readers) << "\n";
   }
 }
 

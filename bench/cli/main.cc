@@ -20,6 +20,7 @@
 #include "bench/report/report.h"
 #include "bench/run/manifest.h"
 #include "bench/run/sweep_runner.h"
+#include "core/joined.h"
 #include "core/marker_spec.h"
 #include "core/number_text.h"
 #include "core/yaml_reader.h"
@@ -41,12 +42,6 @@ CLI::Validator FiniteRange(double lo, double hi) {
         return expected.str();
       },
       "");
-}
-
-std::string Joined(const std::vector<std::string>& names) {
-  std::string text;
-  for (const std::string& name : names) text += (text.empty() ? "" : ", ") + name;
-  return text;
 }
 
 // --set KEY=VALUE (repeatable) and --trackers a,b: a scenario's overrides (bench/plan/scenario.h).

@@ -14,6 +14,7 @@
 #include "bench/run/frames_csv.h"
 #include "bench/run/pose_columns.h"
 #include "core/camera_yaml.h"
+#include "core/joined.h"
 #include "core/marker_yaml.h"
 #include "core/number_text.h"
 #include "core/random.h"
@@ -130,9 +131,8 @@ std::vector<Rigid3> LoadPosesCsv(const std::string& path) {
   if (!in) throw ConfigError(path + ": cannot open the file");
   std::string line;
   std::getline(in, line);
-  std::string expected_header;
-  for (const char* c : kPoseColumns)
-    expected_header += std::string(expected_header.empty() ? "" : ",") + c;
+  const std::string expected_header =
+      Joined({std::begin(kPoseColumns), std::end(kPoseColumns)}, ",");
   if (line != expected_header && line != expected_header + "\r") {
     throw ConfigError(path + ":1: header: expected '" + expected_header + "', got '" + line + "'");
   }

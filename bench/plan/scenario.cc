@@ -7,6 +7,7 @@
 
 #include "bench/plan/frame_plan.h"
 #include "core/camera_yaml.h"
+#include "core/joined.h"
 #include "core/marker_scaling.h"
 #include "core/marker_yaml.h"
 #include "core/sha256.h"
@@ -120,11 +121,7 @@ int ChannelsFor(Channels channels, const MarkerSpec& marker) {
 std::vector<std::string> ScenarioOverrides::Arguments() const {
   std::vector<std::string> arguments;
   for (const std::string& s : set) arguments.insert(arguments.end(), {"--set", s});
-  if (!trackers.empty()) {
-    std::string names;
-    for (const std::string& t : trackers) names += (names.empty() ? "" : ",") + t;
-    arguments.insert(arguments.end(), {"--trackers", names});
-  }
+  if (!trackers.empty()) arguments.insert(arguments.end(), {"--trackers", Joined(trackers, ",")});
   return arguments;
 }
 
@@ -178,9 +175,8 @@ TrackerEntry ReadBuiltInTracker(const YamlMap& t, const Scenario& s) {
   t.RejectUnknownKeys();
   const std::vector<std::string> names = TrackerNames();
   if (std::find(names.begin(), names.end(), entry.name) == names.end()) {
-    std::string list;
-    for (const std::string& n : names) list += (list.empty() ? "" : ", ") + n;
-    t.Fail("name", "one of the available trackers: " + list + " (or give exec: a command)");
+    t.Fail("name",
+           "one of the available trackers: " + Joined(names) + " (or give exec: a command)");
   }
   const std::unique_ptr<Tracker> tracker = MakeScenarioTracker(s, entry);
   for (size_t m = 0; m < s.markers.size(); ++m) {
@@ -274,13 +270,13 @@ std::vector<SweepAxis> ReadGrid(const YamlMap& sweep) {
 // Keeps the trackers that --trackers names; each name must be one of the scenario's.
 void KeepTrackers(const std::vector<std::string>& names, Scenario* s) {
   if (names.empty()) return;
-  std::string all;
-  for (const TrackerEntry& t : s->trackers) all += (all.empty() ? "" : ", ") + t.name;
+  std::vector<std::string> all;
+  for (const TrackerEntry& t : s->trackers) all.push_back(t.name);
   for (const std::string& name : names) {
     const auto named = [&](const TrackerEntry& t) { return t.name == name; };
     if (std::none_of(s->trackers.begin(), s->trackers.end(), named)) {
       throw ConfigError("--trackers: " + s->path + " has no tracker '" + name +
-                        "' (its trackers: " + (all.empty() ? "none" : all) + ")");
+                        "' (its trackers: " + (all.empty() ? "none" : Joined(all)) + ")");
     }
   }
   const auto unnamed = [&](const TrackerEntry& t) {

@@ -5,6 +5,7 @@
 #include <stdexcept>
 
 #include "bench/run/pose_columns.h"
+#include "core/joined.h"
 #include "core/number_text.h"
 
 namespace markerbench {
@@ -110,11 +111,7 @@ std::vector<std::string> SplitCsvLine(const std::string& line) {
   return fields;
 }
 
-std::string FramesCsvHeader() {
-  std::string header;
-  for (const std::string& c : Columns()) header += (header.empty() ? "" : ",") + c;
-  return header + '\n';
-}
+std::string FramesCsvHeader() { return Joined(Columns(), ",") + '\n'; }
 
 std::string FormatFrameRow(const FrameRow& r) {
   std::string out =
