@@ -18,6 +18,8 @@ inline std::string NumberText(double value) {
   return std::string(buffer, result.ptr);
 }
 
+inline std::string BoolText(bool value) { return value ? "true" : "false"; }
+
 // An empty CSV field for NaN (no value), else NumberText.
 inline std::string NumberTextOrEmpty(double value) {
   return std::isnan(value) ? std::string() : NumberText(value);

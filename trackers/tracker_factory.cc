@@ -17,10 +17,23 @@ Options ReadOptions(const YamlMap* map) {
   return map ? Options::FromYaml(*map) : Options{};
 }
 
+// An improved variant's options: its preset, with the map's keys over it.
+template <typename Options>
+Options ReadOptionsOver(const YamlMap* map, const Options& preset) {
+  return map ? Options::FromYaml(*map, preset) : preset;
+}
+
 }  // namespace
 
 std::vector<std::string> TrackerNames() {
-  return {"apriltag", "apriltag-ippe", "artkplus", "aruco", "circle", "runetag"};
+  return {"apriltag",
+          "apriltag-ippe",
+          "artkplus",
+          "artkplus-improved",
+          "aruco",
+          "circle",
+          "runetag",
+          "runetag-improved"};
 }
 
 bool RunsThirdPartyCCode(const std::string& name) {
@@ -33,8 +46,14 @@ std::unique_ptr<Tracker> MakeTracker(const std::string& name, const YamlMap* opt
                                name == "apriltag" ? AprilTagPose::kNative : AprilTagPose::kIppe);
   }
   if (name == "artkplus") return MakeArtkPlusTracker(ReadOptions<ArtkPlusOptions>(options));
+  if (name == "artkplus-improved") {
+    return MakeArtkPlusTracker(ReadOptionsOver(options, ArtkPlusOptions::Improved()));
+  }
   if (name == "aruco") return MakeArucoTracker(ReadOptions<ArucoOptions>(options));
   if (name == "runetag") return MakeRuneTagTracker(ReadOptions<RuneTagOptions>(options));
+  if (name == "runetag-improved") {
+    return MakeRuneTagTracker(ReadOptionsOver(options, RuneTagOptions::Improved()));
+  }
   if (name == "circle") return MakeCircleTracker(ReadOptions<CircleTrackerOptions>(options));
   throw ConfigError("unknown tracker '" + name + "'; available: " + Joined(TrackerNames()));
 }

@@ -97,7 +97,7 @@ class AprilTagTracker final : public Tracker {
     return {{"family", options_.family},
             {"quad_decimate", NumberText(options_.quad_decimate)},
             {"quad_sigma", NumberText(options_.quad_sigma)},
-            {"refine_edges", options_.refine_edges ? "true" : "false"},
+            {"refine_edges", BoolText(options_.refine_edges)},
             {"decode_sharpening", NumberText(options_.decode_sharpening)},
             {"nthreads", NumberText(options_.nthreads)},
             {"max_hamming", NumberText(options_.max_hamming)},

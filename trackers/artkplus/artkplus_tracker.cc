@@ -20,6 +20,11 @@ struct Detection {
   PatternRead pattern;
 };
 
+struct Detections {
+  std::vector<Detection> decoded;
+  int squares = 0;  // regions whose contour has four vertices
+};
+
 class ArtkPlusTracker final : public Tracker {
  public:
   explicit ArtkPlusTracker(const ArtkPlusOptions& options) : options_(options) { Reset(); }
@@ -41,13 +46,17 @@ class ArtkPlusTracker final : public Tracker {
     if (!mode) return CannotTrack("the artkplus tracker", marker, "unknown id mode");
     GreyImage grey(*obs.image);
 
-    std::vector<Detection> detections = Detect(grey, threshold_, *mode, marker, *obs.camera);
+    Detections found_now = Detect(grey, threshold_, *mode, marker, *obs.camera);
     const bool automatic = options_.threshold_mode == ArtkPlusThreshold::kAuto;
-    for (int retry = 0; automatic && detections.empty() && retry < options_.auto_threshold_retries;
-         ++retry) {
+    const auto missed = [&] {
+      return options_.retry_only_without_squares ? found_now.squares == 0
+                                                 : found_now.decoded.empty();
+    };
+    for (int retry = 0; automatic && missed() && retry < options_.auto_threshold_retries; ++retry) {
       const int threshold = 10 + static_cast<int>(retry_rng_.NextU64() % 230);
-      detections = Detect(grey, threshold, *mode, marker, *obs.camera);
+      found_now = Detect(grey, threshold, *mode, marker, *obs.camera);
     }
+    const std::vector<Detection>& detections = found_now.decoded;
 
     TrackResult result;
     const Detection* found = nullptr;
@@ -77,46 +86,59 @@ class ArtkPlusTracker final : public Tracker {
             {"threshold", NumberText(o.threshold)},
             {"auto_threshold_retries", NumberText(o.auto_threshold_retries)},
             {"auto_threshold_seed", NumberText(o.auto_threshold_seed)},
+            {"retry_only_without_squares", BoolText(o.retry_only_without_squares)},
             {"min_area_px", NumberText(o.regions.min_area_px)},
             {"max_area_px", NumberText(o.regions.max_area_px)},
             {"side_trim", NumberText(o.quad.side_trim)},
-            {"subpixel_edges", o.quad.subpixel_edges ? "true" : "false"},
-            {"pattern_samples", NumberText(o.pattern_samples)},
+            {"subpixel_edges", BoolText(o.quad.subpixel_edges)},
+            {"truncated_samples", BoolText(o.pattern.truncated_samples)},
+            {"pattern_samples", NumberText(o.pattern.samples_per_side)},
+            {"bits_at_threshold", BoolText(o.bits_at_threshold)},
+            {"max_corrected_bits", NumberText(o.pattern.max_corrected_bits)},
             {"min_confidence", NumberText(o.min_confidence)},
             {"pose", o.pose == ArtkPlusPose::kRobustPlanar ? "rpp" : "classic"}};
   }
 
  private:
-  std::vector<Detection> Detect(GreyImage& grey,
-                                int threshold,
-                                ArtkPlusIdMode mode,
-                                const MarkerSpec& marker,
-                                const Camera& camera) const {
+  Detections Detect(GreyImage& grey,
+                    int threshold,
+                    ArtkPlusIdMode mode,
+                    const MarkerSpec& marker,
+                    const Camera& camera) const {
     DarkRegionOptions region_options = options_.regions;
     region_options.threshold = threshold;
     const DarkRegions regions =
         FindDarkRegions(grey.data(), grey.width(), grey.height(), region_options);
     const int border_cells = marker.border_fraction == 0.125 ? 1 : 3;
-    std::vector<Detection> detections;
+    PatternReadOptions pattern_options = options_.pattern;
+    if (options_.bits_at_threshold) pattern_options.bit_threshold = threshold;
+    Detections detections;
     for (const DarkRegion& region : regions.regions) {
       const std::vector<Eigen::Vector2i> contour = TraceOuterContour(regions, region);
       const std::optional<std::array<size_t, 4>> vertices =
           FindQuadVertices(contour, region, options_.quad);
       if (!vertices) continue;
+      ++detections.squares;
       const auto fit_corners = [&](double edge_level) {
         return FitQuadCorners(
             contour, *vertices, grey.data(), edge_level, regions, camera, options_.quad);
       };
       std::optional<std::array<Eigen::Vector2d, 4>> corners = fit_corners(threshold);
       if (!corners) continue;
+      std::array<Eigen::Vector2d, 4> quad = *corners;
+      if (pattern_options.truncated_samples) {
+        for (size_t k = 0; k < 4; ++k) {
+          quad[k] = contour[(*vertices)[k] % contour.size()].cast<double>();
+        }
+      }
       const std::optional<PatternRead> pattern = ReadPattern(grey.data(),
                                                              grey.width(),
                                                              grey.height(),
-                                                             *corners,
+                                                             quad,
                                                              border_cells,
-                                                             options_.pattern_samples,
                                                              mode,
-                                                             camera);
+                                                             camera,
+                                                             pattern_options);
       if (!pattern || pattern->confidence < options_.min_confidence) continue;
       if (options_.quad.subpixel_edges) {
         // Refit on the crossings of the level halfway between this marker's ink and paper.
@@ -128,7 +150,7 @@ class ArtkPlusTracker final : public Tracker {
       for (int k = 0; k < 4; ++k) {
         detection.corners_px[k] = (*corners)[(pattern->top_left + k) % 4];
       }
-      detections.push_back(detection);
+      detections.decoded.push_back(detection);
     }
     return detections;
   }
@@ -170,8 +192,10 @@ bool ArtkPlusOptions::IsValid(std::string* error) const {
     msg << "min_area_px=" << regions.min_area_px << " must be >= 1 and <= max_area_px";
   } else if (!(quad.side_trim >= 0.0 && quad.side_trim < 0.5)) {
     msg << "side_trim=" << quad.side_trim << " must be in [0, 0.5)";
-  } else if (pattern_samples < 1 || pattern_samples > 8) {
-    msg << "pattern_samples=" << pattern_samples << " must be in [1, 8]";
+  } else if (pattern.samples_per_side < 1 || pattern.samples_per_side > 8) {
+    msg << "pattern_samples=" << pattern.samples_per_side << " must be in [1, 8]";
+  } else if (pattern.max_corrected_bits < 0) {
+    msg << "max_corrected_bits=" << pattern.max_corrected_bits << " must be >= 0";
   } else if (!(min_confidence >= 0.0 && min_confidence <= 1.0)) {
     msg << "min_confidence=" << min_confidence << " must be in [0, 1]";
   } else {
@@ -181,9 +205,21 @@ bool ArtkPlusOptions::IsValid(std::string* error) const {
   return false;
 }
 
-ArtkPlusOptions ArtkPlusOptions::FromYaml(const YamlMap& map) {
+ArtkPlusOptions ArtkPlusOptions::Improved() {
   ArtkPlusOptions o;
-  const std::string threshold_mode = map.GetOr<std::string>("threshold_mode", "auto");
+  o.retry_only_without_squares = false;
+  o.quad.subpixel_edges = true;
+  o.pattern.truncated_samples = false;
+  o.pattern.samples_per_side = 3;
+  o.bits_at_threshold = false;
+  o.pattern.max_corrected_bits = 2;
+  return o;
+}
+
+ArtkPlusOptions ArtkPlusOptions::FromYaml(const YamlMap& map, const ArtkPlusOptions& base) {
+  ArtkPlusOptions o = base;
+  const std::string threshold_mode = map.GetOr<std::string>(
+      "threshold_mode", base.threshold_mode == ArtkPlusThreshold::kAuto ? "auto" : "fixed");
   if (threshold_mode != "auto" && threshold_mode != "fixed") {
     map.Fail("threshold_mode", "auto or fixed");
   }
@@ -192,13 +228,19 @@ ArtkPlusOptions ArtkPlusOptions::FromYaml(const YamlMap& map) {
   o.threshold = map.GetOr<int>("threshold", o.threshold);
   o.auto_threshold_retries = map.GetOr<int>("auto_threshold_retries", o.auto_threshold_retries);
   o.auto_threshold_seed = map.GetOr<int>("auto_threshold_seed", o.auto_threshold_seed);
+  o.retry_only_without_squares =
+      map.GetOr<bool>("retry_only_without_squares", o.retry_only_without_squares);
   o.regions.min_area_px = map.GetOr<int>("min_area_px", o.regions.min_area_px);
   o.regions.max_area_px = map.GetOr<int>("max_area_px", o.regions.max_area_px);
   o.quad.side_trim = map.GetOr<double>("side_trim", o.quad.side_trim);
   o.quad.subpixel_edges = map.GetOr<bool>("subpixel_edges", o.quad.subpixel_edges);
-  o.pattern_samples = map.GetOr<int>("pattern_samples", o.pattern_samples);
+  o.pattern.truncated_samples = map.GetOr<bool>("truncated_samples", o.pattern.truncated_samples);
+  o.pattern.samples_per_side = map.GetOr<int>("pattern_samples", o.pattern.samples_per_side);
+  o.bits_at_threshold = map.GetOr<bool>("bits_at_threshold", o.bits_at_threshold);
+  o.pattern.max_corrected_bits = map.GetOr<int>("max_corrected_bits", o.pattern.max_corrected_bits);
   o.min_confidence = map.GetOr<double>("min_confidence", o.min_confidence);
-  const std::string pose = map.GetOr<std::string>("pose", "rpp");
+  const std::string pose =
+      map.GetOr<std::string>("pose", base.pose == ArtkPlusPose::kRobustPlanar ? "rpp" : "classic");
   if (pose != "rpp" && pose != "classic") map.Fail("pose", "rpp or classic");
   o.pose = pose == "rpp" ? ArtkPlusPose::kRobustPlanar : ArtkPlusPose::kClassic;
   FinishOptions(map, o);

@@ -10,9 +10,11 @@
 namespace markerbench {
 namespace {
 
-double Nearest(const uint8_t* grey, int width, int height, const Eigen::Vector2d& p) {
-  const int x = std::clamp(static_cast<int>(std::lround(p.x())), 0, width - 1);
-  const int y = std::clamp(static_cast<int>(std::lround(p.y())), 0, height - 1);
+// The pixel at integer coordinates `round` gives for p, clamped to the image.
+template <typename Round>
+double PixelAt(const uint8_t* grey, int width, int height, const Eigen::Vector2d& p, Round round) {
+  const int x = std::clamp(static_cast<int>(round(p.x())), 0, width - 1);
+  const int y = std::clamp(static_cast<int>(round(p.y())), 0, height - 1);
   return grey[static_cast<size_t>(y) * width + x];
 }
 
@@ -21,16 +23,16 @@ double Nearest(const uint8_t* grey, int width, int height, const Eigen::Vector2d
 std::optional<PatternRead> ReadPattern(const uint8_t* grey,
                                        int width,
                                        int height,
-                                       const std::array<Eigen::Vector2d, 4>& corners_px,
+                                       const std::array<Eigen::Vector2d, 4>& quad_px,
                                        int border_cells,
-                                       int samples_per_side,
                                        ArtkPlusIdMode mode,
-                                       const Camera& camera) {
-  const bool distorted = camera.HasDistortion();
+                                       const Camera& camera,
+                                       const PatternReadOptions& options) {
+  const bool distorted = camera.HasDistortion() && !options.truncated_samples;
   const Eigen::Matrix3d K = camera.K();
   std::array<Eigen::Vector2d, 4> ideal;
   for (size_t i = 0; i < 4; ++i) {
-    ideal[i] = distorted ? (K * camera.CamFromImg(corners_px[i])).hnormalized() : corners_px[i];
+    ideal[i] = distorted ? (K * camera.CamFromImg(quad_px[i])).hnormalized() : quad_px[i];
   }
   const Eigen::Matrix3d H =
       HomographyDlt({{0, 0}, {1, 0}, {1, 1}, {0, 1}}, {ideal.begin(), ideal.end()});
@@ -40,7 +42,7 @@ std::optional<PatternRead> ReadPattern(const uint8_t* grey,
     const Eigen::Vector2d p = (H * unit.homogeneous()).hnormalized();
     return distorted ? camera.ImgFromCam(K_inv * p.homogeneous()) : p;
   };
-  const int n = samples_per_side;
+  const int n = options.truncated_samples ? 1 : options.samples_per_side;
   std::array<double, kArtkPlusWordBits> level{};
   for (int r = 0; r < 6; ++r) {
     for (int c = 0; c < 6; ++c) {
@@ -50,17 +52,24 @@ std::optional<PatternRead> ReadPattern(const uint8_t* grey,
           const double du = 0.75 * ((j + 0.5) / n - 0.5), dv = 0.75 * ((i + 0.5) / n - 0.5);
           const Eigen::Vector2d p =
               to_px({(border_cells + c + 0.5 + du) / cells, (border_cells + r + 0.5 + dv) / cells});
-          sum += n == 1 ? Nearest(grey, width, height, p) : BilinearSample(grey, width, height, p);
+          if (options.truncated_samples) {
+            sum += PixelAt(grey, width, height, p, [](double v) { return std::trunc(v); });
+          } else if (n == 1) {
+            sum += PixelAt(grey, width, height, p, [](double v) { return std::round(v); });
+          } else {
+            sum += BilinearSample(grey, width, height, p);
+          }
         }
       }
       level[static_cast<size_t>(6 * r + c)] = sum / (n * n);
     }
   }
   const auto [lo, hi] = std::minmax_element(level.begin(), level.end());
-  const double mid = 0.5 * (*lo + *hi);
+  const double white_above =
+      options.bit_threshold >= 0.0 ? options.bit_threshold : 0.5 * (*lo + *hi);
   uint64_t word = 0;
   for (size_t k = 0; k < level.size(); ++k) {
-    if (level[k] > mid) word |= 1ULL << (35 - k);  // a set bit is white
+    if (level[k] > white_above) word |= 1ULL << (35 - k);  // a set bit is white
   }
   // Reading with corner j as top-left gives the word read with corner j+1 turned a quarter
   // turn clockwise; so turning the word read from corner 0 k times reads it from corner -k.
@@ -68,7 +77,7 @@ std::optional<PatternRead> ReadPattern(const uint8_t* grey,
   bool tie = false;
   for (int k = 0; k < 4; ++k, word = ArtkPlusQuarterTurn(word)) {
     const std::optional<DecodedId> decoded = ArtkPlusDecode(mode, word);
-    if (!decoded) continue;
+    if (!decoded || decoded->corrected_bits > options.max_corrected_bits) continue;
     if (best && decoded->corrected_bits == best->corrected_bits) tie = true;
     if (best && decoded->corrected_bits >= best->corrected_bits) continue;
     tie = false;

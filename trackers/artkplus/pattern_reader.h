@@ -1,6 +1,5 @@
 // Step 6 of the ARToolKitPlus pipeline (baselines.md): sample the 6x6 interior through the
-// homography of the four corners, threshold each cell at the mean of the cells' min and max,
-// and decode the word in all four orientations.
+// homography of a quad, threshold each cell, and decode the word in all four orientations.
 #pragma once
 
 #include <Eigen/Core>
@@ -24,18 +23,32 @@ struct PatternRead {
   double max_level = 0.0;
 };
 
-// corners_px: distorted pixels, clockwise on screen. border_cells: black border width in
-// cells (3 for border_fraction 0.25, 1 for 0.125). samples_per_side: 1 reads the nearest
-// pixel to each cell centre (as the original's id markers, whose noise breakdown this
-// reproduces); n > 1 averages n x n bilinear samples over the cell's central 3/4. nullopt
-// when no orientation decodes, or when two do equally well (an ambiguous orientation).
+struct PatternReadOptions {
+  // The original's arGetPatt (src/core/arGetCode.cpp, 6x6 samples for id markers): one
+  // sample per cell at the truncated pixel coordinates of the homography of the quad, in
+  // distorted pixels. Otherwise the quad is undistorted first and samples_per_side applies.
+  bool truncated_samples = true;
+  // 1 reads the nearest pixel to each cell centre; n > 1 averages n x n bilinear samples
+  // over the cell's central 3/4.
+  int samples_per_side = 1;
+  // A cell is white above this grey level (the original: the labelling threshold); a
+  // negative value thresholds at the mean of the darkest and brightest cells.
+  double bit_threshold = -1.0;
+  // Orientations that decode with more corrected bits are ignored. The original's BCH
+  // confidence is 1 - bits / 4 and must reach 0.5, so it accepts at most 2.
+  int max_corrected_bits = 4;
+};
+
+// quad_px: distorted pixels, clockwise on screen. border_cells: black border width in cells
+// (3 for border_fraction 0.25, 1 for 0.125). nullopt when no orientation decodes within
+// max_corrected_bits, or when two do equally well (an ambiguous orientation).
 std::optional<PatternRead> ReadPattern(const uint8_t* grey,
                                        int width,
                                        int height,
-                                       const std::array<Eigen::Vector2d, 4>& corners_px,
+                                       const std::array<Eigen::Vector2d, 4>& quad_px,
                                        int border_cells,
-                                       int samples_per_side,
                                        ArtkPlusIdMode mode,
-                                       const Camera& camera);
+                                       const Camera& camera,
+                                       const PatternReadOptions& options);
 
 }  // namespace markerbench

@@ -18,10 +18,10 @@ struct QuadFitOptions {
   // vertex_area_fraction * region area (the original's check_square: 0.01 / 0.75).
   double vertex_area_fraction = 0.01 / 0.75;
   double side_trim = 0.05;  // fraction of each side dropped at each end before the line fit
-  // Deliberate difference from the original: refit each side on the sub-pixel crossings of
+  // Our addition (artkplus-improved): refit each side on the sub-pixel crossings of
   // edge_level along each boundary pixel's outward 4-neighbour steps. The original fits the
   // dark boundary pixels' centres, which lie about 0.5 px inside the edge.
-  bool subpixel_edges = true;
+  bool subpixel_edges = false;
 };
 
 // The contour indices of its four vertices, in contour order (clockwise on screen) from the

@@ -25,26 +25,17 @@ Rigid3 PoseFromVectors(const cv::Mat& rvec, const cv::Mat& tvec) {
   return pose;
 }
 
-}  // namespace
+// RANSAC: IPPE on 4 random correspondences, scored by the reprojection inliers; then IPPE
+// and LM on the inliers, which are narrowed to 3 robust sigmas of that fit for a last LM.
+struct PnpFit {
+  cv::Mat rvec, tvec;
+  std::vector<int> inliers;
+};
 
-std::optional<DotPose> EstimateDotPose(const std::vector<Eigen::Vector2d>& centers_px,
-                                       const std::vector<Eigen::Vector2d>& dots_xy,
-                                       const std::vector<double>& dot_radii_m,
-                                       const Camera& camera,
-                                       const DotPoseOptions& options) {
-  if (centers_px.size() < 4) return std::nullopt;
-  // Everything runs on undistorted pixels with an ideal camera.
-  const Eigen::Matrix3d K = camera.K();
-  const cv::Mat K_cv =
-      (cv::Mat_<double>(3, 3) << K(0, 0), 0, K(0, 2), 0, K(1, 1), K(1, 2), 0, 0, 1);
-  std::vector<cv::Point3d> object;
-  std::vector<cv::Point2d> measured;
-  for (size_t i = 0; i < centers_px.size(); ++i) {
-    object.emplace_back(dots_xy[i].x(), dots_xy[i].y(), 0.0);
-    const Eigen::Vector2d ideal = (K * camera.CamFromImg(centers_px[i])).hnormalized();
-    measured.emplace_back(ideal.x(), ideal.y());
-  }
-  // RANSAC: IPPE on 4 random correspondences, scored by the reprojection inliers.
+std::optional<PnpFit> RansacIppePose(const std::vector<cv::Point3d>& object,
+                                     const std::vector<cv::Point2d>& measured,
+                                     const cv::Mat& K_cv,
+                                     const DotPoseOptions& options) {
   const auto residuals = [&](const cv::Mat& r, const cv::Mat& t) {
     std::vector<cv::Point2d> projected;
     cv::projectPoints(object, r, t, K_cv, cv::noArray(), projected);
@@ -97,7 +88,7 @@ std::optional<DotPose> EstimateDotPose(const std::vector<Eigen::Vector2d>& cente
   // between them is arbitrary: choose again with IPPE on all the inliers, each of its two
   // solutions refined by LM, by the lower reprojection error.
   std::vector<cv::Point3d> inlier_object;
-  std::vector<cv::Point2d> inlier_measured, corrected;
+  std::vector<cv::Point2d> inlier_measured;
   const auto select = [&](const std::vector<int>& index) {
     inlier_object.clear();
     inlier_measured.clear();
@@ -138,6 +129,55 @@ std::optional<DotPose> EstimateDotPose(const std::vector<Eigen::Vector2d>& cente
   select(inlier_index);
   cv::solvePnPRefineLM(
       inlier_object, inlier_measured, K_cv, cv::noArray(), rvec, tvec, kLmCriteria);
+  return PnpFit{rvec, tvec, inlier_index};
+}
+
+}  // namespace
+
+std::optional<DotPose> EstimateDotPose(const std::vector<Eigen::Vector2d>& centers_px,
+                                       const std::vector<Eigen::Vector2d>& dots_xy,
+                                       const std::vector<double>& dot_radii_m,
+                                       const Camera& camera,
+                                       const DotPoseOptions& options) {
+  if (centers_px.size() < 4) return std::nullopt;
+  // Everything runs on undistorted pixels with an ideal camera.
+  const Eigen::Matrix3d K = camera.K();
+  const cv::Mat K_cv =
+      (cv::Mat_<double>(3, 3) << K(0, 0), 0, K(0, 2), 0, K(1, 1), K(1, 2), 0, 0, 1);
+  std::vector<cv::Point3d> object;
+  std::vector<cv::Point2d> measured;
+  for (size_t i = 0; i < centers_px.size(); ++i) {
+    object.emplace_back(dots_xy[i].x(), dots_xy[i].y(), 0.0);
+    const Eigen::Vector2d ideal = (K * camera.CamFromImg(centers_px[i])).hnormalized();
+    measured.emplace_back(ideal.x(), ideal.y());
+  }
+  std::optional<PnpFit> fit;
+  if (options.ransac) {
+    fit = RansacIppePose(object, measured, K_cv, options);
+  } else {
+    // The original's findPose: cv::solvePnP (iterative) on every matched dot.
+    fit.emplace();
+    for (size_t i = 0; i < object.size(); ++i) fit->inliers.push_back(static_cast<int>(i));
+    if (!cv::solvePnP(object,
+                      measured,
+                      K_cv,
+                      cv::noArray(),
+                      fit->rvec,
+                      fit->tvec,
+                      false,
+                      cv::SOLVEPNP_ITERATIVE)) {
+      fit.reset();
+    }
+  }
+  if (!fit) return std::nullopt;
+  cv::Mat rvec = fit->rvec, tvec = fit->tvec;
+  const std::vector<int>& inlier_index = fit->inliers;
+  std::vector<cv::Point3d> inlier_object;
+  std::vector<cv::Point2d> inlier_measured, corrected;
+  for (int i : inlier_index) {
+    inlier_object.push_back(object[i]);
+    inlier_measured.push_back(measured[i]);
+  }
   // Perspective bias (circle-method.md §4.6): under cam_from_marker, dot k's circle images to
   // an ellipse whose centre is off the image of the dot's centre; measure the centre of the
   // latter by removing that offset from the ellipse centre measured.

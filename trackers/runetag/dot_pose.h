@@ -1,9 +1,10 @@
-// Pose from the matched dots of a RUNETag-style marker (baselines.md): RANSAC over the dot
-// correspondences with IPPE on 4 of them inside, LM on the inliers (kept within 3 robust
-// sigmas of the fit), then the
-// paper's refinement: each measured dot centre is the centre of an ellipse, not the image of
-// the dot's centre (circle-method.md §4.6), so it is moved by the offset between the two
-// under the current pose, and LM is run again, refinement_passes times.
+// Pose from the matched dots of a RUNETag-style marker (baselines.md). The original's
+// findPose (the defaults): cv::solvePnP (iterative) on every dot. Ours (runetag-improved):
+// RANSAC over the dot correspondences with IPPE on 4 of them inside, LM on the inliers (kept
+// within 3 robust sigmas of the fit), then the paper's refinement: each measured dot centre
+// is the centre of an ellipse, not the image of the dot's centre (circle-method.md §4.6), so
+// it is moved by the offset between the two under the current pose, and LM is run again,
+// refinement_passes times.
 #pragma once
 
 #include <Eigen/Core>
@@ -17,10 +18,12 @@
 namespace markerbench {
 
 struct DotPoseOptions {
+  bool ransac = false;  // the original's RANSAC loop is compiled out (markerpose.cpp)
   int ransac_iterations = 100;
   double ransac_reprojection_px = 2.0;
-  int refinement_passes = 5;  // the original's perspective-bias iterations
-  uint64_t ransac_seed = 1;   // every call restarts from it (reproducible)
+  // The perspective-bias iterations: 5 in the paper, off in the original's default findPose.
+  int refinement_passes = 0;
+  uint64_t ransac_seed = 1;  // every call restarts from it (reproducible)
 };
 
 struct DotPose {

@@ -274,11 +274,13 @@ RuneWord ReadSlots(const DotImage& image,
 // How far a read is from its codeword: a mismatch costs what two erasures do (RuneDecode).
 int Cost(int mismatches, int erasures) { return 2 * mismatches + erasures; }
 
-// The better of the decodings of the dots and of the swept slots, or nullopt.
-std::optional<RuneDecoded> DecodeReadings(const RuneWord& dots, const RuneWord& slots) {
+// The better of the decodings of the dots and of the swept slots (when read), or nullopt.
+std::optional<RuneDecoded> DecodeReadings(const RuneWord& dots,
+                                          const std::optional<RuneWord>& slots,
+                                          const RingDecoderOptions& options) {
   std::optional<RuneDecoded> from_dots = RuneDecode(dots);
-  if (!from_dots) from_dots = RuneDecodeMissingDots(dots);
-  const std::optional<RuneDecoded> from_slots = RuneDecode(slots);
+  if (!from_dots && options.decode_missing_dots) from_dots = RuneDecodeMissingDots(dots);
+  const std::optional<RuneDecoded> from_slots = slots ? RuneDecode(*slots) : std::nullopt;
   if (!from_dots) return from_slots;
   if (!from_slots) return from_dots;
   return Cost(from_slots->mismatches, from_slots->erasures) <
@@ -318,7 +320,11 @@ std::optional<RingMatch> MatchRings(const std::vector<ImagedDot>& dots,
         if (!reading) continue;
         const std::optional<RuneDecoded> decoded = DecodeReadings(
             reading->read,
-            ReadSlots(image, camera, *ring_plane, found_ring, reading->phase, options));
+            options.read_slot_levels
+                ? std::optional(
+                      ReadSlots(image, camera, *ring_plane, found_ring, reading->phase, options))
+                : std::nullopt,
+            options);
         if (!decoded) continue;
         const int cost = Cost(decoded->mismatches, decoded->erasures);
         if (best && cost >= Cost(best->mismatches, best->erasures)) continue;

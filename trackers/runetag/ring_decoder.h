@@ -5,9 +5,10 @@
 // Deliberate differences: the original rectifies with the conic of each dot of each pair of
 // dots; we rectify with the conic of a whole ring, found by RANSAC over the dot centres (a
 // 5-point conic through dots of similar size, scored by the PND distance of all centres).
-// A ring 20-60 dots long fixes the plane orientation far better than one 2-6 px dot. And
-// besides the dots found, we read every slot's grey level through the rectified plane, which
-// reads dots that the threshold merged or lost; the better of the two readings is decoded.
+// A ring 20-60 dots long fixes the plane orientation far better than one 2-6 px dot. With
+// read_slot_levels (runetag-improved), besides the dots found, we read every slot's grey
+// level through the rectified plane, which reads dots that the threshold merged or lost; the
+// better of the two readings is decoded.
 #pragma once
 
 #include <Eigen/Core>
@@ -22,6 +23,11 @@
 namespace markerbench {
 
 struct RingDecoderOptions {
+  // Ours (runetag-improved): also decode the slots' grey levels, and the dots read as
+  // dots lost (RuneDecodeMissingDots). The original decodes the dots found, a missing dot
+  // being a wrong symbol.
+  bool read_slot_levels = false;
+  bool decode_missing_dots = false;
   int max_ransac_iterations = 1000;
   int ring_candidates = 3;  // distinct RANSAC conics tried, most inliers first
   // PND distance of a dot centre to the ring conic: at most ring_tolerance_px, and at most
@@ -29,9 +35,13 @@ struct RingDecoderOptions {
   double ring_tolerance_px = 1.0;
   double ring_tolerance_radii = 0.7;
   int min_ring_dots = 8;
-  double neighbour_reach = 5.0;    // RANSAC samples dots with a neighbour within this many radii
-  double radius_tolerance = 0.04;  // |radius / R - ring fraction| for a dot to be on a ring
-  double angle_tolerance = 0.3;    // |angle - sector angle| in sector widths
+  double neighbour_reach = 5.0;  // RANSAC samples dots with a neighbour within this many radii
+  // A dot is on ring j when |radius / R - ring fraction j| < radius_tolerance, and in the
+  // sector whose angle is within angle_tolerance sector widths. The original's slot fitter
+  // takes the nearest slot (half the ring spacing, half a sector); ours (runetag-improved)
+  // leaves dots between slots unread: 0.04 and 0.3.
+  double radius_tolerance = 1.0 / 12.0;
+  double angle_tolerance = 0.5;
   // Sweeping the slots: the paper level is sampled at these radii (units of R, clear of the
   // dots); a ring is read when its dark level is below the paper by max(min_slot_contrast,
   // slot_contrast_per_noise × the noise); a slot within slot_margin (fraction of that

@@ -20,9 +20,13 @@ TrackResult RuneTagTracker::Track(const Observation& obs) {
   if (!CanTrack(marker)) return CannotTrack("the runetag tracker", marker);
   diagnostics_ = {};
   GreyImage grey(*obs.image);
+  const cv::Mat grey_mat(grey.height(), grey.width(), CV_8UC1, grey.data());
+  // The original reads the image as it is; only our detector smooths it against the noise.
   const DotImage image =
-      SmoothForDots(cv::Mat(grey.height(), grey.width(), CV_8UC1, grey.data()), options_.dots);
-  const std::vector<ImagedDot> dots = DetectDots(image, options_.dots);
+      options_.original_dots ? DotImage{grey_mat, 0.0} : SmoothForDots(grey_mat, options_.dots);
+  const std::vector<ImagedDot> dots = options_.original_dots
+                                          ? DetectEllipsesAsOriginal(grey_mat, options_.ellipses)
+                                          : DetectDots(image, options_.dots);
   diagnostics_.dots = static_cast<int>(dots.size());
   TrackResult result;
   const std::optional<RingMatch> match = MatchRings(
@@ -73,7 +77,18 @@ TrackResult RuneTagTracker::Track(const Observation& obs) {
 
 std::vector<std::pair<std::string, std::string>> RuneTagTracker::Parameters() const {
   const RuneTagOptions& o = options_;
-  return {{"smoothing_per_noise", NumberText(o.dots.smoothing_per_noise)},
+  const OriginalEllipseOptions& e = o.ellipses;
+  return {{"dot_detector", o.original_dots ? "original" : "ours"},
+          {"ellipse_block_size_px", NumberText(e.block_size_px)},
+          {"ellipse_threshold_offset", NumberText(e.threshold_offset)},
+          {"ellipse_min_contour_points", NumberText(e.min_contour_points)},
+          {"ellipse_max_contour_points", NumberText(e.max_contour_points)},
+          {"ellipse_min_area_px", NumberText(e.min_area_px)},
+          {"ellipse_max_area_px", NumberText(e.max_area_px)},
+          {"ellipse_min_axis_ratio", NumberText(e.min_axis_ratio)},
+          {"ellipse_max_fit_error", NumberText(e.max_fit_error)},
+          {"ellipse_size_compensation_px", NumberText(e.size_compensation_px)},
+          {"smoothing_per_noise", NumberText(o.dots.smoothing_per_noise)},
           {"max_smoothing_px", NumberText(o.dots.max_smoothing_px)},
           {"block_size_px", NumberText(o.dots.block_size_px)},
           {"threshold_offset", NumberText(o.dots.threshold_offset)},
@@ -93,7 +108,10 @@ std::vector<std::pair<std::string, std::string>> RuneTagTracker::Parameters() co
           {"slot_contrast_per_noise", NumberText(o.rings.slot_contrast_per_noise)},
           {"slot_margin", NumberText(o.rings.slot_margin)},
           {"max_dot_growth", NumberText(o.rings.max_dot_growth)},
+          {"read_slot_levels", BoolText(o.rings.read_slot_levels)},
+          {"decode_missing_dots", BoolText(o.rings.decode_missing_dots)},
           {"max_ransac_iterations", NumberText(o.rings.max_ransac_iterations)},
+          {"ransac", BoolText(o.pose.ransac)},
           {"ransac_reprojection_px", NumberText(o.pose.ransac_reprojection_px)},
           {"refinement_passes", NumberText(o.pose.refinement_passes)},
           {"ransac_seed", NumberText(o.ransac_seed)}};
@@ -101,7 +119,20 @@ std::vector<std::pair<std::string, std::string>> RuneTagTracker::Parameters() co
 
 bool RuneTagOptions::IsValid(std::string* error) const {
   std::ostringstream msg;
-  if (!(dots.smoothing_per_noise >= 0.0 && dots.max_smoothing_px >= 0.0)) {
+  if (ellipses.block_size_px < 3 || ellipses.block_size_px % 2 == 0) {
+    msg << "ellipse_block_size_px=" << ellipses.block_size_px << " must be odd and >= 3";
+  } else if (ellipses.min_contour_points < 5 ||
+             ellipses.max_contour_points < ellipses.min_contour_points) {
+    msg << "ellipse_min_contour_points=" << ellipses.min_contour_points
+        << " must be >= 5 (cv::fitEllipse) and <= ellipse_max_contour_points";
+  } else if (!(ellipses.min_area_px >= 0.0 && ellipses.max_area_px > ellipses.min_area_px)) {
+    msg << "ellipse_min_area_px=" << ellipses.min_area_px
+        << " must be >= 0 and below ellipse_max_area_px";
+  } else if (!(ellipses.min_axis_ratio > 0.0 && ellipses.min_axis_ratio <= 1.0)) {
+    msg << "ellipse_min_axis_ratio=" << ellipses.min_axis_ratio << " must be in (0, 1]";
+  } else if (!(ellipses.max_fit_error > 0.0)) {
+    msg << "ellipse_max_fit_error=" << ellipses.max_fit_error << " must be > 0";
+  } else if (!(dots.smoothing_per_noise >= 0.0 && dots.max_smoothing_px >= 0.0)) {
     msg << "smoothing_per_noise=" << dots.smoothing_per_noise
         << " and max_smoothing_px must be >= 0";
   } else if (!(dots.offset_per_noise >= 0.0)) {
@@ -115,9 +146,9 @@ bool RuneTagOptions::IsValid(std::string* error) const {
   } else if (!(dots.max_fit_error > 0.0)) {
     msg << "max_fit_error=" << dots.max_fit_error << " must be > 0";
   } else if (!(rings.ring_tolerance_px > 0.0 && rings.radius_tolerance > 0.0 &&
-               rings.angle_tolerance > 0.0 && rings.angle_tolerance < 0.5)) {
+               rings.angle_tolerance > 0.0 && rings.angle_tolerance <= 0.5)) {
     msg << "ring_tolerance_px=" << rings.ring_tolerance_px
-        << " and radius_tolerance must be > 0, angle_tolerance in (0, 0.5)";
+        << " and radius_tolerance must be > 0, angle_tolerance in (0, 0.5]";
   } else if (!(rings.ring_tolerance_radii > 0.0 && rings.neighbour_reach > 0.0)) {
     msg << "ring_tolerance_radii=" << rings.ring_tolerance_radii
         << " and neighbour_reach must be > 0";
@@ -141,8 +172,35 @@ bool RuneTagOptions::IsValid(std::string* error) const {
   return false;
 }
 
-RuneTagOptions RuneTagOptions::FromYaml(const YamlMap& map) {
+RuneTagOptions RuneTagOptions::Improved() {
   RuneTagOptions o;
+  o.original_dots = false;
+  o.rings.read_slot_levels = true;
+  o.rings.decode_missing_dots = true;
+  o.rings.radius_tolerance = 0.04;
+  o.rings.angle_tolerance = 0.3;
+  o.pose.ransac = true;
+  o.pose.refinement_passes = 5;
+  return o;
+}
+
+RuneTagOptions RuneTagOptions::FromYaml(const YamlMap& map, const RuneTagOptions& base) {
+  RuneTagOptions o = base;
+  const std::string detector =
+      map.GetOr<std::string>("dot_detector", base.original_dots ? "original" : "ours");
+  if (detector != "original" && detector != "ours") map.Fail("dot_detector", "original or ours");
+  o.original_dots = detector == "original";
+  OriginalEllipseOptions& e = o.ellipses;
+  e.block_size_px = map.GetOr<int>("ellipse_block_size_px", e.block_size_px);
+  e.threshold_offset = map.GetOr<double>("ellipse_threshold_offset", e.threshold_offset);
+  e.min_contour_points = map.GetOr<int>("ellipse_min_contour_points", e.min_contour_points);
+  e.max_contour_points = map.GetOr<int>("ellipse_max_contour_points", e.max_contour_points);
+  e.min_area_px = map.GetOr<double>("ellipse_min_area_px", e.min_area_px);
+  e.max_area_px = map.GetOr<double>("ellipse_max_area_px", e.max_area_px);
+  e.min_axis_ratio = map.GetOr<double>("ellipse_min_axis_ratio", e.min_axis_ratio);
+  e.max_fit_error = map.GetOr<double>("ellipse_max_fit_error", e.max_fit_error);
+  e.size_compensation_px =
+      map.GetOr<double>("ellipse_size_compensation_px", e.size_compensation_px);
   o.dots.smoothing_per_noise = map.GetOr<double>("smoothing_per_noise", o.dots.smoothing_per_noise);
   o.dots.max_smoothing_px = map.GetOr<double>("max_smoothing_px", o.dots.max_smoothing_px);
   o.dots.block_size_px = map.GetOr<int>("block_size_px", o.dots.block_size_px);
@@ -165,8 +223,11 @@ RuneTagOptions RuneTagOptions::FromYaml(const YamlMap& map) {
       map.GetOr<double>("slot_contrast_per_noise", o.rings.slot_contrast_per_noise);
   o.rings.slot_margin = map.GetOr<double>("slot_margin", o.rings.slot_margin);
   o.rings.max_dot_growth = map.GetOr<double>("max_dot_growth", o.rings.max_dot_growth);
+  o.rings.read_slot_levels = map.GetOr<bool>("read_slot_levels", o.rings.read_slot_levels);
+  o.rings.decode_missing_dots = map.GetOr<bool>("decode_missing_dots", o.rings.decode_missing_dots);
   o.rings.max_ransac_iterations =
       map.GetOr<int>("max_ransac_iterations", o.rings.max_ransac_iterations);
+  o.pose.ransac = map.GetOr<bool>("ransac", o.pose.ransac);
   o.pose.ransac_reprojection_px =
       map.GetOr<double>("ransac_reprojection_px", o.pose.ransac_reprojection_px);
   o.pose.refinement_passes = map.GetOr<int>("refinement_passes", o.pose.refinement_passes);

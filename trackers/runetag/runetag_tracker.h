@@ -1,9 +1,11 @@
 // `runetag`: a faithful re-implementation of RUNETag (Bergamasco et al., TPAMI 2016;
 // baselines.md), not a wrapper: the original is not in Debian and its code must not be
-// copied. Per frame: dots by adaptive threshold and contours (DetectDots), a ring found and
-// rectified with K, the sectors swept and decoded with erasures (MatchRings), then RANSAC
-// PnP, LM and the perspective-bias refinement (EstimateDotPose). Deliberate differences
-// are listed in the README.
+// copied. Per frame: the original's ellipse detector (DetectEllipsesAsOriginal), a ring
+// found and rectified with K, the dots' sectors decoded (MatchRings), then the original's
+// solvePnP on every matched dot (EstimateDotPose). RuneTagOptions::Improved() is
+// `runetag-improved`, the same markers with our detector: DetectDots, slot levels and lost
+// dots decoded, RANSAC PnP, LM and the perspective-bias refinement. The differences that
+// remain in `runetag` are listed in the README.
 #pragma once
 
 #include <memory>
@@ -12,6 +14,7 @@
 
 #include "trackers/runetag/dot_detector.h"
 #include "trackers/runetag/dot_pose.h"
+#include "trackers/runetag/original_ellipse_detector.h"
 #include "trackers/runetag/ring_decoder.h"
 #include "trackers/tracker.h"
 
@@ -20,15 +23,24 @@ namespace markerbench {
 class YamlMap;
 
 struct RuneTagOptions {
+  bool original_dots = true;  // DetectEllipsesAsOriginal; false: DetectDots
+  OriginalEllipseOptions ellipses;
   DotDetectorOptions dots;
   RingDecoderOptions rings;
   DotPoseOptions pose;
   int ransac_seed = 1;  // both RANSACs restart from this seed every frame (reproducible)
 
+  // `runetag-improved`: our dot detector, slot levels and lost dots decoded, RANSAC PnP with
+  // the perspective-bias refinement.
+  static RuneTagOptions Improved();
+
   bool IsValid(std::string* error) const;
-  // Flat keys named as the fields of the options structs, the same keys Parameters() lists.
-  // Throws ConfigError naming the file and key.
-  static RuneTagOptions FromYaml(const YamlMap& map);
+  // Flat keys named as the fields of the options structs (the original detector's with an
+  // `ellipse_` prefix; `dot_detector: original | ours`), the keys Parameters() lists, each
+  // defaulting to `base`'s (the original's in the one-argument form). Throws ConfigError
+  // naming the file and key.
+  static RuneTagOptions FromYaml(const YamlMap& map, const RuneTagOptions& base);
+  static RuneTagOptions FromYaml(const YamlMap& map) { return FromYaml(map, RuneTagOptions()); }
 };
 
 // Every stage of the last Track call (style.md, item 4).

@@ -20,7 +20,7 @@ class RuneTagTrackerTest : public ::testing::Test {
 };
 
 TEST_F(RuneTagTrackerTest, CleanCameraCentresAtHalfAMetreOverTilt) {
-  RuneTagTracker tracker;
+  RuneTagTracker tracker(RuneTagOptions::Improved());
   for (double distance : {0.3, 0.5}) {
     for (double tilt : {0.0, 30.0, 60.0}) {
       SCOPED_TRACE("d=" + std::to_string(distance) + " tilt=" + std::to_string(tilt));
@@ -39,7 +39,7 @@ TEST_F(RuneTagTrackerTest, CleanCameraCentresAtHalfAMetreOverTilt) {
 // px apart at 1.5 m: the threshold merges them, and the code is read by sweeping the slots.
 // Tilted views: within 1 % of the distance and 1° (measured at most 0.65 %).
 TEST_F(RuneTagTrackerTest, TiltedMarkersDecodeOutToOneAndAHalfMetres) {
-  RuneTagTracker tracker;
+  RuneTagTracker tracker(RuneTagOptions::Improved());
   for (double distance : {0.75, 1.0, 1.25, 1.5}) {
     for (double tilt : {30.0, 60.0}) {
       SCOPED_TRACE("d=" + std::to_string(distance) + " tilt=" + std::to_string(tilt));
@@ -57,7 +57,7 @@ TEST_F(RuneTagTrackerTest, TiltedMarkersDecodeOutToOneAndAHalfMetres) {
 // measured 0.3 % of the distance at 0.75 m, 3.7 % at 1.25 m and 5.6 % at 1.5 m. The sweeps'
 // success criterion, 10 % of the distance (experiments.md), must hold.
 TEST_F(RuneTagTrackerTest, FaceOnMarkersDecodeOutToOneAndAHalfMetres) {
-  RuneTagTracker tracker;
+  RuneTagTracker tracker(RuneTagOptions::Improved());
   for (double distance : {0.75, 1.0, 1.25, 1.5}) {
     SCOPED_TRACE("d=" + std::to_string(distance));
     const Rigid3 truth = TiltedView(distance, 0.0, 17.0);
@@ -69,7 +69,7 @@ TEST_F(RuneTagTrackerTest, FaceOnMarkersDecodeOutToOneAndAHalfMetres) {
 
 // imnoise σ² = 0.02 (the benchmark's frames) and 0.05 at 0.6 m.
 TEST_F(RuneTagTrackerTest, NoisyMarkersDecode) {
-  RuneTagTracker tracker;
+  RuneTagTracker tracker(RuneTagOptions::Improved());
   for (double noise : {0.02, 0.05}) {
     for (uint64_t seed = 0; seed < 4; ++seed) {
       SCOPED_TRACE("noise=" + std::to_string(noise) + " seed=" + std::to_string(seed));
@@ -122,7 +122,7 @@ TEST_F(RuneTagTrackerTest, AHalfOccludedMarkerStillDecodes) {
   PaintedShape& cover = occluded.layers.emplace_back();
   cover.shape = SectorShape{{0.0, 0.0}, 0.07, 100.0 * kDeg, 280.0 * kDeg};
   cover.color = Rgb::Ones();
-  RuneTagTracker tracker;
+  RuneTagTracker tracker(RuneTagOptions::Improved());
   const Rigid3 truth = TiltedView(0.4, 20.0, 10.0);
   const TrackedFrame t = RenderAndTrack(&tracker, occluded, marker_, truth, 0.0, 6);
   ASSERT_EQ(t.result.status, TrackStatus::kOk);
