@@ -155,7 +155,7 @@ TEST(Scenario, ExampleValueMustBeASweepValue) {
 TEST(Scenario, UnknownTrackerListsTheAvailableOnes) {
   EXPECT_THAT(ErrorOf(Replace(GoodScenario(), "name: apriltag,", "name: nosuch,")),
               HasSubstr("key 'trackers[0].name': expected one of the available trackers: "
-                        "apriltag, apriltag-ippe, artkplus, aruco"));
+                        "apriltag, apriltag-ippe, artkplus, artkplus-improved, aruco"));
 }
 
 TEST(Scenario, TrackerOptionsAreCheckedWithTheirKey) {
