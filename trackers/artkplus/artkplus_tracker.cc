@@ -95,6 +95,7 @@ class ArtkPlusTracker final : public Tracker {
             {"pattern_samples", NumberText(o.pattern.samples_per_side)},
             {"bits_at_threshold", BoolText(o.bits_at_threshold)},
             {"max_corrected_bits", NumberText(o.pattern.max_corrected_bits)},
+            {"min_code_contrast", NumberText(o.pattern.min_code_contrast)},
             {"min_confidence", NumberText(o.min_confidence)},
             {"pose", o.pose == ArtkPlusPose::kRobustPlanar ? "rpp" : "classic"}};
   }
@@ -196,6 +197,8 @@ bool ArtkPlusOptions::IsValid(std::string* error) const {
     msg << "pattern_samples=" << pattern.samples_per_side << " must be in [1, 8]";
   } else if (pattern.max_corrected_bits < 0) {
     msg << "max_corrected_bits=" << pattern.max_corrected_bits << " must be >= 0";
+  } else if (!(pattern.min_code_contrast >= 0.0 && pattern.min_code_contrast <= 1.0)) {
+    msg << "min_code_contrast=" << pattern.min_code_contrast << " must be in [0, 1]";
   } else if (!(min_confidence >= 0.0 && min_confidence <= 1.0)) {
     msg << "min_confidence=" << min_confidence << " must be in [0, 1]";
   } else {
@@ -213,6 +216,7 @@ ArtkPlusOptions ArtkPlusOptions::Improved() {
   o.pattern.samples_per_side = 3;
   o.bits_at_threshold = false;
   o.pattern.max_corrected_bits = 2;
+  o.pattern.min_code_contrast = 0.3;
   return o;
 }
 
@@ -238,6 +242,7 @@ ArtkPlusOptions ArtkPlusOptions::FromYaml(const YamlMap& map, const ArtkPlusOpti
   o.pattern.samples_per_side = map.GetOr<int>("pattern_samples", o.pattern.samples_per_side);
   o.bits_at_threshold = map.GetOr<bool>("bits_at_threshold", o.bits_at_threshold);
   o.pattern.max_corrected_bits = map.GetOr<int>("max_corrected_bits", o.pattern.max_corrected_bits);
+  o.pattern.min_code_contrast = map.GetOr<double>("min_code_contrast", o.pattern.min_code_contrast);
   o.min_confidence = map.GetOr<double>("min_confidence", o.min_confidence);
   const std::string pose =
       map.GetOr<std::string>("pose", base.pose == ArtkPlusPose::kRobustPlanar ? "rpp" : "classic");

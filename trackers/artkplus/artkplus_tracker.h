@@ -45,7 +45,7 @@ struct ArtkPlusOptions {
   // Reading the 6x6 code. The original: one sample per cell at truncated coordinates
   // through the homography of the contour's vertex pixels (not of the fitted corners),
   // cells white above the labelling threshold, at most 2 corrected bits.
-  PatternReadOptions pattern{true, 1, -1.0, 2};
+  PatternReadOptions pattern{true, 1, -1.0, 2, 0.0};
   // bits_at_threshold: pattern.bit_threshold follows the frame's labelling threshold;
   // false thresholds at the cells' mid-level.
   bool bits_at_threshold = true;
@@ -56,7 +56,8 @@ struct ArtkPlusOptions {
 
   // `artkplus-improved`: sub-pixel edges, cells averaged over 3 x 3 bilinear samples
   // through the fitted corners and thresholded at their mid-level, retries whenever no
-  // marker decodes, at most 2 corrected bits (3-4 gave wrong ids on the paper sweeps).
+  // marker decodes, at most 2 corrected bits and a code contrast of at least 0.3 (without
+  // either, the paper sweeps gave wrong ids).
   static ArtkPlusOptions Improved();
 
   bool IsValid(std::string* error) const;

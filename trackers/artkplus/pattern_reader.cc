@@ -65,6 +65,30 @@ std::optional<PatternRead> ReadPattern(const uint8_t* grey,
     }
   }
   const auto [lo, hi] = std::minmax_element(level.begin(), level.end());
+  // The mean level along the square `inset` cells inside the marker's outer edge (negative:
+  // outside it), 8 bilinear samples a side.
+  const auto ring_level = [&](double inset) {
+    const double t = inset / cells;
+    const std::array<Eigen::Vector2d, 4> corner = {
+        Eigen::Vector2d(t, t), {1 - t, t}, {1 - t, 1 - t}, {t, 1 - t}};
+    double sum = 0.0;
+    for (size_t side = 0; side < 4; ++side) {
+      for (int k = 0; k < 8; ++k) {
+        const Eigen::Vector2d unit =
+            corner[side] + (k + 0.5) / 8.0 * (corner[(side + 1) % 4] - corner[side]);
+        sum += BilinearSample(grey, width, height, to_px(unit));
+      }
+    }
+    return sum / 32.0;
+  };
+  if (options.min_code_contrast > 0.0) {
+    const double ink = ring_level(0.5 * border_cells), paper = ring_level(-0.5);
+    const double code_contrast = (*hi - *lo) / (paper - ink);
+    if (!(paper > ink && code_contrast >= options.min_code_contrast &&
+          code_contrast <= 1.0 / options.min_code_contrast)) {
+      return std::nullopt;
+    }
+  }
   const double white_above =
       options.bit_threshold >= 0.0 ? options.bit_threshold : 0.5 * (*lo + *hi);
   uint64_t word = 0;

@@ -37,6 +37,12 @@ struct PatternReadOptions {
   // Orientations that decode with more corrected bits are ignored. The original's BCH
   // confidence is 1 - bits / 4 and must reach 0.5, so it accepts at most 2.
   int max_corrected_bits = 4;
+  // The cells' range (brightest - darkest) over the marker's own contrast (the quiet zone's
+  // level - the black border's) must lie in [min_code_contrast, 1 / min_code_contrast]: a
+  // quad whose border is not darker than its surround is not a marker, and blur shrinks the
+  // cells' range long before the border's, leaving an interior that can lie near a wrong
+  // codeword. 0: off (the original).
+  double min_code_contrast = 0.0;
 };
 
 // quad_px: distorted pixels, clockwise on screen. border_cells: black border width in cells
