@@ -419,22 +419,22 @@ TEST(MarkerYaml, ArtkPlusErrorsNameTheKey) {
 
 TEST(MarkerYaml, RuneTagDotsFollowTheCodeword) {
   const MarkerSpec spec =
-      LoadMarkerYaml(WriteTestFile("rune.yaml", "kind: runetag\nid: 3\nradius_m: 0.05\n"));
+      LoadMarkerYaml(WriteTestFile("rune.yaml", "kind: runetag\nid: 23\nradius_m: 0.05\n"));
   EXPECT_EQ(spec.kind, MarkerKind::kRuneTag);
   EXPECT_EQ(spec.size_m, 0.1);
   size_t dots = 0;
-  for (uint8_t symbol : RuneCodeword(3)) dots += std::bitset<3>(symbol).count();
+  for (uint8_t symbol : RuneCodeword(23)) dots += std::bitset<3>(symbol).count();
   ASSERT_EQ(spec.keypoints.size(), dots);
   ASSERT_EQ(spec.layers.size(), dots);
   // Sector 0 lies on +x; its first dot is on the innermost ring present.
-  const uint8_t s0 = RuneCodeword(3)[0];
+  const uint8_t s0 = RuneCodeword(23)[0];
   const double first_ring = (s0 & 4) ? 4.0 / 6.0 : (s0 & 2) ? 5.0 / 6.0 : 1.0;
   EXPECT_NEAR(spec.keypoints[0].x(), first_ring * 0.05, 1e-12);
   EXPECT_NEAR(spec.keypoints[0].y(), 0.0, 1e-12);
   EXPECT_NEAR(std::get<DiskShape>(spec.layers[0].shape).radius, first_ring * 0.05 / 17.8, 1e-12);
-  EXPECT_THAT(MarkerError("kind: runetag\nid: 128\nradius_m: 0.05\n"),
-              HasSubstr("key 'id': expected an id in [0, 127]"));
-  EXPECT_THAT(MarkerError("kind: runetag\nid: 1\n"), HasSubstr("key 'radius_m'"));
+  EXPECT_THAT(MarkerError("kind: runetag\nid: 9\nradius_m: 0.05\n"),
+              HasSubstr("key 'id': expected an id of the original RUNETag code list"));
+  EXPECT_THAT(MarkerError("kind: runetag\nid: 8\n"), HasSubstr("key 'radius_m'"));
 }
 
 TEST(MarkerYaml, DotRingsValidatesPattern) {

@@ -303,8 +303,12 @@ void LoadDotRings(const YamlMap& root, MarkerSpec* spec) {
 void LoadRuneTag(const YamlMap& root, MarkerSpec* spec) {
   const double radius_m = root.GetLength("radius_m");
   spec->id = root.Get<int>("id");
-  if (spec->id < 0 || spec->id >= kRuneIds) {
-    root.Fail("id", "an id in [0, " + std::to_string(kRuneIds - 1) + "]");
+  if (!IsRuneId(spec->id)) {
+    const std::vector<int>& ids = RuneIds();
+    root.Fail("id",
+              "an id of the original RUNETag code list (" + std::to_string(ids.size()) +
+                  " ids from " + std::to_string(ids.front()) + " to " + std::to_string(ids.back()) +
+                  ": 8, 10, 15, 23, ...)");
   }
   spec->size_m = 2.0 * radius_m;
   const RuneWord& word = RuneCodeword(spec->id);

@@ -521,7 +521,7 @@ TEST_F(SweepCliTest, BadInputIsRejectedBeforeAnythingIsWritten) {
        "bad.yaml:13: key 'sweep.values': expected a non-empty list"},
       {replaced("{name: aruco}", "{name: aruko}"),
        "bad.yaml:10: key 'trackers[2].name': expected one of the available trackers: apriltag, "
-       "apriltag-ippe, artkplus, aruco"},
+       "apriltag-ippe, artkplus, artkplus-improved, aruco"},
       {replaced("/scenarios/markers/aruco.yaml", "/scenarios/markers/nosuch.yaml"),
        "nosuch.yaml: cannot open the file"},
       {replaced("/scenarios/cameras/default.yaml", "/scenarios/cameras/nosuch.yaml"),

@@ -11,8 +11,10 @@ namespace markerbench {
 struct ClaimResult {
   std::string claim;
   std::string paper;
+  std::string original;  // the original system measured on these renders, or "-"
   std::string measured;  // "not run: ..." when the scenario or tracker is missing
   std::string verdict;   // agrees, earlier, later, differs, faster, slower or "-"
+  std::string improved;  // the tracker's `-improved` variant, or "-"
 };
 
 // Checks every claim against `summary` (scenarios fig6_noise, fig7_blur, fig8_distance, as

@@ -4,10 +4,15 @@
 
 #include <algorithm>
 #include <random>
+#include <set>
 #include <vector>
+
+#include "core/codes/gf7_6.h"
 
 namespace markerbench {
 namespace {
+
+constexpr Gf76::Element kW = 6 * 7 + 5 * 49 + 4 * 2401 + 16807;  // x^5 + 4x^4 + 5x^2 + 6x
 
 RuneWord Rotated(const RuneWord& word, int rotation) {
   RuneWord read;
@@ -15,137 +20,148 @@ RuneWord Rotated(const RuneWord& word, int rotation) {
   return read;
 }
 
-int Distance(const RuneWord& a, const RuneWord& b) {
-  int d = 0;
-  for (int i = 0; i < kRuneSectors; ++i) d += a[i] != b[i];
-  return d;
+TEST(Gf76, TablesAgreeWithPolynomialArithmetic) {
+  const Gf76& f = Gf76::Get();
+  std::mt19937 rng(1);
+  for (int k = 0; k < 2000; ++k) {
+    const Gf76::Element a = rng() % Gf76::kSize, b = rng() % Gf76::kSize;
+    EXPECT_EQ(f.Multiply(a, b), Gf76::MultiplyByPolynomials(a, b));
+    if (a != 0) {
+      EXPECT_EQ(f.Multiply(a, f.Inverse(a)), 1u);
+    }
+    EXPECT_EQ(Gf76::Add(a, Gf76::Negate(a)), 0u);
+  }
+  // GF(7) is the subfield of the constants.
+  for (Gf76::Element a = 0; a < 7; ++a) {
+    for (Gf76::Element b = 0; b < 7; ++b) EXPECT_EQ(f.Multiply(a, b), a * b % 7);
+  }
 }
 
-TEST(RuneCode, SymbolsAreOneToSeven) {
-  for (int id = 0; id < kRuneIds; ++id) {
-    for (uint8_t s : RuneCodeword(id)) {
+TEST(RuneCode, WHasOrder43) {
+  const Gf76& f = Gf76::Get();
+  EXPECT_EQ(f.Power(kW, 43), 1u);
+  EXPECT_NE(f.Power(kW, 1), 1u);  // 43 is prime, so any order above 1 is 43
+}
+
+// g(x) is over GF(7), monic, of degree 36, has the 28 consecutive zeros w^8..w^35 (the BCH
+// bound: distance >= 29) and divides x^43 - 1, so the code is cyclic of dimension 7.
+TEST(RuneCode, GeneratorHasTheConsecutiveZerosAndDividesX43Minus1) {
+  const std::array<int, 37>& g = RuneGenerator();
+  EXPECT_EQ(g[36], 1);
+  const Gf76& f = Gf76::Get();
+  for (int j = 8; j <= 35; ++j) {
+    Gf76::Element value = 0;
+    for (int k = 36; k >= 0; --k) {
+      value = Gf76::Add(f.Multiply(value, f.Power(kW, j)), static_cast<Gf76::Element>(g[k]));
+    }
+    EXPECT_EQ(value, 0u) << "w^" << j;
+  }
+  std::vector<int> remainder(44, 0);  // x^43 - 1 divided by g over GF(7)
+  remainder[43] = 1;
+  remainder[0] = 6;
+  for (int k = 43; k >= 36; --k) {
+    const int c = remainder[k];
+    for (int i = 0; i <= 36; ++i)
+      remainder[k - 36 + i] = (remainder[k - 36 + i] + 7 * 7 - c * g[i]) % 7;
+  }
+  EXPECT_TRUE(std::all_of(remainder.begin(), remainder.end(), [](int c) { return c == 0; }));
+}
+
+// The minimum distance is exactly 30, one above the designed 29: the least weight of the 7^7 - 1
+// nonzero codewords m(x) g(x), deg m <= 6 (the cyclic code is linear).
+TEST(RuneCode, MinimumDistanceIsExactly30) {
+  const std::array<int, 37>& g = RuneGenerator();
+  int least = kRuneSectors;
+  for (int message = 1; message < 823543; ++message) {
+    std::array<int, kRuneSectors> c{};
+    int digits = message;
+    for (int shift = 0; digits > 0; ++shift, digits /= 7) {
+      const int d = digits % 7;
+      if (d == 0) continue;
+      for (int i = 0; i < 37; ++i) c[shift + i] = (c[shift + i] + d * g[i]) % 7;
+    }
+    least =
+        std::min<int>(least, kRuneSectors - static_cast<int>(std::count(c.begin(), c.end(), 0)));
+  }
+  EXPECT_EQ(least, kRuneMinDistance);
+}
+
+// The original's list: 17000 ids in [8, 7^6), each codeword in its canonical rotation
+// (decodes to itself at rotation 0), symbols 1..7; every rotation of a codeword is the same
+// marker turned (the cyclic structure).
+TEST(RuneCode, TheCodeListHasTheOriginalsStructure) {
+  const std::vector<int>& ids = RuneIds();
+  ASSERT_EQ(ids.size(), static_cast<size_t>(kRuneIdCount));
+  EXPECT_EQ(ids.front(), 8);
+  EXPECT_LT(ids.back(), 117649);
+  EXPECT_TRUE(std::is_sorted(ids.begin(), ids.end()));
+  EXPECT_FALSE(IsRuneId(0));
+  std::mt19937 rng(2);
+  for (int k = 0; k < 300; ++k) {
+    const int id = ids[rng() % ids.size()];
+    const RuneWord& word = RuneCodeword(id);
+    for (uint8_t s : word) {
       EXPECT_GE(s, 1);
       EXPECT_LE(s, 7);
     }
-  }
-}
-
-// The documented minimum distance, over every pair of codewords and every rotation, and
-// between each codeword and its own nontrivial rotations; it is reached.
-TEST(RuneCode, MinimumDistanceOverAllRotationsIsTheDocumentedOne) {
-  int smallest = kRuneSectors;
-  for (int a = 0; a < kRuneIds; ++a) {
-    for (int b = a; b < kRuneIds; ++b) {
-      for (int r = a == b ? 1 : 0; r < kRuneSectors; ++r) {
-        smallest = std::min(smallest, Distance(RuneCodeword(a), Rotated(RuneCodeword(b), r)));
-      }
-    }
-  }
-  EXPECT_EQ(smallest, kRuneMinDistance);
-}
-
-TEST(RuneCode, MinimumDotDistanceOverAllRotationsIsTheDocumentedOne) {
-  int smallest = 3 * kRuneSectors;
-  for (int a = 0; a < kRuneIds; ++a) {
-    for (int b = a; b < kRuneIds; ++b) {
-      for (int r = a == b ? 1 : 0; r < kRuneSectors; ++r) {
-        const RuneWord rotated = Rotated(RuneCodeword(b), r);
-        int dots = 0;
-        for (int i = 0; i < kRuneSectors; ++i) {
-          dots += __builtin_popcount(RuneCodeword(a)[i] ^ rotated[i]);
-        }
-        smallest = std::min(smallest, dots);
-      }
-    }
-  }
-  EXPECT_EQ(smallest, kRuneMinDotDistance);
-}
-
-TEST(RuneCode, EveryIdDecodesAtEveryRotation) {
-  for (int id = 0; id < kRuneIds; ++id) {
-    for (int r = 0; r < kRuneSectors; ++r) {
-      const std::optional<RuneDecoded> decoded = RuneDecode(Rotated(RuneCodeword(id), r));
-      ASSERT_TRUE(decoded) << id << " " << r;
-      EXPECT_EQ(decoded->id, id);
-      EXPECT_EQ(decoded->rotation, r);
-      EXPECT_EQ(decoded->mismatches, 0);
-    }
-  }
-}
-
-// Up to the design limit 2 * errors + erasures <= kRuneMinDistance - 1, at random rotations
-// and positions (seeded).
-TEST(RuneCode, ErrorsAndErasuresUpToTheDesignLimitAreCorrected) {
-  std::mt19937 rng(2016);
-  std::vector<int> sectors(kRuneSectors);
-  for (int i = 0; i < kRuneSectors; ++i) sectors[i] = i;
-  for (int id = 0; id < kRuneIds; ++id) {
-    for (int errors = 0; 2 * errors < kRuneMinDistance; ++errors) {
-      const int erasures = kRuneMinDistance - 1 - 2 * errors;
-      const int r = static_cast<int>(rng() % kRuneSectors);
-      RuneWord read = Rotated(RuneCodeword(id), r);
-      std::shuffle(sectors.begin(), sectors.end(), rng);
-      for (int k = 0; k < erasures; ++k) read[sectors[k]] = 0;
-      for (int k = erasures; k < erasures + errors; ++k) {
-        read[sectors[k]] = static_cast<uint8_t>(read[sectors[k]] % 7 + 1);  // another symbol
-      }
-      const std::optional<RuneDecoded> decoded = RuneDecode(read);
-      ASSERT_TRUE(decoded) << id << ": " << errors << " errors, " << erasures << " erasures";
-      EXPECT_EQ(decoded->id, id);
-      EXPECT_EQ(decoded->rotation, r);
-      EXPECT_EQ(decoded->mismatches, errors);
-      EXPECT_EQ(decoded->erasures, erasures);
-    }
-  }
-}
-
-// Lost dots: up to (kRuneMinDotDistance - 1) / 2 of them, at random slots and rotations
-// (seeded); then with extra dots, each costing two lost ones.
-TEST(RuneCode, ReadsThatLostDotsDecodeUpToHalfTheDotDistance) {
-  std::mt19937 rng(43);
-  constexpr int kLimit = (kRuneMinDotDistance - 1) / 2;
-  for (int id = 0; id < kRuneIds; ++id) {
-    const int r = static_cast<int>(rng() % kRuneSectors);
-    const int extra = id % 3;  // 0, 1 or 2 dots added
-    RuneWord read = Rotated(RuneCodeword(id), r);
-    std::vector<int> printed, blank;  // slots 3 * sector + bit
-    for (int i = 0; i < kRuneSectors; ++i) {
-      for (int bit = 0; bit < 3; ++bit)
-        (read[i] & (1 << bit) ? printed : blank).push_back(3 * i + bit);
-    }
-    std::shuffle(printed.begin(), printed.end(), rng);
-    std::shuffle(blank.begin(), blank.end(), rng);
-    const int lost = kLimit - 2 * extra;
-    for (int k = 0; k < lost; ++k)
-      read[printed[k] / 3] &= static_cast<uint8_t>(~(1 << printed[k] % 3));
-    for (int k = 0; k < extra; ++k) read[blank[k] / 3] |= static_cast<uint8_t>(1 << blank[k] % 3);
-    const std::optional<RuneDecoded> decoded = RuneDecodeMissingDots(read);
-    ASSERT_TRUE(decoded) << id;
+    const int rotation = static_cast<int>(rng() % kRuneSectors);
+    const std::optional<RuneDecoded> decoded = RuneDecode(Rotated(word, rotation));
+    ASSERT_TRUE(decoded.has_value()) << id;
     EXPECT_EQ(decoded->id, id);
-    EXPECT_EQ(decoded->rotation, r);
-    EXPECT_EQ(decoded->erasures, lost);
-    EXPECT_EQ(decoded->mismatches, extra);
+    EXPECT_EQ(decoded->rotation, rotation);
+    EXPECT_EQ(decoded->mismatches + decoded->erasures, 0);
   }
-  RuneWord lost_too_many = RuneCodeword(9);
-  int lost = 0;
-  for (int i = 0; lost <= kLimit; ++i) {
-    lost += __builtin_popcount(lost_too_many[i]);
-    lost_too_many[i] = 0;
-  }
-  EXPECT_FALSE(RuneDecodeMissingDots(lost_too_many));
 }
 
-TEST(RuneCode, RandomWordsAndHalfCodewordsBeyondTheLimitDoNotDecode) {
-  std::mt19937 rng(7);
-  for (int trial = 0; trial < 2000; ++trial) {
-    RuneWord read;
-    for (uint8_t& s : read) s = static_cast<uint8_t>(1 + rng() % 7);
-    EXPECT_FALSE(RuneDecode(read)) << trial;
-    EXPECT_FALSE(RuneDecodeMissingDots(read)) << trial;
+// Any 2 × errors + erasures <= 28 is corrected, with the counts reported.
+TEST(RuneCode, CorrectsErrorsAndErasuresUpToTheBound) {
+  const std::vector<int>& ids = RuneIds();
+  std::mt19937 rng(3);
+  for (int trial = 0; trial < 400; ++trial) {
+    const int id = ids[rng() % ids.size()];
+    const int rotation = static_cast<int>(rng() % kRuneSectors);
+    const int erasures = static_cast<int>(rng() % 29);
+    const int errors = static_cast<int>(rng() % ((28 - erasures) / 2 + 1));
+    RuneWord read = Rotated(RuneCodeword(id), rotation);
+    std::vector<int> positions(kRuneSectors);
+    for (int i = 0; i < kRuneSectors; ++i) positions[i] = i;
+    std::shuffle(positions.begin(), positions.end(), rng);
+    for (int k = 0; k < erasures; ++k) read[positions[k]] = 0;
+    for (int k = erasures; k < erasures + errors; ++k) {
+      read[positions[k]] = static_cast<uint8_t>(1 + (read[positions[k]] + rng() % 6) % 7);
+    }
+    const std::optional<RuneDecoded> decoded = RuneDecode(read);
+    ASSERT_TRUE(decoded.has_value()) << "errors " << errors << " erasures " << erasures;
+    EXPECT_EQ(decoded->id, id);
+    EXPECT_EQ(decoded->rotation, rotation);
+    EXPECT_EQ(decoded->mismatches, errors);
+    EXPECT_EQ(decoded->erasures, erasures);
   }
-  RuneWord erased = RuneCodeword(5);
-  std::fill(erased.begin(), erased.begin() + kRuneMinDistance, 0);
-  EXPECT_FALSE(RuneDecode(erased));
+}
+
+TEST(RuneCode, EmptyAndConstantReadsDecodeToNoMarker) {
+  RuneWord read{};
+  EXPECT_FALSE(RuneDecode(read).has_value());
+  read.fill(7);
+  EXPECT_FALSE(RuneDecode(read).has_value());
+}
+
+TEST(RuneCode, LostDotsOfTheExpectedMarkerAreRecovered) {
+  const int id = RuneIds()[5];
+  RuneWord read = Rotated(RuneCodeword(id), 11);
+  int lost = 0;
+  for (int i = 0; i < kRuneSectors && lost < 14; i += 3) {
+    const uint8_t lowest = read[i] & static_cast<uint8_t>(-read[i]);
+    if (read[i] != lowest) {  // keep at least one dot: an empty sector is another case
+      read[i] = static_cast<uint8_t>(read[i] & ~lowest);
+      ++lost;
+    }
+  }
+  const std::optional<RuneDecoded> decoded = RuneDecodeMissingDots(read, id);
+  ASSERT_TRUE(decoded.has_value());
+  EXPECT_EQ(decoded->rotation, 11);
+  EXPECT_EQ(decoded->erasures, lost);
+  EXPECT_FALSE(RuneDecodeMissingDots(read, RuneIds()[6]).has_value());
 }
 
 }  // namespace

@@ -277,9 +277,12 @@ int Cost(int mismatches, int erasures) { return 2 * mismatches + erasures; }
 // The better of the decodings of the dots and of the swept slots (when read), or nullopt.
 std::optional<RuneDecoded> DecodeReadings(const RuneWord& dots,
                                           const std::optional<RuneWord>& slots,
+                                          int expected_id,
                                           const RingDecoderOptions& options) {
   std::optional<RuneDecoded> from_dots = RuneDecode(dots);
-  if (!from_dots && options.decode_missing_dots) from_dots = RuneDecodeMissingDots(dots);
+  if (!from_dots && options.decode_missing_dots) {
+    from_dots = RuneDecodeMissingDots(dots, expected_id);
+  }
   const std::optional<RuneDecoded> from_slots = slots ? RuneDecode(*slots) : std::nullopt;
   if (!from_dots) return from_slots;
   if (!from_slots) return from_dots;
@@ -295,6 +298,7 @@ std::optional<RingMatch> MatchRings(const std::vector<ImagedDot>& dots,
                                     const DotImage& image,
                                     const Camera& camera,
                                     uint64_t seed,
+                                    int expected_id,
                                     const RingDecoderOptions& options) {
   const Eigen::Matrix3d K = camera.K();
   std::vector<Eigen::Vector3d> rays;
@@ -324,6 +328,7 @@ std::optional<RingMatch> MatchRings(const std::vector<ImagedDot>& dots,
                 ? std::optional(
                       ReadSlots(image, camera, *ring_plane, found_ring, reading->phase, options))
                 : std::nullopt,
+            expected_id,
             options);
         if (!decoded) continue;
         const int cost = Cost(decoded->mismatches, decoded->erasures);

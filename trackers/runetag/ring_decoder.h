@@ -65,11 +65,13 @@ struct RingMatch {
   std::vector<std::pair<int, int>> dot_slots;
 };
 
-// The best-decoding ring hypothesis, or nullopt. seed makes RANSAC deterministic.
+// The best-decoding ring hypothesis, or nullopt. seed makes RANSAC deterministic;
+// expected_id is the marker that decode_missing_dots may confirm.
 std::optional<RingMatch> MatchRings(const std::vector<ImagedDot>& dots,
                                     const DotImage& image,
                                     const Camera& camera,
                                     uint64_t seed,
+                                    int expected_id,
                                     const RingDecoderOptions& options);
 
 }  // namespace markerbench

@@ -29,8 +29,12 @@ TrackResult RuneTagTracker::Track(const Observation& obs) {
                                           : DetectDots(image, options_.dots);
   diagnostics_.dots = static_cast<int>(dots.size());
   TrackResult result;
-  const std::optional<RingMatch> match = MatchRings(
-      dots, image, *obs.camera, static_cast<uint64_t>(options_.ransac_seed), options_.rings);
+  const std::optional<RingMatch> match = MatchRings(dots,
+                                                    image,
+                                                    *obs.camera,
+                                                    static_cast<uint64_t>(options_.ransac_seed),
+                                                    marker.id,
+                                                    options_.rings);
   if (!match) return result;  // not_detected
   diagnostics_.ring_dots = match->ring_dots;
   diagnostics_.matched = static_cast<int>(match->dot_slots.size());
