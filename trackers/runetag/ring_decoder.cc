@@ -339,6 +339,11 @@ std::optional<RingMatch> MatchRings(const std::vector<ImagedDot>& dots,
         match.erasures = decoded->erasures;
         match.ring_dots = static_cast<int>(ring.size());
         const RuneWord& codeword = RuneCodeword(decoded->id);
+        // Whether ring r of the codeword's sector was read otherwise (a dot lost or added).
+        const auto read_wrong = [&](int sector, int r) {
+          const int read_sector = (sector - decoded->rotation + kRuneSectors) % kRuneSectors;
+          return ((reading->read[read_sector] ^ codeword[sector]) & (4 >> r)) != 0;
+        };
         for (size_t i = 0; i < plane.size(); ++i) {
           if (reading->sector_of[i] < 0) continue;
           const int sector = (reading->sector_of[i] + decoded->rotation) % kRuneSectors;
@@ -348,8 +353,12 @@ std::optional<RingMatch> MatchRings(const std::vector<ImagedDot>& dots,
           const double dot_radius = kRuneRingFractions[r] / kRuneDotRadiusRatio / found_ring;
           const double semi_major_px =
               K(0, 0) * dot_radius / ring_plane->ToCamera(plane[i] / found_ring).z();
-          if ((codeword[sector] & (4 >> r)) &&
-              dots[i].semi_major_px <= options.max_dot_growth * semi_major_px) {
+          const bool grown = options.max_dot_growth > 0.0 &&
+                             dots[i].semi_major_px > options.max_dot_growth * semi_major_px;
+          const bool next_to_error = options.exclude_next_to_errors &&
+                                     (read_wrong((sector + 1) % kRuneSectors, r) ||
+                                      read_wrong((sector + kRuneSectors - 1) % kRuneSectors, r));
+          if ((codeword[sector] & (4 >> r)) && !grown && !next_to_error) {
             match.dot_slots.emplace_back(static_cast<int>(i), 3 * sector + r);
           }
         }

@@ -52,7 +52,10 @@ struct RingDecoderOptions {
   double slot_margin = 0.1;
   // A dot whose semi-major axis exceeds its slot's imaged dot's by this factor is merged
   // with a neighbour (the threshold bridged their gap) and is not matched for the pose.
-  double max_dot_growth = 1.5;
+  double max_dot_growth = 0.0;  // 0: off (the original); runetag-improved: 1.5
+  // The original's findPose drops a dot whose neighbour on its ring, one sector either side,
+  // was read otherwise than the codeword (a merged blob there is likely off-centre).
+  bool exclude_next_to_errors = true;
 };
 
 struct RingMatch {

@@ -112,6 +112,7 @@ std::vector<std::pair<std::string, std::string>> RuneTagTracker::Parameters() co
           {"slot_contrast_per_noise", NumberText(o.rings.slot_contrast_per_noise)},
           {"slot_margin", NumberText(o.rings.slot_margin)},
           {"max_dot_growth", NumberText(o.rings.max_dot_growth)},
+          {"exclude_next_to_errors", BoolText(o.rings.exclude_next_to_errors)},
           {"read_slot_levels", BoolText(o.rings.read_slot_levels)},
           {"decode_missing_dots", BoolText(o.rings.decode_missing_dots)},
           {"max_ransac_iterations", NumberText(o.rings.max_ransac_iterations)},
@@ -161,8 +162,8 @@ bool RuneTagOptions::IsValid(std::string* error) const {
         << " and slot_contrast_per_noise must be >= 0";
   } else if (!(rings.slot_margin >= 0.0 && rings.slot_margin < 0.5)) {
     msg << "slot_margin=" << rings.slot_margin << " must be in [0, 0.5)";
-  } else if (!(rings.max_dot_growth >= 1.0)) {
-    msg << "max_dot_growth=" << rings.max_dot_growth << " must be >= 1";
+  } else if (!(rings.max_dot_growth >= 1.0 || rings.max_dot_growth == 0.0)) {
+    msg << "max_dot_growth=" << rings.max_dot_growth << " must be >= 1, or 0 (off)";
   } else if (rings.max_ransac_iterations < 1 || pose.ransac_iterations < 1 ||
              pose.refinement_passes < 0 || !(pose.ransac_reprojection_px > 0.0)) {
     msg << "max_ransac_iterations=" << rings.max_ransac_iterations
@@ -183,6 +184,8 @@ RuneTagOptions RuneTagOptions::Improved() {
   o.rings.decode_missing_dots = true;
   o.rings.radius_tolerance = 0.04;
   o.rings.angle_tolerance = 0.3;
+  o.rings.max_dot_growth = 1.5;
+  o.rings.exclude_next_to_errors = false;
   o.pose.ransac = true;
   o.pose.refinement_passes = 5;
   return o;
@@ -227,6 +230,8 @@ RuneTagOptions RuneTagOptions::FromYaml(const YamlMap& map, const RuneTagOptions
       map.GetOr<double>("slot_contrast_per_noise", o.rings.slot_contrast_per_noise);
   o.rings.slot_margin = map.GetOr<double>("slot_margin", o.rings.slot_margin);
   o.rings.max_dot_growth = map.GetOr<double>("max_dot_growth", o.rings.max_dot_growth);
+  o.rings.exclude_next_to_errors =
+      map.GetOr<bool>("exclude_next_to_errors", o.rings.exclude_next_to_errors);
   o.rings.read_slot_levels = map.GetOr<bool>("read_slot_levels", o.rings.read_slot_levels);
   o.rings.decode_missing_dots = map.GetOr<bool>("decode_missing_dots", o.rings.decode_missing_dots);
   o.rings.max_ransac_iterations =
