@@ -64,8 +64,9 @@ struct ArtkPlusOptions {
   // Flat keys: threshold_mode (auto, fixed), threshold, auto_threshold_retries,
   // auto_threshold_seed, retry_only_without_squares, min_area_px, max_area_px, side_trim,
   // subpixel_edges, truncated_samples, pattern_samples, bits_at_threshold,
-  // max_corrected_bits, min_confidence, pose (rpp, classic), each defaulting to `base`'s
-  // (the original's in the one-argument form). Throws ConfigError naming the file and key.
+  // max_corrected_bits, min_code_contrast, min_confidence, pose (rpp, classic), each
+  // defaulting to `base`'s (the original's in the one-argument form). Throws ConfigError
+  // naming the file and key.
   static ArtkPlusOptions FromYaml(const YamlMap& map, const ArtkPlusOptions& base);
   static ArtkPlusOptions FromYaml(const YamlMap& map) { return FromYaml(map, ArtkPlusOptions()); }
 };
