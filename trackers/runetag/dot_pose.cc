@@ -25,13 +25,14 @@ Rigid3 PoseFromVectors(const cv::Mat& rvec, const cv::Mat& tvec) {
   return pose;
 }
 
-// RANSAC: IPPE on 4 random correspondences, scored by the reprojection inliers; then IPPE
-// and LM on the inliers, which are narrowed to 3 robust sigmas of that fit for a last LM.
+// A pose (OpenCV vectors) and the correspondences it was fitted to.
 struct PnpFit {
   cv::Mat rvec, tvec;
   std::vector<int> inliers;
 };
 
+// RANSAC: IPPE on 4 random correspondences, scored by the reprojection inliers; then IPPE
+// and LM on the inliers, which are narrowed to 3 robust sigmas of that fit for a last LM.
 std::optional<PnpFit> RansacIppePose(const std::vector<cv::Point3d>& object,
                                      const std::vector<cv::Point2d>& measured,
                                      const cv::Mat& K_cv,
