@@ -127,34 +127,40 @@ Polynomial Multiply(const Polynomial& a, const Polynomial& b, size_t max_terms) 
   return product;
 }
 
+// S_j = c(w^(8 + j)), j < 28, of a word of symbol values (erased ones, -1, count as 0): all
+// zero exactly for a codeword.
+Polynomial Syndromes(const Values& c) {
+  const Gf76& f = Gf76::Get();
+  Polynomial syndromes(kZeros, 0);
+  for (int j = 0; j < kZeros; ++j) {
+    for (int i = 0; i < kRuneSectors; ++i) {
+      if (c[i] <= 0) continue;
+      syndromes[j] = Gf76::Add(
+          syndromes[j], f.Multiply(static_cast<Element>(c[i]), f.Power(kW, i * (kFirstZero + j))));
+    }
+  }
+  return syndromes;
+}
+
+bool AllZero(const Polynomial& p) {
+  return std::all_of(p.begin(), p.end(), [](Element e) { return e == 0; });
+}
+
 // The codeword nearest to `received` within 2 × errors + erasures ≤ kZeros, or nullopt.
 std::optional<Values> Correct(const Values& received) {
   const Gf76& f = Gf76::Get();
-  std::vector<int> erased;
+  int erasures = 0;
   Polynomial erasure_locator = {1};  // Γ(x) = Π (1 - X_l x), X_l = w^l
   for (int i = 0; i < kRuneSectors; ++i) {
     if (received[i] >= 0) continue;
-    erased.push_back(i);
+    ++erasures;
     erasure_locator = Multiply(erasure_locator, {1, Gf76::Negate(f.Power(kW, i))}, 64);
   }
-  const int erasures = static_cast<int>(erased.size());
   if (erasures > kZeros) return std::nullopt;
-  Polynomial syndromes(kZeros, 0);  // S_j = r(w^(8 + j))
-  bool clean = true;
-  for (int j = 0; j < kZeros; ++j) {
-    Element s = 0;
-    for (int i = 0; i < kRuneSectors; ++i) {
-      if (received[i] > 0) {
-        s = Gf76::Add(
-            s, f.Multiply(static_cast<Element>(received[i]), f.Power(kW, i * (kFirstZero + j))));
-      }
-    }
-    syndromes[j] = s;
-    clean = clean && s == 0;
-  }
+  const Polynomial syndromes = Syndromes(received);
   Values corrected = received;
   for (int& v : corrected) v = std::max(v, 0);
-  if (clean && erasures == 0) return corrected;
+  if (erasures == 0 && AllZero(syndromes)) return corrected;
   // Berlekamp-Massey on the erasure-modified (Forney) syndromes T_j, j >= erasures.
   const Polynomial modified = Multiply(syndromes, erasure_locator, kZeros);
   Polynomial locator = {1}, previous = {1};
@@ -215,14 +221,7 @@ std::optional<Values> Correct(const Values& received) {
           std::find_if(both.rbegin(), both.rend(), [](Element e) { return e != 0; }) -
           both.rbegin());
   if (roots != static_cast<int>(degree)) return std::nullopt;
-  for (int j = 0; j < kZeros; ++j) {  // the result must be a codeword
-    Element s = 0;
-    for (int i = 0; i < kRuneSectors; ++i) {
-      s = Gf76::Add(
-          s, f.Multiply(static_cast<Element>(corrected[i]), f.Power(kW, i * (kFirstZero + j))));
-    }
-    if (s != 0) return std::nullopt;
-  }
+  if (!AllZero(Syndromes(corrected))) return std::nullopt;  // the result must be a codeword
   return corrected;
 }
 
