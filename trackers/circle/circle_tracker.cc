@@ -25,6 +25,28 @@ cv::Rect2d EllipseBox(const Eigen::Matrix3d& C) {
   return {e.center.x() - hw, e.center.y() - hh, 2 * hw, 2 * hh};
 }
 
+// Whether the detection is the predicted image of the marker: each ellipse's centre within
+// `max_error` of its predicted semi-minor axis and each semi-axis within that fraction, and
+// a detected feature point m1 within that fraction of circle 0's predicted semi-minor axis
+// (for c and d, whose circles alone do not fix the roll).
+bool MatchPrediction(const CircleDiagnostics& detected,
+                     const std::vector<Eigen::Matrix3d>& predicted_conics_px,
+                     const Eigen::Vector2d& predicted_m1_px,
+                     double max_error) {
+  if (detected.conics_px.size() != predicted_conics_px.size()) return false;
+  for (size_t i = 0; i < predicted_conics_px.size(); ++i) {
+    const Ellipse d = EllipseFromConic(detected.conics_px[i]);
+    const Ellipse p = EllipseFromConic(predicted_conics_px[i]);
+    if (!((d.center - p.center).norm() <= max_error * p.semi_minor &&
+          std::abs(d.semi_major / p.semi_major - 1.0) <= max_error &&
+          std::abs(d.semi_minor / p.semi_minor - 1.0) <= max_error)) {
+      return false;
+    }
+  }
+  return !detected.m1_px || (*detected.m1_px - predicted_m1_px).norm() <=
+                                max_error * EllipseFromConic(predicted_conics_px[0]).semi_minor;
+}
+
 }  // namespace
 
 bool CircleTrackerOptions::IsValid(std::string* error) const {
@@ -32,6 +54,8 @@ bool CircleTrackerOptions::IsValid(std::string* error) const {
   std::ostringstream msg;
   if (!(roi_margin >= 0.0)) {
     msg << "roi_margin=" << roi_margin << " must be >= 0";
+  } else if (!(max_prediction_error > 0.0)) {
+    msg << "max_prediction_error=" << max_prediction_error << " must be > 0";
   } else if (!(max_edge_rms_px > 0.0)) {
     msg << "max_edge_rms_px=" << max_edge_rms_px << " must be > 0";
   } else {
@@ -66,6 +90,7 @@ CircleTrackerOptions CircleTrackerOptions::FromYaml(const YamlMap& map) {
   o.refine = map.GetOr<bool>("refine", o.refine);
   o.tracking = map.GetOr<bool>("tracking", o.tracking);
   o.roi_margin = map.GetOr<double>("roi_margin", o.roi_margin);
+  o.max_prediction_error = map.GetOr<double>("max_prediction_error", o.max_prediction_error);
   o.max_edge_rms_px = map.GetOr<double>("max_edge_rms_px", o.max_edge_rms_px);
   o.detector.min_contrast = map.GetOr<double>("min_contrast", o.detector.min_contrast);
   o.detector.edge_passes = map.GetOr<int>("edge_passes", o.detector.edge_passes);
@@ -92,6 +117,7 @@ std::vector<std::pair<std::string, std::string>> CircleTracker::Parameters() con
       {"refine", BoolText(o.refine)},
       {"tracking", BoolText(o.tracking)},
       {"roi_margin", NumberText(o.roi_margin)},
+      {"max_prediction_error", NumberText(o.max_prediction_error)},
       {"max_edge_rms_px", NumberText(o.max_edge_rms_px)},
       {"min_contrast", NumberText(o.detector.min_contrast)},
       {"edge_passes", std::to_string(o.detector.edge_passes)},
@@ -120,8 +146,8 @@ TrackResult CircleTracker::Track(const Observation& observation) {
       const cv::Rect2d b = EllipseBox(predicted.back());
       box = i == 0 ? b : (box | b);
     }
-    const Eigen::Vector3d m1 = H * Eigen::Vector3d(geometry->Lx, 0.0, 1.0);
-    box |= cv::Rect2d(m1.x() / m1.z(), m1.y() / m1.z(), 1.0, 1.0);
+    const Eigen::Vector2d m1 = (H * Eigen::Vector3d(geometry->Lx, 0.0, 1.0)).hnormalized();
+    box |= cv::Rect2d(m1.x(), m1.y(), 1.0, 1.0);
     const double grow = options_.roi_margin * std::max(box.width, box.height) + 10.0;
     const cv::Rect region(cv::Point(static_cast<int>(std::floor(box.x - grow)),
                                     static_cast<int>(std::floor(box.y - grow))),
@@ -129,12 +155,18 @@ TrackResult CircleTracker::Track(const Observation& observation) {
                                     static_cast<int>(std::ceil(box.y + box.height + grow))));
     const cv::Rect clipped = region & whole;
     if (clipped.area() > 0) {
-      // The predicted ellipses first, then a search of the region, then the whole image.
+      // The predicted ellipses first, then a search of the region, then the whole image. A
+      // result counts only where its ellipses are the predicted ones: otherwise the previous
+      // pose says nothing about this frame (a cut, a jump, unrelated images), and the frame
+      // gets exactly the full detection a first frame gets, never a lock on the old pose.
       const std::vector<Eigen::Matrix3d>* const predictions[] = {&predicted, nullptr};
       for (const std::vector<Eigen::Matrix3d>* prediction : predictions) {
         TrackResult result = TrackIn(observation, *geometry, clipped, prediction, &previous);
         diagnostics_.used_tracking_region = true;
-        if (result.status == TrackStatus::kOk) return result;
+        if (result.status == TrackStatus::kOk &&
+            MatchPrediction(diagnostics_, predicted, m1, options_.max_prediction_error)) {
+          return result;
+        }
       }
     }
   }
@@ -198,6 +230,7 @@ TrackResult CircleTracker::TrackIn(const Observation& observation,
   if (detection->m1_px)
     measurements.m1_px =
         camera.HasDistortion() ? Undistorted(camera, *detection->m1_px) : *detection->m1_px;
+  diagnostics_.m1_px = measurements.m1_px;
 
   // Point terms (erratum 7): m0 where it is a detected dot, m1 where no circle gives it.
   if (measurements.m0_px && geometry.layout == CircleLayout::kCircleWithCenter) {

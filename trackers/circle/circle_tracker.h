@@ -2,7 +2,8 @@
 // PnP", as corrected in circle-method.md. Per frame: detect and fit the marker's ellipses
 // (CircleDetector), l_inf and the analytic pose (SolveAnalytic), then Ceres LM (RefinePose).
 // In tracking mode (the paper's step 5) the previous pose predicts the ellipses and only a
-// region around them is searched; a miss there falls back to the whole image.
+// region around them is searched; a miss there, or ellipses that are not the predicted ones,
+// fall back to full detection of the whole image.
 #pragma once
 
 #include <memory>
@@ -23,15 +24,18 @@ struct CircleTrackerOptions {
   CircleDetectorOptions detector;
   AnalyticOptions analytic;
   RefinementOptions refinement;
-  bool refine = true;            // run the LM refinement (§6); off = analytic pose only
-  bool tracking = true;          // search around the previous pose first (paper step 5)
-  double roi_margin = 0.25;      // tracking region: predicted box grown by this fraction
+  bool refine = true;        // run the LM refinement (§6); off = analytic pose only
+  bool tracking = true;      // search around the previous pose first (paper step 5)
+  double roi_margin = 0.25;  // tracking region: predicted box grown by this fraction
+  // A tracking-mode result stands only if each ellipse is within this fraction of its
+  // prediction (centre shift per semi-minor axis, and each semi-axis); else full detection.
+  double max_prediction_error = 0.5;
   double max_edge_rms_px = 2.0;  // accept a pose only if its edge residual RMS is below
 
   bool IsValid(std::string* error) const;
   // Reads flat keys (cost, huber_px, point_weight, max_iterations, k_normal, depth, refine,
-  // tracking, roi_margin, max_edge_rms_px, min_contrast, edge_passes, max_rays); throws
-  // ConfigError naming the file and key.
+  // tracking, roi_margin, max_prediction_error, max_edge_rms_px, min_contrast, edge_passes,
+  // max_rays); throws ConfigError naming the file and key.
   static CircleTrackerOptions FromYaml(const YamlMap& map);
 };
 
@@ -40,6 +44,7 @@ struct CircleDiagnostics {
   bool used_tracking_region = false;
   std::vector<Eigen::Matrix3d> conics_px;           // fitted, canonical
   std::vector<std::vector<Eigen::Vector2d>> edges;  // per circle, bias-corrected
+  std::optional<Eigen::Vector2d> m1_px;             // detected feature point (b, c, d), undistorted
   double blur_sigma_px = 0.0;                       // fitted edge σ (blur + pre-smoothing)
   double noise_sigma = 0.0;                         // estimated image noise σ, 0-1 units
   Eigen::Vector3d l_inf_norm = Eigen::Vector3d::Zero();
