@@ -1,6 +1,8 @@
 #include "core/marker_spec.h"
 
+#include <algorithm>
 #include <array>
+#include <limits>
 #include <utility>
 
 namespace markerbench {
@@ -87,6 +89,19 @@ Eigen::AlignedBox2d MarkerSpec::InkBounds() const {
     }
   }
   return box;
+}
+
+PaintSample MarkerSpec::ColorAt(const Eigen::Vector2d& p) const {
+  PaintSample printed{background, std::numeric_limits<double>::infinity(), -1};
+  for (size_t i = 0; i < layers.size(); ++i) {
+    const PaintSample sample = PaintAt(layers[i], p);
+    if (sample.color) {
+      printed.color = sample.color;
+      printed.layer = static_cast<int>(i);
+    }
+    printed.clearance_m = std::min(printed.clearance_m, sample.clearance_m);
+  }
+  return printed;
 }
 
 bool MarkerSpec::HasColor() const {

@@ -71,6 +71,9 @@ struct MarkerSpec {
   // Bounds of everything inked, without the quiet zone (paper-coloured grid cells and the
   // background do not count). Used for equal-area scaling (experiments.md).
   Eigen::AlignedBox2d InkBounds() const;
+  // The printed colour at a marker-plane point (the top-most layer painting it, and its index,
+  // else the background) and a lower bound on its distance to every layer's colour edges.
+  PaintSample ColorAt(const Eigen::Vector2d& p) const;
   // True when any colour has chroma, so the marker is best rendered in RGB.
   bool HasColor() const;
 };

@@ -1,6 +1,9 @@
 #include "core/shapes.h"
 
+#include <algorithm>
+#include <array>
 #include <cmath>
+#include <limits>
 
 namespace markerbench {
 namespace {
@@ -19,7 +22,60 @@ DiskShape ArcCircle(const Eigen::Vector2d& mid,
   return {mid + normal * (sagitta - radius), radius};
 }
 
+// Signed distance to a circle's edge, negative inside.
+double CircleDistance(const DiskShape& disk, const Eigen::Vector2d& p) {
+  return (p - disk.center).norm() - disk.radius;
+}
+
+// The part of a grid's box or cell under p: whether p is inside, and its distance to the box's
+// or cell's edges (cells of one colour side by side still count their shared edge).
+PaintSample GridPaint(const GridShape& grid, const Rgb& ink, const Eigen::Vector2d& p) {
+  const double x = (p.x() - grid.top_left.x()) / grid.cell_m;
+  const double y = (grid.top_left.y() - p.y()) / grid.cell_m;
+  PaintSample sample;
+  if (x < 0.0 || y < 0.0 || x >= grid.cols || y >= grid.rows) {
+    const double dx = std::max({-x, x - grid.cols, 0.0});
+    const double dy = std::max({-y, y - grid.rows, 0.0});
+    sample.clearance_m = std::hypot(dx, dy) * grid.cell_m;
+    return sample;
+  }
+  const int col = static_cast<int>(x), row = static_cast<int>(y);
+  sample.color = grid.Ink(row, col) ? ink : grid.paper_color;
+  sample.clearance_m = std::min({x - col, col + 1 - x, y - row, row + 1 - y}) * grid.cell_m;
+  return sample;
+}
+
 }  // namespace
+
+PaintSample PaintAt(const PaintedShape& painted, const Eigen::Vector2d& p) {
+  // Each shape as signed distances to its bounding circles and lines (inside: all negative).
+  std::array<double, 3> distances;
+  size_t count = 0;
+  if (const auto* disk = std::get_if<DiskShape>(&painted.shape)) {
+    distances[count++] = CircleDistance(*disk, p);
+  } else if (const auto* crescent = std::get_if<CrescentShape>(&painted.shape)) {
+    distances[count++] = CircleDistance(crescent->outer, p);
+    distances[count++] = -CircleDistance(crescent->inner, p);
+  } else if (const auto* sector = std::get_if<SectorShape>(&painted.shape)) {
+    // Left of the start ray's line and right of the end ray's (span <= π).
+    const Eigen::Vector2d d = p - sector->center;
+    auto cross = [&d](double angle) { return std::cos(angle) * d.y() - std::sin(angle) * d.x(); };
+    distances[count++] = CircleDistance({sector->center, sector->radius}, p);
+    distances[count++] = -cross(sector->start_rad);
+    distances[count++] = cross(sector->end_rad);
+  } else {
+    return GridPaint(std::get<GridShape>(painted.shape), painted.color, p);
+  }
+  PaintSample sample;
+  bool inside = true;
+  sample.clearance_m = std::numeric_limits<double>::infinity();
+  for (size_t i = 0; i < count; ++i) {
+    inside &= distances[i] < 0.0;
+    sample.clearance_m = std::min(sample.clearance_m, std::abs(distances[i]));
+  }
+  if (inside) sample.color = painted.color;
+  return sample;
+}
 
 Eigen::AlignedBox2d ShapeBounds(const Shape& shape) {
   struct Visitor {

@@ -6,6 +6,7 @@
 #include <Eigen/Core>
 #include <Eigen/Geometry>
 #include <cstdint>
+#include <optional>
 #include <variant>
 #include <vector>
 
@@ -53,6 +54,20 @@ struct PaintedShape {
   Shape shape;
   Rgb color = Rgb::Zero();
 };
+
+// Rec. 601 luma: how a grey camera (and the grey renderer) sees a colour.
+inline double Luma(const Rgb& c) { return 0.299 * c.x() + 0.587 * c.y() + 0.114 * c.z(); }
+
+// What a painted layer puts at a marker-plane point: its colour, or nullopt where it leaves
+// the layers below visible, and a lower bound on the point's distance to the layer's colour
+// edges (exact for disks and grids' cells; for crescents and sectors the smallest distance to
+// the circles and lines that bound them).
+struct PaintSample {
+  std::optional<Rgb> color;
+  double clearance_m = 0.0;
+  int layer = -1;  // MarkerSpec::ColorAt: the top-most layer painting the point; -1 none
+};
+PaintSample PaintAt(const PaintedShape& painted, const Eigen::Vector2d& p);
 
 // Axis-aligned bounds of a shape in the marker plane.
 Eigen::AlignedBox2d ShapeBounds(const Shape& shape);

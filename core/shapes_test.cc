@@ -2,6 +2,8 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
+
 namespace markerbench {
 namespace {
 
@@ -32,6 +34,67 @@ TEST(Shapes, CrescentArcsPassThroughTheTipsWithTheirSagittas) {
   const Eigen::Vector2d left = Eigen::Vector2d(1.0, -1.0).normalized();
   EXPECT_NEAR((mid + 0.012 * left - c.outer.center).norm(), c.outer.radius, kTol);
   EXPECT_NEAR((mid + 0.005 * left - c.inner.center).norm(), c.inner.radius, kTol);
+}
+
+// PaintAt: inside tests from each shape's own definition, and the clearance as a promise: the
+// colour is the same everywhere within it (checked on a circle just inside it), and a disk's
+// is its exact distance to the edge.
+TEST(Shapes, PaintAtKnowsInsideAndKeepsItsColourWithinTheClearance) {
+  GridShape grid;
+  grid.rows = 2;
+  grid.cols = 3;
+  grid.cell_m = 0.02;
+  grid.top_left = Eigen::Vector2d(-0.03, 0.02);
+  grid.ink = {1, 0, 1, 0, 1, 1};
+  grid.paper_color = Rgb::Constant(0.9);
+  const Rgb ink(0.1, 0.2, 0.3);
+  const std::vector<PaintedShape> shapes = {
+      {DiskShape{{0.01, -0.01}, 0.03}, ink},
+      {CrescentFromTips({0.03, 0.0}, {0.0, -0.03}, 0.012, 0.005), ink},
+      {SectorShape{{0.0, 0.01}, 0.04, 0.3, 0.3 + 2.0}, ink},
+      {grid, ink}};
+  auto inside_by_definition = [&](size_t k, const Eigen::Vector2d& p) -> std::optional<Rgb> {
+    if (k == 0)
+      return (p - Eigen::Vector2d(0.01, -0.01)).norm() < 0.03 ? std::optional(ink) : std::nullopt;
+    if (k == 1) {
+      const auto& c = std::get<CrescentShape>(shapes[1].shape);
+      const bool in = (p - c.outer.center).norm() < c.outer.radius &&
+                      (p - c.inner.center).norm() > c.inner.radius;
+      return in ? std::optional(ink) : std::nullopt;
+    }
+    if (k == 2) {
+      const Eigen::Vector2d d = p - Eigen::Vector2d(0.0, 0.01);
+      double angle = std::atan2(d.y(), d.x()) - 0.3;
+      while (angle < 0.0) angle += 2.0 * M_PI;
+      return d.norm() < 0.04 && angle < 2.0 ? std::optional(ink) : std::nullopt;
+    }
+    const int col = static_cast<int>(std::floor((p.x() + 0.03) / 0.02));
+    const int row = static_cast<int>(std::floor((0.02 - p.y()) / 0.02));
+    if (col < 0 || row < 0 || col >= 3 || row >= 2) return std::nullopt;
+    return grid.Ink(row, col) ? ink : grid.paper_color;
+  };
+  uint64_t state = 12345;
+  auto uniform = [&state] {
+    state = state * 6364136223846793005ull + 1442695040888963407ull;
+    return static_cast<double>(state >> 11) * 0x1.0p-53;
+  };
+  for (size_t k = 0; k < shapes.size(); ++k) {
+    for (int i = 0; i < 2000; ++i) {
+      const Eigen::Vector2d p(0.1 * uniform() - 0.05, 0.1 * uniform() - 0.05);
+      const PaintSample sample = PaintAt(shapes[k], p);
+      ASSERT_EQ(sample.color, inside_by_definition(k, p)) << k << " " << p.transpose();
+      for (int j = 0; j < 16; ++j) {
+        const double a = j * M_PI / 8.0;
+        const Eigen::Vector2d q =
+            p + 0.999 * sample.clearance_m * Eigen::Vector2d(std::cos(a), std::sin(a));
+        ASSERT_EQ(inside_by_definition(k, q), sample.color) << k << " " << p.transpose();
+      }
+      if (k == 0) {
+        EXPECT_NEAR(
+            sample.clearance_m, std::abs((p - Eigen::Vector2d(0.01, -0.01)).norm() - 0.03), kTol);
+      }
+    }
+  }
 }
 
 }  // namespace

@@ -209,7 +209,7 @@ class EdgeWalker {
   // Colour on the plus side minus the other, per channel (Rec. 601 luma for grey).
   std::array<double, 3> Jump(const Sides& sides) const {
     const Rgb jump = SceneColor(sides.plus) - SceneColor(sides.minus);
-    if (channels_ == 1) return {0.299 * jump.x() + 0.587 * jump.y() + 0.114 * jump.z(), 0.0, 0.0};
+    if (channels_ == 1) return {Luma(jump), 0.0, 0.0};
     return {jump.x(), jump.y(), jump.z()};
   }
   static bool IsZero(const std::array<double, 3>& jump) {

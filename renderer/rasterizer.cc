@@ -28,7 +28,7 @@ struct Color {
 Color ToColor(const Rgb& rgb, int channels) {
   Color c;
   if (channels == 1) {
-    c.v[0] = static_cast<float>(0.299 * rgb.x() + 0.587 * rgb.y() + 0.114 * rgb.z());
+    c.v[0] = static_cast<float>(Luma(rgb));
   } else {
     for (int i = 0; i < 3; ++i) c.v[i] = static_cast<float>(rgb[i]);
   }

@@ -147,8 +147,6 @@ void ToFullResolution(int scale, Candidate* c) {
   }
 }
 
-double Luma(const Rgb& c) { return 0.299 * c.x() + 0.587 * c.y() + 0.114 * c.z(); }
-
 // Pixels per metre near a candidate, from its minor axis (the smaller, conservative scale).
 double PixelsPerMetre(const Ellipse& e, double radius_m) { return e.semi_minor / radius_m; }
 
@@ -521,6 +519,7 @@ std::optional<MarkerDetection> CircleDetector::Detect(
     for (Eigen::Vector2d& p : circle.edges.points_px) p += patch_offset;
     detection.circles.push_back(std::move(circle));
   }
+
   return detection;
 }
 
