@@ -519,7 +519,6 @@ std::optional<MarkerDetection> CircleDetector::Detect(
     for (Eigen::Vector2d& p : circle.edges.points_px) p += patch_offset;
     detection.circles.push_back(std::move(circle));
   }
-
   return detection;
 }
 

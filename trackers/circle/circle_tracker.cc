@@ -7,6 +7,7 @@
 #include "core/number_text.h"
 #include "core/yaml_reader.h"
 #include "trackers/circle/conic.h"
+#include "trackers/printed_appearance.h"
 
 namespace markerbench {
 namespace {
@@ -58,6 +59,8 @@ bool CircleTrackerOptions::IsValid(std::string* error) const {
     msg << "max_prediction_error=" << max_prediction_error << " must be > 0";
   } else if (!(max_edge_rms_px > 0.0)) {
     msg << "max_edge_rms_px=" << max_edge_rms_px << " must be > 0";
+  } else if (!(appearance.max_misfit > 0.0)) {
+    msg << "max_appearance_misfit=" << appearance.max_misfit << " must be > 0";
   } else {
     return true;
   }
@@ -92,6 +95,7 @@ CircleTrackerOptions CircleTrackerOptions::FromYaml(const YamlMap& map) {
   o.roi_margin = map.GetOr<double>("roi_margin", o.roi_margin);
   o.max_prediction_error = map.GetOr<double>("max_prediction_error", o.max_prediction_error);
   o.max_edge_rms_px = map.GetOr<double>("max_edge_rms_px", o.max_edge_rms_px);
+  o.appearance.max_misfit = map.GetOr<double>("max_appearance_misfit", o.appearance.max_misfit);
   o.detector.min_contrast = map.GetOr<double>("min_contrast", o.detector.min_contrast);
   o.detector.edge_passes = map.GetOr<int>("edge_passes", o.detector.edge_passes);
   o.detector.edges.max_rays = map.GetOr<int>("max_rays", o.detector.edges.max_rays);
@@ -119,6 +123,7 @@ std::vector<std::pair<std::string, std::string>> CircleTracker::Parameters() con
       {"roi_margin", NumberText(o.roi_margin)},
       {"max_prediction_error", NumberText(o.max_prediction_error)},
       {"max_edge_rms_px", NumberText(o.max_edge_rms_px)},
+      {"max_appearance_misfit", NumberText(o.appearance.max_misfit)},
       {"min_contrast", NumberText(o.detector.min_contrast)},
       {"edge_passes", std::to_string(o.detector.edge_passes)},
       {"max_rays", std::to_string(o.detector.edges.max_rays)},
@@ -224,6 +229,9 @@ TrackResult CircleTracker::TrackIn(const Observation& observation,
     rc.conic_px = circle.conic_px;
     problem.circles.push_back(std::move(rc));
   }
+  // The fitted σ includes the detector's smoothing; the image's own is what remains.
+  diagnostics_.image_blur_sigma_px = std::sqrt(std::max(
+      0.1, std::pow(diagnostics_.blur_sigma_px, 2) - std::pow(detection->smoothing_sigma_px, 2)));
   if (detection->m0_px)
     measurements.m0_px =
         camera.HasDistortion() ? Undistorted(camera, *detection->m0_px) : *detection->m0_px;
@@ -304,6 +312,21 @@ TrackResult CircleTracker::TrackIn(const Observation& observation,
     result.status = TrackStatus::kNotDetected;
     result.message = "ellipses rejected: edge residual " + NumberText(diagnostics_.edge_rms_px) +
                      " px > max_edge_rms_px";
+    return result;
+  }
+
+  const AppearanceFit appearance = CheckPrintedAppearance(*observation.image,
+                                                          camera,
+                                                          *observation.marker,
+                                                          cam_from_marker,
+                                                          diagnostics_.image_blur_sigma_px,
+                                                          options_.appearance);
+  diagnostics_.appearance_misfit = appearance.misfit;
+  if (!appearance.ShowsMarker()) {
+    result.status = TrackStatus::kNotDetected;
+    result.message = "the image does not show the marker's design there: misfit " +
+                     NumberText(appearance.misfit) + " (" + NumberText(appearance.significance) +
+                     " standard errors) > max_appearance_misfit";
     return result;
   }
 

@@ -14,6 +14,7 @@
 #include "trackers/circle/analytic_solver.h"
 #include "trackers/circle/circle_detector.h"
 #include "trackers/circle/pose_refinement.h"
+#include "trackers/printed_appearance.h"
 #include "trackers/tracker.h"
 
 namespace markerbench {
@@ -31,11 +32,13 @@ struct CircleTrackerOptions {
   // prediction (centre shift per semi-minor axis, and each semi-axis); else full detection.
   double max_prediction_error = 0.5;
   double max_edge_rms_px = 2.0;  // accept a pose only if its edge residual RMS is below
+  // ... and only if the image shows the marker's whole design there (printed_appearance.h).
+  AppearanceOptions appearance;
 
   bool IsValid(std::string* error) const;
   // Reads flat keys (cost, huber_px, point_weight, max_iterations, k_normal, depth, refine,
-  // tracking, roi_margin, max_prediction_error, max_edge_rms_px, min_contrast, edge_passes,
-  // max_rays); throws ConfigError naming the file and key.
+  // tracking, roi_margin, max_prediction_error, max_edge_rms_px, max_appearance_misfit,
+  // min_contrast, edge_passes, max_rays); throws ConfigError naming the file and key.
   static CircleTrackerOptions FromYaml(const YamlMap& map);
 };
 
@@ -46,13 +49,15 @@ struct CircleDiagnostics {
   std::vector<std::vector<Eigen::Vector2d>> edges;  // per circle, bias-corrected
   std::optional<Eigen::Vector2d> m1_px;             // detected feature point (b, c, d), undistorted
   double blur_sigma_px = 0.0;                       // fitted edge σ (blur + pre-smoothing)
+  double image_blur_sigma_px = 0.0;                 // the image's own: without the smoothing
   double noise_sigma = 0.0;                         // estimated image noise σ, 0-1 units
   Eigen::Vector3d l_inf_norm = Eigen::Vector3d::Zero();
   std::optional<Rigid3> analytic_cam_from_marker;
   std::optional<Rigid3> refined_cam_from_marker;
   int iterations = 0;
   double final_cost = 0.0;
-  double edge_rms_px = 0.0;  // PND residual RMS of the edges to the final pose's conics
+  double edge_rms_px = 0.0;        // PND residual RMS of the edges to the final pose's conics
+  double appearance_misfit = 0.0;  // of the printed design at the final pose
 };
 
 class CircleTracker final : public Tracker {

@@ -1,7 +1,7 @@
 // circle tracker per-frame time on one thread (issue 3; results/speed.md): full detection +
-// analytic pose + refinement, and tracking mode (the region predicted from the previous
-// pose). circles_a with a 0.1 m equal-area footprint at 0.6 m, σ² = 0.02, the frames of the
-// other tracker benchmarks. Run from the project root.
+// analytic pose + refinement, tracking mode (the region predicted from the previous pose),
+// and the check of the printed design within both. circles_a with a 0.1 m equal-area footprint at
+// 0.6 m, σ² = 0.02, the frames of the other tracker benchmarks. Run from the project root.
 #include <benchmark/benchmark.h>
 
 #include <opencv2/core.hpp>
@@ -49,8 +49,33 @@ void BM_CircleTrackingMode(benchmark::State& state) {
   state.counters["region_fraction"] = static_cast<double>(in_region) / static_cast<double>(i);
 }
 
+// The check of the printed design at the found pose (printed_appearance.h), alone: part of
+// both timings above.
+void BM_CircleAppearanceCheck(benchmark::State& state) {
+  cv::setNumThreads(1);
+  const MarkerSpec marker = PaperCirclesA();
+  const std::vector<Image8> frames = BenchmarkFrames(marker, 16);
+  const Camera camera;
+  CircleTracker tracker;
+  std::vector<Rigid3> poses;
+  std::vector<double> blur_sigmas_px;
+  for (const Image8& frame : frames) {
+    tracker.Reset();
+    if (tracker.Track({&frame, &camera, &marker}).status != TrackStatus::kOk) continue;
+    poses.push_back(*tracker.diagnostics().refined_cam_from_marker);
+    blur_sigmas_px.push_back(tracker.diagnostics().image_blur_sigma_px);
+  }
+  size_t i = 0;
+  for (auto _ : state) {
+    const size_t k = i++ % poses.size();
+    benchmark::DoNotOptimize(
+        CheckPrintedAppearance(frames[k], camera, marker, poses[k], blur_sigmas_px[k]));
+  }
+}
+
 BENCHMARK(BM_CircleFullDetection)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_CircleTrackingMode)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_CircleAppearanceCheck)->Unit(benchmark::kMillisecond);
 
 }  // namespace
 }  // namespace markerbench

@@ -210,6 +210,37 @@ TEST_P(CircleTrackerTest, UnrelatedFramesInSequenceGiveTheDetectionResults) {
   EXPECT_GE(tracked, 15);  // most frames are within the marker's range
 }
 
+// A mirrored print (every x negated: for a, red and blue swap sides as seen from the front)
+// of a marker symmetric about its m0-m1 axis is the same print turned by 180° about its
+// normal: the frames are the same, so no tracker can reject it, and the pose returned is the
+// turned one. Markers with a handedness (e, f) are where mirrored prints can be rejected.
+TEST_P(CircleTrackerTest, AMirroredPrintIsTheSamePrintTurned) {
+  const MarkerSpec marker = Load(GetParam().kind);
+  MarkerSpec mirrored = marker;
+  for (PaintedShape& layer : mirrored.layers) {
+    DiskShape& disk = std::get<DiskShape>(layer.shape);
+    disk.center.x() = -disk.center.x();
+  }
+  const Rigid3 pose = TiltedView(0.6, 35.0, 20.0);
+  Rigid3 turned = pose;
+  turned.rotation = pose.rotation * Eigen::AngleAxisd(M_PI, Eigen::Vector3d::UnitZ());
+  CircleTracker tracker;
+  const TrackedFrame of_mirrored = RenderAndTrack(&tracker, mirrored, marker, pose, 0.0, 3);
+  tracker.Reset();
+  const TrackedFrame of_turned = RenderAndTrack(&tracker, marker, marker, turned, 0.0, 3);
+  int largest_difference = 0;
+  for (size_t i = 0; i < of_mirrored.frame.image.pixels.size(); ++i) {
+    largest_difference =
+        std::max(largest_difference,
+                 std::abs(of_mirrored.frame.image.pixels[i] - of_turned.frame.image.pixels[i]));
+  }
+  EXPECT_LE(largest_difference, 1);
+  ASSERT_EQ(of_mirrored.result.status, TrackStatus::kOk) << of_mirrored.result.message;
+  EXPECT_LE(PositionError(of_mirrored.result.hypotheses.front(), turned),
+            kTiltedPositionFraction * 0.6);
+  EXPECT_LE(RotationErrorDeg(of_mirrored.result.hypotheses.front(), turned), kTiltedRotationDeg);
+}
+
 INSTANTIATE_TEST_SUITE_P(MarkersAtoD,
                          CircleTrackerTest,
                          ::testing::Values(Range{"circles_a", 3.0, 60.0},

@@ -1,0 +1,27 @@
+// The negative set: frames that show no circle marker (paper Fig. 3 a-d), for false-positive
+// tests (issue 21). Each is a sheet of clutter drawn by the renderer at a random pose, with
+// random noise and blur: blank paper, checkerboards, scattered squares, black dots, rings
+// (disks with a concentric hole, no feature dot), coloured dots, and the other marker
+// systems. Sheets that would be a circle marker by construction (a red and a blue disk of
+// one size) are not drawn. Deterministic in the index: the same set on every machine.
+#pragma once
+
+#include <string>
+
+#include "renderer/render_frame.h"
+
+namespace markerbench {
+
+constexpr int kNegativeSetSize = 560;
+
+struct NegativeFrame {
+  std::string label;  // what it shows, e.g. "checkerboard 37"
+  RenderedFrame frame;
+};
+
+// Frame `index` (0 <= index < kNegativeSetSize) of the set, RGB, from the default camera.
+// Marker files of the other systems are read from scenarios/markers/ (the working directory
+// is the source root, as in every test).
+NegativeFrame RenderNegative(int index);
+
+}  // namespace markerbench
