@@ -20,6 +20,22 @@ struct TrackedFrame {
   TrackResult result;
 };
 
+// `marker` at a pose, with noise and blur, in RGB when it has colour, from the default camera.
+inline RenderedFrame RenderMarker(const MarkerSpec& marker,
+                                  const Rigid3& cam_from_marker,
+                                  double noise_var,
+                                  double blur_sigma_px,
+                                  uint64_t seed) {
+  FrameRequest request;
+  request.scene.marker = &marker;
+  request.scene.cam_from_marker = cam_from_marker;
+  request.degradations.noise_var = noise_var;
+  request.degradations.blur_sigma_px = blur_sigma_px;
+  request.channels = marker.HasColor() ? 3 : 1;
+  request.noise_seed = SeedFor(seed, 0, 0, SeedPurpose::kNoise);
+  return RenderFrame(request);
+}
+
 inline TrackedFrame RenderAndTrack(Tracker* tracker,
                                    const MarkerSpec& rendered,
                                    const MarkerSpec& expected,

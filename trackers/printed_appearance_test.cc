@@ -6,28 +6,14 @@
 #include <gtest/gtest.h>
 
 #include "core/marker_yaml.h"
-#include "renderer/render_frame.h"
 #include "renderer/test_scenes.h"
+#include "testing/square_tracker_testing.h"
 
 namespace markerbench {
 namespace {
 
 MarkerSpec Load(const std::string& kind) {
   return LoadMarkerYaml("scenarios/markers/" + kind + ".yaml");
-}
-
-RenderedFrame Render(const MarkerSpec& marker,
-                     const Rigid3& pose,
-                     double noise_var,
-                     double blur_sigma_px) {
-  FrameRequest request;
-  request.scene.marker = &marker;
-  request.scene.cam_from_marker = pose;
-  request.degradations.noise_var = noise_var;
-  request.degradations.blur_sigma_px = blur_sigma_px;
-  request.channels = marker.HasColor() ? 3 : 1;
-  request.noise_seed = 5;
-  return RenderFrame(request);
 }
 
 // The image's edge σ: optics and the pixel's area (a box of variance 1/12).
@@ -44,7 +30,7 @@ TEST(PrintedAppearance, TheTruePoseShowsTheDesignUnderNoiseAndBlur) {
       SCOPED_TRACE(std::string(kind) + " noise " + std::to_string(noise_var) + " blur " +
                    std::to_string(blur));
       const Rigid3 pose = TiltedView(0.6, 35.0, 20.0);
-      const RenderedFrame frame = Render(marker, pose, noise_var, blur);
+      const RenderedFrame frame = RenderMarker(marker, pose, noise_var, blur, 5);
       const AppearanceFit fit =
           CheckPrintedAppearance(frame.image, camera, marker, pose, EdgeSigma(blur));
       EXPECT_TRUE(fit.ShowsMarker()) << fit.misfit << " " << fit.significance;
@@ -69,7 +55,7 @@ TEST(PrintedAppearance, AnotherDesignWithTheSameEdgesDoesNotShow) {
   for (const auto& [printed, expected] :
        {std::pair{swapped, Load("circles_a")}, {no_dot, Load("circles_b")}}) {
     for (double noise_var : {0.0, 0.1}) {
-      const RenderedFrame frame = Render(printed, pose, noise_var, 0.0);
+      const RenderedFrame frame = RenderMarker(printed, pose, noise_var, 0.0, 5);
       const AppearanceFit fit =
           CheckPrintedAppearance(frame.image, camera, expected, pose, EdgeSigma(0.0));
       EXPECT_FALSE(fit.ShowsMarker()) << expected.name << " " << noise_var << ": " << fit.misfit;
@@ -85,7 +71,7 @@ TEST(PrintedAppearance, TheDesignMovedByAFewPixelsDoesNotShow) {
   const Rigid3 pose = TiltedView(0.6, 20.0, 0.0);
   Rigid3 moved = pose;
   moved.translation.x() += 3.0 * 0.6 / camera.fx;
-  const RenderedFrame frame = Render(marker, pose, 0.02, 0.0);
+  const RenderedFrame frame = RenderMarker(marker, pose, 0.02, 0.0, 5);
   EXPECT_TRUE(
       CheckPrintedAppearance(frame.image, camera, marker, pose, EdgeSigma(0.0)).ShowsMarker());
   const AppearanceFit fit =
@@ -97,7 +83,7 @@ TEST(PrintedAppearance, AMarkerOutsideTheImageCannotBeChecked) {
   const Camera camera;
   const MarkerSpec marker = Load("circles_a");
   Rigid3 pose = TiltedView(0.6, 20.0, 0.0);
-  const RenderedFrame frame = Render(marker, pose, 0.0, 0.0);
+  const RenderedFrame frame = RenderMarker(marker, pose, 0.0, 0.0, 5);
   pose.translation.x() += 1.0;  // 1000 px to the right
   const AppearanceFit fit =
       CheckPrintedAppearance(frame.image, camera, marker, pose, EdgeSigma(0.0));

@@ -7,6 +7,7 @@
 #include "core/number_text.h"
 #include "core/yaml_reader.h"
 #include "trackers/circle/conic.h"
+#include "trackers/circle/photometric_refinement.h"
 #include "trackers/printed_appearance.h"
 
 namespace markerbench {
@@ -46,6 +47,22 @@ bool MatchPrediction(const CircleDiagnostics& detected,
   }
   return !detected.m1_px || (*detected.m1_px - predicted_m1_px).norm() <=
                                 max_error * EllipseFromConic(predicted_conics_px[0]).semi_minor;
+}
+
+// RMS of the edge points' PND distances to the circles projected from a pose (px).
+double EdgeRmsPx(const RefinementProblem& problem, const Rigid3& cam_from_paper) {
+  const Eigen::Matrix3d H = problem.K * RayFromPlane(cam_from_paper);
+  double sum = 0.0;
+  size_t count = 0;
+  for (const RefinementCircle& circle : problem.circles) {
+    const Eigen::Matrix3d C = ImageOfCircle<double>(H, circle.center, circle.radius_m);
+    for (const Eigen::Vector2d& p : circle.edge_points_px) {
+      const double r = PndResidual<double>(C, p.x(), p.y());
+      sum += r * r;
+      ++count;
+    }
+  }
+  return std::sqrt(sum / std::max<size_t>(1, count));
 }
 
 }  // namespace
@@ -91,6 +108,7 @@ CircleTrackerOptions CircleTrackerOptions::FromYaml(const YamlMap& map) {
   o.refinement.max_iterations = map.GetOr<int>("max_iterations", o.refinement.max_iterations);
   o.analytic.k_normal = map.GetOr<bool>("k_normal", o.analytic.k_normal);
   o.refine = map.GetOr<bool>("refine", o.refine);
+  o.photometric = map.GetOr<bool>("photometric", o.photometric);
   o.tracking = map.GetOr<bool>("tracking", o.tracking);
   o.roi_margin = map.GetOr<double>("roi_margin", o.roi_margin);
   o.max_prediction_error = map.GetOr<double>("max_prediction_error", o.max_prediction_error);
@@ -119,6 +137,7 @@ std::vector<std::pair<std::string, std::string>> CircleTracker::Parameters() con
       {"k_normal", BoolText(o.analytic.k_normal)},
       {"depth", ToString(o.analytic.depth)},
       {"refine", BoolText(o.refine)},
+      {"photometric", BoolText(o.photometric)},
       {"tracking", BoolText(o.tracking)},
       {"roi_margin", NumberText(o.roi_margin)},
       {"max_prediction_error", NumberText(o.max_prediction_error)},
@@ -287,19 +306,29 @@ TrackResult CircleTracker::TrackIn(const Observation& observation,
     diagnostics_.final_cost = refined.final_cost;
   }
 
-  // Acceptance: the marker in front of the camera, and its projected circles on the edges.
-  const Eigen::Matrix3d H = K * RayFromPlane(cam_from_paper);
-  double sum = 0.0;
-  size_t count = 0;
-  for (const RefinementCircle& circle : problem.circles) {
-    const Eigen::Matrix3d C = ImageOfCircle<double>(H, circle.center, circle.radius_m);
-    for (const Eigen::Vector2d& p : circle.edge_points_px) {
-      const double r = PndResidual<double>(C, p.x(), p.y());
-      sum += r * r;
-      ++count;
+  diagnostics_.edge_rms_px = EdgeRmsPx(problem, cam_from_paper);
+  if (options_.photometric) {
+    const std::optional<PhotometricResult> direct =
+        RefinePhotometric(*observation.image,
+                          camera,
+                          *observation.marker,
+                          cam_from_paper * paper_from_marker,
+                          diagnostics_.image_blur_sigma_px,
+                          options_.photometric_refinement);
+    // Kept unless it leaves the edges (a fit gone astray: the pixels and the edge points
+    // measure the same edges).
+    if (direct) {
+      const Rigid3 on_pixels = direct->cam_from_marker * geometry.marker_from_paper;
+      const double rms = EdgeRmsPx(problem, on_pixels);
+      diagnostics_.photometric_used = rms <= diagnostics_.edge_rms_px + 0.5;
+      if (diagnostics_.photometric_used) {
+        cam_from_paper = on_pixels;
+        diagnostics_.edge_rms_px = rms;
+      }
     }
   }
-  diagnostics_.edge_rms_px = std::sqrt(sum / std::max<size_t>(1, count));
+
+  // Acceptance: the marker in front of the camera, and its projected circles on the edges.
   const Rigid3 cam_from_marker = cam_from_paper * paper_from_marker;
   diagnostics_.refined_cam_from_marker = cam_from_marker;
   if (!(cam_from_paper.translation.z() > 0.0) ||

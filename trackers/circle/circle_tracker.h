@@ -13,6 +13,7 @@
 
 #include "trackers/circle/analytic_solver.h"
 #include "trackers/circle/circle_detector.h"
+#include "trackers/circle/photometric_refinement.h"
 #include "trackers/circle/pose_refinement.h"
 #include "trackers/printed_appearance.h"
 #include "trackers/tracker.h"
@@ -25,7 +26,9 @@ struct CircleTrackerOptions {
   CircleDetectorOptions detector;
   AnalyticOptions analytic;
   RefinementOptions refinement;
-  bool refine = true;        // run the LM refinement (§6); off = analytic pose only
+  bool refine = true;       // run the LM refinement (§6); off = analytic pose only
+  bool photometric = true;  // then refine on the pixels (photometric_refinement.h)
+  PhotometricOptions photometric_refinement;
   bool tracking = true;      // search around the previous pose first (paper step 5)
   double roi_margin = 0.25;  // tracking region: predicted box grown by this fraction
   // A tracking-mode result stands only if each ellipse is within this fraction of its
@@ -37,8 +40,9 @@ struct CircleTrackerOptions {
 
   bool IsValid(std::string* error) const;
   // Reads flat keys (cost, huber_px, point_weight, max_iterations, k_normal, depth, refine,
-  // tracking, roi_margin, max_prediction_error, max_edge_rms_px, max_appearance_misfit,
-  // min_contrast, edge_passes, max_rays); throws ConfigError naming the file and key.
+  // photometric, tracking, roi_margin, max_prediction_error, max_edge_rms_px,
+  // max_appearance_misfit, min_contrast, edge_passes, max_rays); throws ConfigError naming the
+  // file and key.
   static CircleTrackerOptions FromYaml(const YamlMap& map);
 };
 
@@ -57,6 +61,7 @@ struct CircleDiagnostics {
   int iterations = 0;
   double final_cost = 0.0;
   double edge_rms_px = 0.0;        // PND residual RMS of the edges to the final pose's conics
+  bool photometric_used = false;   // the final pose is the photometric refinement's
   double appearance_misfit = 0.0;  // of the printed design at the final pose
 };
 

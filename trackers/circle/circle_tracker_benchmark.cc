@@ -1,7 +1,8 @@
 // circle tracker per-frame time on one thread (issue 3; results/speed.md): full detection +
-// analytic pose + refinement, tracking mode (the region predicted from the previous pose),
-// and the check of the printed design within both. circles_a with a 0.1 m equal-area footprint at
-// 0.6 m, σ² = 0.02, the frames of the other tracker benchmarks. Run from the project root.
+// analytic pose + refinement (with and without the refinement on the pixels), tracking mode
+// (the region predicted from the previous pose), and the check of the printed design. circles_a
+// with a 0.1 m equal-area footprint at 0.6 m, σ² = 0.02, the frames of the other tracker
+// benchmarks. Run from the project root.
 #include <benchmark/benchmark.h>
 
 #include <opencv2/core.hpp>
@@ -24,6 +25,17 @@ void BM_CircleFullDetection(benchmark::State& state) {
   const MarkerSpec marker = PaperCirclesA();
   const std::vector<Image8> frames = BenchmarkFrames(marker, 16);
   CircleTracker tracker;
+  TimeIndependentFrames(state, tracker, marker, frames);
+}
+
+// The same without the refinement on the pixels (`photometric: false`): the fast path.
+void BM_CircleFullDetectionEdgesOnly(benchmark::State& state) {
+  cv::setNumThreads(1);
+  const MarkerSpec marker = PaperCirclesA();
+  const std::vector<Image8> frames = BenchmarkFrames(marker, 16);
+  CircleTrackerOptions options;
+  options.photometric = false;
+  CircleTracker tracker(options);
   TimeIndependentFrames(state, tracker, marker, frames);
 }
 
@@ -74,6 +86,7 @@ void BM_CircleAppearanceCheck(benchmark::State& state) {
 }
 
 BENCHMARK(BM_CircleFullDetection)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_CircleFullDetectionEdgesOnly)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_CircleTrackingMode)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_CircleAppearanceCheck)->Unit(benchmark::kMillisecond);
 

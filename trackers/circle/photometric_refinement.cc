@@ -1,0 +1,293 @@
+#include "trackers/circle/photometric_refinement.h"
+
+#include <ceres/ceres.h>
+#include <ceres/rotation.h>
+
+#include <algorithm>
+#include <cmath>
+#include <vector>
+
+#include "trackers/circle/blurred_disk_profile.h"
+#include "trackers/circle/ceres_solver_options.h"
+#include "trackers/circle/conic.h"
+
+namespace markerbench {
+namespace {
+
+// A printed disk and the colour step across its edge (its colour minus what lies under it),
+// its edge sampled at `bins` angles.
+struct EdgeLayer {
+  DiskShape disk;
+  Rgb jump;
+  int bins = 0;
+};
+
+// A pixel and the one edge it lies near: its signed distance to that edge is taken along the
+// edge's normal at the start pose, from the edge point at the pixel's angle about the disk.
+struct Pixel {
+  Eigen::Vector2d ideal_px;  // undistorted pixel coordinates
+  Eigen::Vector3d value;     // measured, 0-1, per channel used
+  Rgb base;                  // the printed colour without the near layer's step
+  int layer = 0;
+  int bin = 0;
+  Eigen::Vector2d normal;  // outward unit normal of the edge at the start pose
+};
+
+// The residuals measured - model per pixel and channel over the parameter blocks angle-axis
+// (3), translation (3), σ (1) and (offset, gain) per channel. The edge points and shifts are
+// differentiated by Jets once per bin; each pixel then chains them by hand.
+class DesignCost final : public ceres::CostFunction {
+ public:
+  using Jet = ceres::Jet<double, 7>;  // the pose (6) and σ
+
+  DesignCost(const Eigen::Matrix3d& K,
+             const std::vector<EdgeLayer>& layers,
+             const std::vector<Pixel>& pixels,
+             int channels)
+      : K_(K), layers_(layers), pixels_(pixels), channels_(channels) {
+    mutable_parameter_block_sizes()->assign({3, 3, 1, 2 * channels});
+    set_num_residuals(static_cast<int>(pixels.size()) * channels);
+  }
+
+  bool Evaluate(double const* const* parameters,
+                double* residuals,
+                double** jacobians) const override {
+    Jet angle_axis[3], translation[3];
+    for (int k = 0; k < 3; ++k) {
+      angle_axis[k] = Jet(parameters[0][k], k);
+      translation[k] = Jet(parameters[1][k], 3 + k);
+    }
+    const Jet sigma(parameters[2][0], 6);
+    const double* levels = parameters[3];
+    Eigen::Matrix<Jet, 3, 3> R;
+    ceres::AngleAxisToRotationMatrix(angle_axis, ceres::ColumnMajorAdapter3x3(R.data()));
+    const Eigen::Matrix<Jet, 3, 1> t(translation[0], translation[1], translation[2]);
+    // Each layer's edge points in the image, and its blurred edge's shift: the 50 % level of a
+    // disk blurred by σ lies σ²/2R inside its edge (R its radius in pixels).
+    std::vector<std::vector<Eigen::Matrix<Jet, 2, 1>>> edges(layers_.size());
+    // Each layer's radius in blur σ, s = R/σ (R in pixels, from its depth), and the exact
+    // profile of a disk of that size blurred (blurred_disk_profile.h).
+    std::vector<Jet> radii;
+    std::vector<BlurredDiskProfile> profiles;
+    for (size_t l = 0; l < layers_.size(); ++l) {
+      const EdgeLayer& layer = layers_[l];
+      for (int k = 0; k < layer.bins; ++k) {
+        const double angle = 2.0 * M_PI * k / layer.bins;
+        const Eigen::Matrix<Jet, 3, 1> X(
+            Jet(layer.disk.center.x() + layer.disk.radius * std::cos(angle)),
+            Jet(layer.disk.center.y() + layer.disk.radius * std::sin(angle)),
+            Jet(0.0));
+        const Eigen::Matrix<Jet, 3, 1> p = K_.cast<Jet>() * (R * X + t);
+        edges[l].emplace_back(p.x() / p.z(), p.y() / p.z());
+      }
+      const Eigen::Matrix<Jet, 3, 1> center(
+          Jet(layer.disk.center.x()), Jet(layer.disk.center.y()), Jet(0.0));
+      radii.push_back(K_(0, 0) * layer.disk.radius / (R * center + t).z() / sigma);
+      profiles.emplace_back(radii.back().a);
+    }
+    // Per pixel in doubles: d = n·(x - e) (px, positive outside), z = -d/σ, inside = G(s, z),
+    // chained to the 7 Jet parameters through e, s and σ.
+    const double sigma_value = sigma.a;
+    Eigen::Matrix<double, 7, 1> d_sigma = Eigen::Matrix<double, 7, 1>::Zero();
+    d_sigma[6] = 1.0;
+    for (size_t i = 0; i < pixels_.size(); ++i) {
+      const Pixel& p = pixels_[i];
+      const Eigen::Matrix<Jet, 2, 1>& edge = edges[p.layer][p.bin];
+      const double d = p.normal.x() * (p.ideal_px.x() - edge.x().a) +
+                       p.normal.y() * (p.ideal_px.y() - edge.y().a);
+      const Eigen::Matrix<double, 7, 1> d_d =
+          -p.normal.x() * edge.x().v - p.normal.y() * edge.y().v;
+      const double z = -d / sigma_value;
+      const Eigen::Matrix<double, 7, 1> d_z =
+          -d_d / sigma_value + (d / (sigma_value * sigma_value)) * d_sigma;
+      const ProfileValue g = profiles[p.layer].At(z);
+      const double inside = g.value;
+      const Eigen::Matrix<double, 7, 1> d_inside = g.d_dz * d_z + g.d_ds * radii[p.layer].v;
+      const Rgb& jump = layers_[p.layer].jump;
+      for (int c = 0; c < channels_; ++c) {
+        const double base = channels_ == 3 ? p.base[c] : Luma(p.base);
+        const double step = channels_ == 3 ? jump[c] : Luma(jump);
+        const double printed = base + step * inside;
+        const int row = static_cast<int>(i) * channels_ + c;
+        const double gain = levels[2 * c + 1];
+        residuals[row] = p.value[c] - (levels[2 * c] + gain * printed);
+        if (!jacobians) continue;
+        const Eigen::Matrix<double, 7, 1> slope = -gain * step * d_inside;
+        if (jacobians[0]) {
+          for (int k = 0; k < 3; ++k) jacobians[0][row * 3 + k] = slope[k];
+        }
+        if (jacobians[1]) {
+          for (int k = 0; k < 3; ++k) jacobians[1][row * 3 + k] = slope[3 + k];
+        }
+        if (jacobians[2]) jacobians[2][row] = slope[6];
+        if (jacobians[3]) {
+          double* level_row = jacobians[3] + row * 2 * channels_;
+          std::fill(level_row, level_row + 2 * channels_, 0.0);
+          level_row[2 * c] = -1.0;
+          level_row[2 * c + 1] = -printed;
+        }
+      }
+    }
+    return true;
+  }
+
+ private:
+  Eigen::Matrix3d K_;
+  const std::vector<EdgeLayer>& layers_;
+  const std::vector<Pixel>& pixels_;
+  int channels_;
+};
+
+// One solve on the pixels near the edges at `cam_from_marker`, each tied to its edge point.
+std::optional<PhotometricResult> RefineOnce(const Image8& image,
+                                            const Camera& camera,
+                                            const MarkerSpec& marker,
+                                            const Rigid3& cam_from_marker,
+                                            double sigma_px,
+                                            const PhotometricOptions& options) {
+  const Eigen::Matrix3d K = camera.K();
+  const Eigen::Matrix3d H = K * RayFromPlane(cam_from_marker);
+  const Eigen::Matrix3d plane_from_px = H.inverse();
+  std::vector<EdgeLayer> layers;
+  std::vector<Eigen::Matrix3d> conics;
+  for (size_t i = 0; i < marker.layers.size(); ++i) {
+    const auto* disk = std::get_if<DiskShape>(&marker.layers[i].shape);
+    if (!disk) return std::nullopt;
+    Rgb below = marker.background;
+    for (size_t j = 0; j < i; ++j) {
+      const PaintSample under = PaintAt(marker.layers[j], disk->center);
+      if (under.color) below = *under.color;
+    }
+    conics.push_back(CanonicalConic(ImageOfCircle<double>(H, disk->center, disk->radius)));
+    const Ellipse e = EllipseFromConic(conics.back());
+    if (sigma_px > options.max_blur_per_radius * std::sqrt(e.semi_major * e.semi_minor)) {
+      return std::nullopt;
+    }
+    // Edge points about half a pixel apart.
+    const int bins = std::max(32, static_cast<int>(std::ceil(4.0 * M_PI * e.semi_major)));
+    layers.push_back({*disk, marker.layers[i].color - below, bins});
+  }
+
+  // The pixels near an edge, at the start pose; each takes the nearest edge.
+  const double band = options.band_sigmas * std::max(sigma_px, 0.3) + 1.0;
+  std::vector<Pixel> pixels;
+  std::vector<uint8_t> taken(static_cast<size_t>(image.width) * image.height, 0);
+  for (size_t l = 0; l < layers.size(); ++l) {
+    const Ellipse e = EllipseFromConic(conics[l]);
+    const int reach = static_cast<int>(std::ceil(e.semi_major + band + 2.0));
+    const int u0 = std::max(0, static_cast<int>(e.center.x()) - reach);
+    const int v0 = std::max(0, static_cast<int>(e.center.y()) - reach);
+    const int u1 = std::min(image.width - 1, static_cast<int>(e.center.x()) + reach);
+    const int v1 = std::min(image.height - 1, static_cast<int>(e.center.y()) + reach);
+    for (int v = v0; v <= v1; ++v) {
+      for (int u = u0; u <= u1; ++u) {
+        uint8_t& seen = taken[static_cast<size_t>(v) * image.width + u];
+        if (seen) continue;
+        const Eigen::Vector3d ray = camera.CamFromImg(Eigen::Vector2d(u, v));
+        const Eigen::Vector2d ideal(K(0, 0) * ray.x() + K(0, 2), K(1, 1) * ray.y() + K(1, 2));
+        // The nearest edge within the band.
+        int nearest = -1;
+        double nearest_distance = band;
+        for (size_t m = 0; m < layers.size(); ++m) {
+          const double d = std::abs(PndResidual<double>(conics[m], ideal.x(), ideal.y()));
+          if (d <= nearest_distance) {
+            nearest = static_cast<int>(m);
+            nearest_distance = d;
+          }
+        }
+        if (nearest != static_cast<int>(l)) continue;
+        seen = 1;
+        Pixel p;
+        p.ideal_px = ideal;
+        p.value = Eigen::Vector3d::Zero();
+        for (int c = 0; c < image.channels; ++c) p.value[c] = image.at(u, v, c) / 255.0;
+        p.layer = nearest;
+        const EdgeLayer& layer = layers[l];
+        const Eigen::Vector2d on_plane = (plane_from_px * ideal.homogeneous()).hnormalized();
+        const Eigen::Vector2d radial = on_plane - layer.disk.center;
+        double angle = std::atan2(radial.y(), radial.x());
+        if (angle < 0.0) angle += 2.0 * M_PI;
+        p.bin = static_cast<int>(std::lround(angle / (2.0 * M_PI) * layer.bins)) % layer.bins;
+        // The printed colour without this layer: the other layers, top-most first.
+        p.base = marker.background;
+        for (size_t m = 0; m < layers.size(); ++m) {
+          const PaintSample other = PaintAt(marker.layers[m], on_plane);
+          if (m != l && other.color) p.base = *other.color;
+        }
+        // The edge's outward normal at the start pose, at the pixel's bin.
+        const double bin_angle = 2.0 * M_PI * p.bin / layer.bins;
+        const Eigen::Vector2d edge_plane =
+            layer.disk.center +
+            layer.disk.radius * Eigen::Vector2d(std::cos(bin_angle), std::sin(bin_angle));
+        const Eigen::Vector2d edge_px = (H * edge_plane.homogeneous()).hnormalized();
+        const Eigen::Vector2d outward_px =
+            (H * (edge_plane +
+                  1e-3 * layer.disk.radius * (edge_plane - layer.disk.center) / layer.disk.radius)
+                     .homogeneous())
+                .hnormalized() -
+            edge_px;
+        const Eigen::Vector3d gradient = conics[l] * edge_px.homogeneous();
+        p.normal = gradient.head<2>().normalized();
+        if (p.normal.dot(outward_px) < 0.0) p.normal = -p.normal;
+        pixels.push_back(p);
+      }
+    }
+  }
+  if (pixels.size() < 20) return std::nullopt;
+
+  double angle_axis[3], translation[3];
+  ceres::RotationMatrixToAngleAxis(ceres::ColumnMajorAdapter3x3(cam_from_marker.rotation.data()),
+                                   angle_axis);
+  for (int k = 0; k < 3; ++k) translation[k] = cam_from_marker.translation[k];
+  double sigma = std::max(sigma_px, 0.3);
+  double levels[6] = {0.0, 1.0, 0.0, 1.0, 0.0, 1.0};
+  auto* cost = new DesignCost(K, layers, pixels, image.channels);
+  ceres::Problem problem;
+  problem.AddResidualBlock(cost, nullptr, angle_axis, translation, &sigma, levels);
+  problem.SetParameterLowerBound(&sigma, 0, 0.2);
+  ceres::Solver::Summary summary;
+  // Thousands of residuals on 13 parameters: the normal equations are far cheaper than QR.
+  ceres::Solver::Options solver = OneThreadLevenbergMarquardt(options.max_iterations);
+  solver.linear_solver_type = ceres::DENSE_NORMAL_CHOLESKY;
+  ceres::Solve(solver, &problem, &summary);
+
+  PhotometricResult result;
+  ceres::AngleAxisToRotationMatrix(
+      angle_axis, ceres::ColumnMajorAdapter3x3(result.cam_from_marker.rotation.data()));
+  result.cam_from_marker.translation =
+      Eigen::Vector3d(translation[0], translation[1], translation[2]);
+  result.sigma_px = sigma;
+  result.pixels = static_cast<int>(pixels.size());
+  result.iterations = static_cast<int>(summary.iterations.size()) - 1;
+  result.initial_cost = summary.initial_cost;
+  result.final_cost = summary.final_cost;
+  return result;
+}
+
+}  // namespace
+
+std::optional<PhotometricResult> RefinePhotometric(const Image8& image,
+                                                   const Camera& camera,
+                                                   const MarkerSpec& marker,
+                                                   const Rigid3& cam_from_marker,
+                                                   double sigma_px,
+                                                   const PhotometricOptions& options) {
+  // Each solve ties pixels to edge points at its start; from a start a few pixels off that
+  // tie is loose, so the pixels are chosen again at the result until it stays put.
+  std::optional<PhotometricResult> result =
+      RefineOnce(image, camera, marker, cam_from_marker, sigma_px, options);
+  for (int round = 1; result && round < options.max_rounds; ++round) {
+    const std::optional<PhotometricResult> next =
+        RefineOnce(image, camera, marker, result->cam_from_marker, result->sigma_px, options);
+    if (!next) break;
+    const double moved_m =
+        (next->cam_from_marker.translation - result->cam_from_marker.translation).norm();
+    const int iterations = result->iterations + next->iterations;
+    result = next;
+    result->iterations = iterations;
+    if (moved_m < 1e-4 * result->cam_from_marker.translation.norm()) break;
+  }
+  return result;
+}
+
+}  // namespace markerbench
