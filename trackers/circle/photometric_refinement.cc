@@ -1,14 +1,14 @@
 #include "trackers/circle/photometric_refinement.h"
 
-#include <ceres/ceres.h>
+#include <ceres/jet.h>
 #include <ceres/rotation.h>
 
+#include <Eigen/Cholesky>
 #include <algorithm>
 #include <cmath>
 #include <vector>
 
 #include "trackers/circle/blurred_disk_profile.h"
-#include "trackers/circle/ceres_solver_options.h"
 #include "trackers/circle/conic.h"
 
 namespace markerbench {
@@ -20,6 +20,7 @@ struct EdgeLayer {
   DiskShape disk;
   Rgb jump;
   int bins = 0;
+  std::vector<Eigen::Vector2d> edge;  // the bins' points on the circle, marker plane
 };
 
 // A pixel and the one edge it lies near: its signed distance to that edge is taken along the
@@ -33,51 +34,55 @@ struct Pixel {
   Eigen::Vector2d normal;  // outward unit normal of the edge at the start pose
 };
 
-// The residuals measured - model per pixel and channel over the parameter blocks angle-axis
-// (3), translation (3), σ (1) and (offset, gain) per channel. The edge points and shifts are
-// differentiated by Jets once per bin; each pixel then chains them by hand.
-class DesignCost final : public ceres::CostFunction {
+// The least-squares problem measured - model over every pixel and channel, in the parameters
+// θ = (angle-axis (3), translation (3), σ, then offset and gain per channel). The edge points
+// and disk sizes are differentiated by Jets once per bin; each pixel then chains them by hand
+// and adds its rows straight into the normal equations (a dense Jacobian of thousands of rows
+// would cost more than the model).
+class PixelModel {
  public:
   using Jet = ceres::Jet<double, 7>;  // the pose (6) and σ
 
-  DesignCost(const Eigen::Matrix3d& K,
+  PixelModel(const Eigen::Matrix3d& K,
              const std::vector<EdgeLayer>& layers,
              const std::vector<Pixel>& pixels,
              int channels)
-      : K_(K), layers_(layers), pixels_(pixels), channels_(channels) {
-    mutable_parameter_block_sizes()->assign({3, 3, 1, 2 * channels});
-    set_num_residuals(static_cast<int>(pixels.size()) * channels);
-  }
+      : K_(K), layers_(layers), pixels_(pixels), channels_(channels) {}
 
-  bool Evaluate(double const* const* parameters,
-                double* residuals,
-                double** jacobians) const override {
+  int Parameters() const { return 7 + 2 * channels_; }
+
+  // Σ r² at θ; with jtj and jtr, also JᵀJ and Jᵀr.
+  double Evaluate(const Eigen::VectorXd& theta, Eigen::MatrixXd* jtj, Eigen::VectorXd* jtr) const {
+    if (jtj) {
+      jtj->setZero(Parameters(), Parameters());
+      jtr->setZero(Parameters());
+    }
     Jet angle_axis[3], translation[3];
     for (int k = 0; k < 3; ++k) {
-      angle_axis[k] = Jet(parameters[0][k], k);
-      translation[k] = Jet(parameters[1][k], 3 + k);
+      angle_axis[k] = Jet(theta[k], k);
+      translation[k] = Jet(theta[3 + k], 3 + k);
     }
-    const Jet sigma(parameters[2][0], 6);
-    const double* levels = parameters[3];
+    const Jet sigma(theta[6], 6);
+    const double* levels = theta.data() + 7;
+    double cost = 0.0;
     Eigen::Matrix<Jet, 3, 3> R;
     ceres::AngleAxisToRotationMatrix(angle_axis, ceres::ColumnMajorAdapter3x3(R.data()));
     const Eigen::Matrix<Jet, 3, 1> t(translation[0], translation[1], translation[2]);
-    // Each layer's edge points in the image, and its blurred edge's shift: the 50 % level of a
-    // disk blurred by σ lies σ²/2R inside its edge (R its radius in pixels).
+    // Each layer's edge points in the image.
     std::vector<std::vector<Eigen::Matrix<Jet, 2, 1>>> edges(layers_.size());
     // Each layer's radius in blur σ, s = R/σ (R in pixels, from its depth), and the exact
     // profile of a disk of that size blurred (blurred_disk_profile.h).
     std::vector<Jet> radii;
     std::vector<BlurredDiskProfile> profiles;
+    // H = K [r1 r2 t]: plane points (X, Y, 1) to pixels.
+    Eigen::Matrix<Jet, 3, 3> H;
+    H << R.col(0), R.col(1), t;
+    H = K_.cast<Jet>() * H;
     for (size_t l = 0; l < layers_.size(); ++l) {
       const EdgeLayer& layer = layers_[l];
-      for (int k = 0; k < layer.bins; ++k) {
-        const double angle = 2.0 * M_PI * k / layer.bins;
-        const Eigen::Matrix<Jet, 3, 1> X(
-            Jet(layer.disk.center.x() + layer.disk.radius * std::cos(angle)),
-            Jet(layer.disk.center.y() + layer.disk.radius * std::sin(angle)),
-            Jet(0.0));
-        const Eigen::Matrix<Jet, 3, 1> p = K_.cast<Jet>() * (R * X + t);
+      edges[l].reserve(layer.edge.size());
+      for (const Eigen::Vector2d& X : layer.edge) {
+        const Eigen::Matrix<Jet, 3, 1> p = H.col(0) * X.x() + H.col(1) * X.y() + H.col(2);
         edges[l].emplace_back(p.x() / p.z(), p.y() / p.z());
       }
       const Eigen::Matrix<Jet, 3, 1> center(
@@ -104,31 +109,36 @@ class DesignCost final : public ceres::CostFunction {
       const double inside = g.value;
       const Eigen::Matrix<double, 7, 1> d_inside = g.d_dz * d_z + g.d_ds * radii[p.layer].v;
       const Rgb& jump = layers_[p.layer].jump;
+      // Each channel's row is (-gain step d_inside, -1, -printed) on (θ 0-6, its offset and
+      // gain): the θ part is one vector scaled, so the channels share one outer product.
+      double pose_weight = 0.0;    // Σ_c (gain step)²
+      double pose_residual = 0.0;  // Σ_c r (-gain step)
       for (int c = 0; c < channels_; ++c) {
         const double base = channels_ == 3 ? p.base[c] : Luma(p.base);
         const double step = channels_ == 3 ? jump[c] : Luma(jump);
         const double printed = base + step * inside;
-        const int row = static_cast<int>(i) * channels_ + c;
         const double gain = levels[2 * c + 1];
-        residuals[row] = p.value[c] - (levels[2 * c] + gain * printed);
-        if (!jacobians) continue;
-        const Eigen::Matrix<double, 7, 1> slope = -gain * step * d_inside;
-        if (jacobians[0]) {
-          for (int k = 0; k < 3; ++k) jacobians[0][row * 3 + k] = slope[k];
-        }
-        if (jacobians[1]) {
-          for (int k = 0; k < 3; ++k) jacobians[1][row * 3 + k] = slope[3 + k];
-        }
-        if (jacobians[2]) jacobians[2][row] = slope[6];
-        if (jacobians[3]) {
-          double* level_row = jacobians[3] + row * 2 * channels_;
-          std::fill(level_row, level_row + 2 * channels_, 0.0);
-          level_row[2 * c] = -1.0;
-          level_row[2 * c + 1] = -printed;
-        }
+        const double r = p.value[c] - (levels[2 * c] + gain * printed);
+        cost += r * r;
+        if (!jtj) continue;
+        const double scale = -gain * step;
+        pose_weight += scale * scale;
+        pose_residual += r * scale;
+        const int level = 7 + 2 * c;
+        const Eigen::Vector2d level_row(-1.0, -printed);
+        jtj->block<7, 2>(0, level) += (scale * d_inside) * level_row.transpose();
+        jtj->block<2, 2>(level, level) += level_row * level_row.transpose();
+        jtr->segment<2>(level) += r * level_row;
       }
+      if (!jtj) continue;
+      jtj->topLeftCorner<7, 7>() += pose_weight * d_inside * d_inside.transpose();
+      jtr->head<7>() += pose_residual * d_inside;
     }
-    return true;
+    if (jtj) {
+      // The lower blocks of the levels' columns, by symmetry.
+      jtj->bottomLeftCorner(2 * channels_, 7) = jtj->topRightCorner(7, 2 * channels_).transpose();
+    }
+    return cost;
   }
 
  private:
@@ -165,7 +175,12 @@ std::optional<PhotometricResult> RefineOnce(const Image8& image,
     }
     // Edge points about half a pixel apart.
     const int bins = std::max(32, static_cast<int>(std::ceil(4.0 * M_PI * e.semi_major)));
-    layers.push_back({*disk, marker.layers[i].color - below, bins});
+    layers.push_back({*disk, marker.layers[i].color - below, bins, {}});
+    for (int k = 0; k < bins; ++k) {
+      const double angle = 2.0 * M_PI * k / bins;
+      layers.back().edge.push_back(
+          disk->center + disk->radius * Eigen::Vector2d(std::cos(angle), std::sin(angle)));
+    }
   }
 
   // The pixels near an edge, at the start pose; each takes the nearest edge.
@@ -235,32 +250,46 @@ std::optional<PhotometricResult> RefineOnce(const Image8& image,
   }
   if (pixels.size() < 20) return std::nullopt;
 
-  double angle_axis[3], translation[3];
+  // Levenberg-Marquardt on the normal equations (Marquardt's diagonal scaling).
+  const PixelModel model(K, layers, pixels, image.channels);
+  Eigen::VectorXd theta = Eigen::VectorXd::Zero(model.Parameters());
   ceres::RotationMatrixToAngleAxis(ceres::ColumnMajorAdapter3x3(cam_from_marker.rotation.data()),
-                                   angle_axis);
-  for (int k = 0; k < 3; ++k) translation[k] = cam_from_marker.translation[k];
-  double sigma = std::max(sigma_px, 0.3);
-  double levels[6] = {0.0, 1.0, 0.0, 1.0, 0.0, 1.0};
-  auto* cost = new DesignCost(K, layers, pixels, image.channels);
-  ceres::Problem problem;
-  problem.AddResidualBlock(cost, nullptr, angle_axis, translation, &sigma, levels);
-  problem.SetParameterLowerBound(&sigma, 0, 0.2);
-  ceres::Solver::Summary summary;
-  // Thousands of residuals on 13 parameters: the normal equations are far cheaper than QR.
-  ceres::Solver::Options solver = OneThreadLevenbergMarquardt(options.max_iterations);
-  solver.linear_solver_type = ceres::DENSE_NORMAL_CHOLESKY;
-  ceres::Solve(solver, &problem, &summary);
-
+                                   theta.data());
+  theta.segment<3>(3) = cam_from_marker.translation;
+  theta[6] = std::max(sigma_px, 0.3);
+  for (int c = 0; c < image.channels; ++c) theta[8 + 2 * c] = 1.0;  // gains
+  Eigen::MatrixXd jtj;
+  Eigen::VectorXd jtr;
+  double cost = model.Evaluate(theta, &jtj, &jtr);
   PhotometricResult result;
+  result.initial_cost = 0.5 * cost;
+  double damping = 1e-3;
+  for (int iteration = 0; iteration < options.max_iterations; ++iteration) {
+    Eigen::MatrixXd damped = jtj;
+    damped.diagonal() += damping * jtj.diagonal();
+    const Eigen::VectorXd step = damped.ldlt().solve(-jtr);
+    Eigen::VectorXd trial = theta + step;
+    trial[6] = std::max(trial[6], 0.2);
+    const double trial_cost = model.Evaluate(trial, nullptr, nullptr);
+    ++result.iterations;
+    if (!(trial_cost < cost)) {
+      damping *= 10.0;
+      if (damping > 1e6) break;
+      continue;
+    }
+    const bool converged = cost - trial_cost < 1e-6 * cost;  // Ceres's function tolerance
+    theta = trial;
+    cost = model.Evaluate(theta, &jtj, &jtr);
+    damping = std::max(damping / 10.0, 1e-9);
+    if (converged) break;
+  }
+
   ceres::AngleAxisToRotationMatrix(
-      angle_axis, ceres::ColumnMajorAdapter3x3(result.cam_from_marker.rotation.data()));
-  result.cam_from_marker.translation =
-      Eigen::Vector3d(translation[0], translation[1], translation[2]);
-  result.sigma_px = sigma;
+      theta.data(), ceres::ColumnMajorAdapter3x3(result.cam_from_marker.rotation.data()));
+  result.cam_from_marker.translation = theta.segment<3>(3);
+  result.sigma_px = theta[6];
   result.pixels = static_cast<int>(pixels.size());
-  result.iterations = static_cast<int>(summary.iterations.size()) - 1;
-  result.initial_cost = summary.initial_cost;
-  result.final_cost = summary.final_cost;
+  result.final_cost = 0.5 * cost;
   return result;
 }
 
