@@ -148,18 +148,14 @@ class PixelModel {
   int channels_;
 };
 
-// One solve on the pixels near the edges at `cam_from_marker`, each tied to its edge point.
-std::optional<PhotometricResult> RefineOnce(const Image8& image,
-                                            const Camera& camera,
-                                            const MarkerSpec& marker,
-                                            const Rigid3& cam_from_marker,
-                                            double sigma_px,
-                                            const PhotometricOptions& options) {
-  const Eigen::Matrix3d K = camera.K();
-  const Eigen::Matrix3d H = K * RayFromPlane(cam_from_marker);
-  const Eigen::Matrix3d plane_from_px = H.inverse();
+// The marker's disks as edges seen through H (nullopt for other shapes, or a disk too small
+// for the blur), with their image conics.
+std::optional<std::vector<EdgeLayer>> EdgeLayers(const MarkerSpec& marker,
+                                                 const Eigen::Matrix3d& H,
+                                                 double sigma_px,
+                                                 const PhotometricOptions& options,
+                                                 std::vector<Eigen::Matrix3d>* conics) {
   std::vector<EdgeLayer> layers;
-  std::vector<Eigen::Matrix3d> conics;
   for (size_t i = 0; i < marker.layers.size(); ++i) {
     const auto* disk = std::get_if<DiskShape>(&marker.layers[i].shape);
     if (!disk) return std::nullopt;
@@ -168,8 +164,8 @@ std::optional<PhotometricResult> RefineOnce(const Image8& image,
       const PaintSample under = PaintAt(marker.layers[j], disk->center);
       if (under.color) below = *under.color;
     }
-    conics.push_back(CanonicalConic(ImageOfCircle<double>(H, disk->center, disk->radius)));
-    const Ellipse e = EllipseFromConic(conics.back());
+    conics->push_back(CanonicalConic(ImageOfCircle<double>(H, disk->center, disk->radius)));
+    const Ellipse e = EllipseFromConic(conics->back());
     if (sigma_px > options.max_blur_per_radius * std::sqrt(e.semi_major * e.semi_minor)) {
       return std::nullopt;
     }
@@ -182,12 +178,23 @@ std::optional<PhotometricResult> RefineOnce(const Image8& image,
           disk->center + disk->radius * Eigen::Vector2d(std::cos(angle), std::sin(angle)));
     }
   }
+  return layers;
+}
 
-  // The pixels near an edge, at the start pose; each takes the nearest edge.
-  const double band = options.band_sigmas * std::max(sigma_px, 0.3) + 1.0;
+// The pixels within `band` of an edge through H, each tied to its nearest edge.
+std::vector<Pixel> PixelsNearEdges(const Image8& image,
+                                   const Camera& camera,
+                                   const MarkerSpec& marker,
+                                   const std::vector<EdgeLayer>& layers,
+                                   const std::vector<Eigen::Matrix3d>& conics,
+                                   const Eigen::Matrix3d& H,
+                                   double band) {
+  const Eigen::Matrix3d K = camera.K();
+  const Eigen::Matrix3d plane_from_px = H.inverse();
   std::vector<Pixel> pixels;
   std::vector<uint8_t> taken(static_cast<size_t>(image.width) * image.height, 0);
   for (size_t l = 0; l < layers.size(); ++l) {
+    const EdgeLayer& layer = layers[l];
     const Ellipse e = EllipseFromConic(conics[l]);
     const int reach = static_cast<int>(std::ceil(e.semi_major + band + 2.0));
     const int u0 = std::max(0, static_cast<int>(e.center.x()) - reach);
@@ -200,7 +207,6 @@ std::optional<PhotometricResult> RefineOnce(const Image8& image,
         if (seen) continue;
         const Eigen::Vector3d ray = camera.CamFromImg(Eigen::Vector2d(u, v));
         const Eigen::Vector2d ideal(K(0, 0) * ray.x() + K(0, 2), K(1, 1) * ray.y() + K(1, 2));
-        // The nearest edge within the band.
         int nearest = -1;
         double nearest_distance = band;
         for (size_t m = 0; m < layers.size(); ++m) {
@@ -217,58 +223,55 @@ std::optional<PhotometricResult> RefineOnce(const Image8& image,
         p.value = Eigen::Vector3d::Zero();
         for (int c = 0; c < image.channels; ++c) p.value[c] = image.at(u, v, c) / 255.0;
         p.layer = nearest;
-        const EdgeLayer& layer = layers[l];
         const Eigen::Vector2d on_plane = (plane_from_px * ideal.homogeneous()).hnormalized();
         const Eigen::Vector2d radial = on_plane - layer.disk.center;
         double angle = std::atan2(radial.y(), radial.x());
         if (angle < 0.0) angle += 2.0 * M_PI;
         p.bin = static_cast<int>(std::lround(angle / (2.0 * M_PI) * layer.bins)) % layer.bins;
-        // The printed colour without this layer: the other layers, top-most first.
+        // The printed colour without this layer: the top-most other layer painting it.
         p.base = marker.background;
         for (size_t m = 0; m < layers.size(); ++m) {
           const PaintSample other = PaintAt(marker.layers[m], on_plane);
           if (m != l && other.color) p.base = *other.color;
         }
         // The edge's outward normal at the start pose, at the pixel's bin.
-        const double bin_angle = 2.0 * M_PI * p.bin / layer.bins;
-        const Eigen::Vector2d edge_plane =
-            layer.disk.center +
-            layer.disk.radius * Eigen::Vector2d(std::cos(bin_angle), std::sin(bin_angle));
+        const Eigen::Vector2d edge_plane = layer.edge[p.bin];
         const Eigen::Vector2d edge_px = (H * edge_plane.homogeneous()).hnormalized();
         const Eigen::Vector2d outward_px =
-            (H * (edge_plane +
-                  1e-3 * layer.disk.radius * (edge_plane - layer.disk.center) / layer.disk.radius)
-                     .homogeneous())
+            (H * (edge_plane + 1e-3 * (edge_plane - layer.disk.center)).homogeneous())
                 .hnormalized() -
             edge_px;
-        const Eigen::Vector3d gradient = conics[l] * edge_px.homogeneous();
-        p.normal = gradient.head<2>().normalized();
+        p.normal = (conics[l] * edge_px.homogeneous()).head<2>().normalized();
         if (p.normal.dot(outward_px) < 0.0) p.normal = -p.normal;
         pixels.push_back(p);
       }
     }
   }
-  if (pixels.size() < 20) return std::nullopt;
+  return pixels;
+}
 
-  // Levenberg-Marquardt on the normal equations (Marquardt's diagonal scaling).
-  const PixelModel model(K, layers, pixels, image.channels);
+// Levenberg-Marquardt on the normal equations (Marquardt's diagonal scaling) from a pose and
+// σ, gains 1 and offsets 0.
+PhotometricResult Solve(const PixelModel& model,
+                        const Rigid3& cam_from_marker,
+                        double sigma_px,
+                        int max_iterations) {
   Eigen::VectorXd theta = Eigen::VectorXd::Zero(model.Parameters());
   ceres::RotationMatrixToAngleAxis(ceres::ColumnMajorAdapter3x3(cam_from_marker.rotation.data()),
                                    theta.data());
   theta.segment<3>(3) = cam_from_marker.translation;
-  theta[6] = std::max(sigma_px, 0.3);
-  for (int c = 0; c < image.channels; ++c) theta[8 + 2 * c] = 1.0;  // gains
+  theta[6] = sigma_px;
+  for (int gain = 8; gain < model.Parameters(); gain += 2) theta[gain] = 1.0;
   Eigen::MatrixXd jtj;
   Eigen::VectorXd jtr;
   double cost = model.Evaluate(theta, &jtj, &jtr);
   PhotometricResult result;
   result.initial_cost = 0.5 * cost;
   double damping = 1e-3;
-  for (int iteration = 0; iteration < options.max_iterations; ++iteration) {
+  for (int iteration = 0; iteration < max_iterations; ++iteration) {
     Eigen::MatrixXd damped = jtj;
     damped.diagonal() += damping * jtj.diagonal();
-    const Eigen::VectorXd step = damped.ldlt().solve(-jtr);
-    Eigen::VectorXd trial = theta + step;
+    Eigen::VectorXd trial = theta + damped.ldlt().solve(-jtr);
     trial[6] = std::max(trial[6], 0.2);
     const double trial_cost = model.Evaluate(trial, nullptr, nullptr);
     ++result.iterations;
@@ -283,13 +286,33 @@ std::optional<PhotometricResult> RefineOnce(const Image8& image,
     damping = std::max(damping / 10.0, 1e-9);
     if (converged) break;
   }
-
   ceres::AngleAxisToRotationMatrix(
       theta.data(), ceres::ColumnMajorAdapter3x3(result.cam_from_marker.rotation.data()));
   result.cam_from_marker.translation = theta.segment<3>(3);
   result.sigma_px = theta[6];
-  result.pixels = static_cast<int>(pixels.size());
   result.final_cost = 0.5 * cost;
+  return result;
+}
+
+// One solve on the pixels near the edges at `cam_from_marker`, each tied to its edge point.
+std::optional<PhotometricResult> RefineOnce(const Image8& image,
+                                            const Camera& camera,
+                                            const MarkerSpec& marker,
+                                            const Rigid3& cam_from_marker,
+                                            double sigma_px,
+                                            const PhotometricOptions& options) {
+  const Eigen::Matrix3d H = camera.K() * RayFromPlane(cam_from_marker);
+  std::vector<Eigen::Matrix3d> conics;
+  const std::optional<std::vector<EdgeLayer>> layers =
+      EdgeLayers(marker, H, sigma_px, options, &conics);
+  if (!layers) return std::nullopt;
+  const double sigma = std::max(sigma_px, 0.3);
+  const std::vector<Pixel> pixels =
+      PixelsNearEdges(image, camera, marker, *layers, conics, H, options.band_sigmas * sigma + 1.0);
+  if (pixels.size() < 20) return std::nullopt;
+  const PixelModel model(camera.K(), *layers, pixels, image.channels);
+  PhotometricResult result = Solve(model, cam_from_marker, sigma, options.max_iterations);
+  result.pixels = static_cast<int>(pixels.size());
   return result;
 }
 
