@@ -307,7 +307,7 @@ TrackResult CircleTracker::TrackIn(const Observation& observation,
   }
 
   diagnostics_.edge_rms_px = EdgeRmsPx(problem, cam_from_paper);
-  if (options_.photometric) {
+  if (options_.refine && options_.photometric) {
     const std::optional<PhotometricResult> direct =
         RefinePhotometric(*observation.image,
                           camera,

@@ -27,7 +27,7 @@ struct CircleTrackerOptions {
   AnalyticOptions analytic;
   RefinementOptions refinement;
   bool refine = true;       // run the LM refinement (§6); off = analytic pose only
-  bool photometric = true;  // then refine on the pixels (photometric_refinement.h)
+  bool photometric = true;  // and then on the pixels (photometric_refinement.h)
   PhotometricOptions photometric_refinement;
   bool tracking = true;      // search around the previous pose first (paper step 5)
   double roi_margin = 0.25;  // tracking region: predicted box grown by this fraction

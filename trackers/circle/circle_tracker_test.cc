@@ -271,6 +271,20 @@ TEST(CircleTracker, ReportsEveryStage) {
   EXPECT_GT(d.noise_sigma, 0.05);
 }
 
+// refine: false returns the analytic pose itself, with neither refinement after it.
+TEST(CircleTracker, WithoutRefinementTheAnalyticPoseIsReturned) {
+  const MarkerSpec marker = Load("circles_a");
+  CircleTrackerOptions options;
+  options.refine = false;
+  CircleTracker tracker(options);
+  const TrackedFrame t = RenderAndTrack(&tracker, marker, TiltedView(0.6, 35.0, 20.0), 0.02, 3);
+  ASSERT_EQ(t.result.status, TrackStatus::kOk) << t.result.message;
+  const CircleDiagnostics& d = tracker.diagnostics();
+  EXPECT_FALSE(d.photometric_used);
+  EXPECT_EQ(t.result.hypotheses.front().translation, d.analytic_cam_from_marker->translation);
+  EXPECT_EQ(t.result.hypotheses.front().rotation, d.analytic_cam_from_marker->rotation);
+}
+
 // Tracking mode: after one frame the next is searched around the prediction; Reset forgets.
 TEST(CircleTracker, TracksFromThePreviousPoseAndResets) {
   const MarkerSpec marker = Load("circles_a");
