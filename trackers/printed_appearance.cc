@@ -92,9 +92,14 @@ AppearanceFit FitOnGrid(const Image8& image,
       if (!in_front[here] || !in_front[right] || !in_front[up]) continue;
       const Eigen::Vector2d p = lattice_point(i, j);
       const Eigen::Vector2d& px = lattice_px[here];
+      // Both pixels, (u, v) and (u + 2, v), in the image (compared before any rounding, so
+      // that points far off it, or not finite, never reach an integer).
+      if (!(px.x() > -0.5 && px.y() > -0.5 && px.x() < image.width - 2.5 &&
+            px.y() < image.height - 0.5)) {
+        continue;
+      }
       const int u = static_cast<int>(std::lround(px.x()));
       const int v = static_cast<int>(std::lround(px.y()));
-      if (u < 0 || v < 0 || u + 2 >= image.width || v >= image.height) continue;
       // Where the lattice is finer than the pixels (a far marker), a pixel is read once: the
       // standard errors count independent readings.
       if (!read.insert(static_cast<int64_t>(v) * image.width + u).second) continue;

@@ -166,6 +166,11 @@ std::optional<std::vector<EdgeLayer>> EdgeLayers(const MarkerSpec& marker,
     }
     conics->push_back(CanonicalConic(ImageOfCircle<double>(H, disk->center, disk->radius)));
     const Ellipse e = EllipseFromConic(conics->back());
+    // An image that is no finite ellipse (a disk across the horizon) cannot be modelled.
+    if (!(e.semi_minor > 0.0 && e.semi_major < 1e5 && e.center.allFinite() &&
+          e.center.cwiseAbs().maxCoeff() < 1e6)) {
+      return std::nullopt;
+    }
     if (sigma_px > options.max_blur_per_radius * std::sqrt(e.semi_major * e.semi_minor)) {
       return std::nullopt;
     }
