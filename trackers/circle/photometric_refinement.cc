@@ -14,38 +14,63 @@
 namespace markerbench {
 namespace {
 
-// A printed disk and the colour step across its edge (its colour minus what lies under it),
-// its edge sampled at `bins` angles.
+// A printed disk and the colour step across its edge (its colour minus what lies under it, in
+// the channels used), its edge sampled at `bins` angles, and that edge in the image at the
+// start pose.
 struct EdgeLayer {
   DiskShape disk;
-  Rgb jump;
+  Eigen::Vector3d jump;
   int bins = 0;
   std::vector<Eigen::Vector2d> edge;  // the bins' points on the circle, marker plane
+  std::vector<Eigen::Vector2d> start_px;
+  std::vector<Eigen::Vector2d> start_normal;  // outward, unit
+  std::vector<double> start_curvature_radius_px;
+  double start_depth_m = 0.0;  // of the disk's centre
 };
 
-// A pixel and the one edge it lies near: its signed distance to that edge is taken along the
-// edge's normal at the start pose, from the edge point at the pixel's angle about the disk.
+// An edge within reach of a pixel: the pixel's signed distance to it is taken along the edge's
+// normal at the start pose, from the edge point nearest the pixel then.
+struct NearEdge {
+  int layer = 0;
+  int bin = 0;
+};
+
+// A pixel within reach of one or more edges; the blurred design there is `base` plus each
+// near edge's step times its blurred-disk profile. The design is a sum of disk indicators
+// (each disk's step is uniform over it), and blur is linear, so this holds however the blurred
+// edges overlap.
 struct Pixel {
   Eigen::Vector2d ideal_px;  // undistorted pixel coordinates
   Eigen::Vector3d value;     // measured, 0-1, per channel used
-  Rgb base;                  // the printed colour without the near layer's step
-  int layer = 0;
-  int bin = 0;
-  Eigen::Vector2d normal;  // outward unit normal of the edge at the start pose
+  Eigen::Vector3d base;      // the background plus the steps of the disks it lies deep inside
+  int first_edge = 0;        // its edges: PixelSet::near_edges[first_edge, first_edge + edges)
+  int edges = 0;
 };
+
+struct PixelSet {
+  std::vector<Pixel> pixels;
+  std::vector<NearEdge> near_edges;
+};
+
+// The radius of the circle through three points.
+double CircumRadius(const Eigen::Vector2d& a, const Eigen::Vector2d& b, const Eigen::Vector2d& c) {
+  const Eigen::Vector2d ab = b - a, bc = c - b, ca = a - c;
+  const double twice_area = std::abs(ab.x() * bc.y() - ab.y() * bc.x());
+  return std::sqrt(ab.squaredNorm() * bc.squaredNorm() * ca.squaredNorm()) / (2.0 * twice_area);
+}
 
 // The least-squares problem measured - model over every pixel and channel, in the parameters
 // θ = (angle-axis (3), translation (3), σ, then offset and gain per channel). The edge points
-// and disk sizes are differentiated by Jets once per bin; each pixel then chains them by hand
-// and adds its rows straight into the normal equations (a dense Jacobian of thousands of rows
-// would cost more than the model).
+// are differentiated by Jets once per bin and the disks' scales once per disk; each pixel then
+// chains them by hand and adds its rows straight into the normal equations (a dense Jacobian
+// of thousands of rows would cost more than the model).
 class PixelModel {
  public:
   using Jet = ceres::Jet<double, 7>;  // the pose (6) and σ
 
   PixelModel(const Eigen::Matrix3d& K,
              const std::vector<EdgeLayer>& layers,
-             const std::vector<Pixel>& pixels,
+             const PixelSet& pixels,
              int channels)
       : K_(K), layers_(layers), pixels_(pixels), channels_(channels) {}
 
@@ -53,10 +78,9 @@ class PixelModel {
 
   // Σ r² at θ; with jtj and jtr, also JᵀJ and Jᵀr.
   double Evaluate(const Eigen::VectorXd& theta, Eigen::MatrixXd* jtj, Eigen::VectorXd* jtr) const {
-    if (jtj) {
-      jtj->setZero(Parameters(), Parameters());
-      jtr->setZero(Parameters());
-    }
+    // Summed in fixed-size matrices (at most 3 channels), copied out at the end.
+    Eigen::Matrix<double, 13, 13> normal = Eigen::Matrix<double, 13, 13>::Zero();
+    Eigen::Matrix<double, 13, 1> gradient = Eigen::Matrix<double, 13, 1>::Zero();
     Jet angle_axis[3], translation[3];
     for (int k = 0; k < 3; ++k) {
       angle_axis[k] = Jet(theta[k], k);
@@ -68,75 +92,115 @@ class PixelModel {
     Eigen::Matrix<Jet, 3, 3> R;
     ceres::AngleAxisToRotationMatrix(angle_axis, ceres::ColumnMajorAdapter3x3(R.data()));
     const Eigen::Matrix<Jet, 3, 1> t(translation[0], translation[1], translation[2]);
-    // Each layer's edge points in the image.
+    // Each layer's edge points in the image, and at each the edge's radius of curvature in
+    // blur σ, s = ρ/σ, with the exact profile of a disk of that size blurred
+    // (blurred_disk_profile.h): a tilted disk's image is an ellipse, whose blurred edge
+    // matches the osculating disk's to first order in σ/ρ (the shift σ²/2ρ of its midpoint).
+    // ρ changes with the pose by the disk's scale, 1/depth; its shape is the start pose's,
+    // where the pixels are chosen again at each round.
     std::vector<std::vector<Eigen::Matrix<Jet, 2, 1>>> edges(layers_.size());
-    // Each layer's radius in blur σ, s = R/σ (R in pixels, from its depth), and the exact
-    // profile of a disk of that size blurred (blurred_disk_profile.h).
-    std::vector<Jet> radii;
-    std::vector<BlurredDiskProfile> profiles;
+    std::vector<Jet> size_per_sigma;  // per layer: s = start ρ · this
+    std::vector<std::vector<BlurredDiskProfile>> profiles(layers_.size());
     // H = K [r1 r2 t]: plane points (X, Y, 1) to pixels.
     Eigen::Matrix<Jet, 3, 3> H;
     H << R.col(0), R.col(1), t;
     H = K_.cast<Jet>() * H;
     for (size_t l = 0; l < layers_.size(); ++l) {
       const EdgeLayer& layer = layers_[l];
-      edges[l].reserve(layer.edge.size());
+      edges[l].reserve(layer.bins);
       for (const Eigen::Vector2d& X : layer.edge) {
         const Eigen::Matrix<Jet, 3, 1> p = H.col(0) * X.x() + H.col(1) * X.y() + H.col(2);
         edges[l].emplace_back(p.x() / p.z(), p.y() / p.z());
       }
       const Eigen::Matrix<Jet, 3, 1> center(
           Jet(layer.disk.center.x()), Jet(layer.disk.center.y()), Jet(0.0));
-      radii.push_back(K_(0, 0) * layer.disk.radius / (R * center + t).z() / sigma);
-      profiles.emplace_back(radii.back().a);
+      size_per_sigma.push_back(layer.start_depth_m / ((R * center + t).z() * sigma));
+      profiles[l].reserve(layer.bins);
+      for (const double rho : layer.start_curvature_radius_px) {
+        profiles[l].emplace_back(rho * size_per_sigma.back().a);
+      }
     }
-    // Per pixel in doubles: d = n·(x - e) (px, positive outside), z = -d/σ, inside = G(s, z),
-    // chained to the 7 Jet parameters through e, s and σ.
+    // Per pixel in doubles, for each near edge: d = n·(x - e) (px, positive outside),
+    // z = -d/σ, inside = G(s, z), chained to the 7 Jet parameters through e, s and σ.
     const double sigma_value = sigma.a;
     Eigen::Matrix<double, 7, 1> d_sigma = Eigen::Matrix<double, 7, 1>::Zero();
     d_sigma[6] = 1.0;
-    for (size_t i = 0; i < pixels_.size(); ++i) {
-      const Pixel& p = pixels_[i];
-      const Eigen::Matrix<Jet, 2, 1>& edge = edges[p.layer][p.bin];
-      const double d = p.normal.x() * (p.ideal_px.x() - edge.x().a) +
-                       p.normal.y() * (p.ideal_px.y() - edge.y().a);
-      const Eigen::Matrix<double, 7, 1> d_d =
-          -p.normal.x() * edge.x().v - p.normal.y() * edge.y().v;
-      const double z = -d / sigma_value;
-      const Eigen::Matrix<double, 7, 1> d_z =
-          -d_d / sigma_value + (d / (sigma_value * sigma_value)) * d_sigma;
-      const ProfileValue g = profiles[p.layer].At(z);
-      const double inside = g.value;
-      const Eigen::Matrix<double, 7, 1> d_inside = g.d_dz * d_z + g.d_ds * radii[p.layer].v;
-      const Rgb& jump = layers_[p.layer].jump;
-      // Each channel's row is (-gain step d_inside, -1, -printed) on (θ 0-6, its offset and
-      // gain): the θ part is one vector scaled, so the channels share one outer product.
-      double pose_weight = 0.0;    // Σ_c (gain step)²
-      double pose_residual = 0.0;  // Σ_c r (-gain step)
+    // The fraction of a near edge's disk seen at a pixel, with its gradient if asked.
+    const auto inside = [&](const Pixel& p, const NearEdge& near, Eigen::Matrix<double, 7, 1>* d) {
+      const Eigen::Matrix<Jet, 2, 1>& edge = edges[near.layer][near.bin];
+      const EdgeLayer& layer = layers_[near.layer];
+      const Eigen::Vector2d& normal = layer.start_normal[near.bin];
+      const double distance =
+          normal.x() * (p.ideal_px.x() - edge.x().a) + normal.y() * (p.ideal_px.y() - edge.y().a);
+      const ProfileValue g = profiles[near.layer][near.bin].At(-distance / sigma_value);
+      if (d) {
+        const Eigen::Matrix<double, 7, 1> d_distance =
+            -normal.x() * edge.x().v - normal.y() * edge.y().v;
+        const Eigen::Matrix<double, 7, 1> d_z =
+            -d_distance / sigma_value + (distance / (sigma_value * sigma_value)) * d_sigma;
+        *d = g.d_dz * d_z +
+             (g.d_ds * layer.start_curvature_radius_px[near.bin]) * size_per_sigma[near.layer].v;
+      }
+      return g.value;
+    };
+    for (const Pixel& p : pixels_.pixels) {
+      // The printed colour and its gradient, ∂printed_c/∂θ = Σ_k jump_kc ∂inside_k/∂θ.
+      Eigen::Vector3d printed = p.base;
+      Eigen::Matrix<double, 7, 3> d_printed;
+      Eigen::Matrix<double, 7, 1> d_inside;  // of the last edge: the only one for most pixels
+      if (jtj) d_printed.setZero();
+      for (int k = p.first_edge; k < p.first_edge + p.edges; ++k) {
+        const NearEdge& near = pixels_.near_edges[k];
+        const Eigen::Vector3d& jump = layers_[near.layer].jump;
+        printed += inside(p, near, jtj ? &d_inside : nullptr) * jump;
+        if (jtj) d_printed += d_inside * jump.transpose();
+      }
+      double residuals[3];
       for (int c = 0; c < channels_; ++c) {
-        const double base = channels_ == 3 ? p.base[c] : Luma(p.base);
-        const double step = channels_ == 3 ? jump[c] : Luma(jump);
-        const double printed = base + step * inside;
-        const double gain = levels[2 * c + 1];
-        const double r = p.value[c] - (levels[2 * c] + gain * printed);
-        cost += r * r;
-        if (!jtj) continue;
-        const double scale = -gain * step;
-        pose_weight += scale * scale;
-        pose_residual += r * scale;
-        const int level = 7 + 2 * c;
-        const Eigen::Vector2d level_row(-1.0, -printed);
-        jtj->block<7, 2>(0, level) += (scale * d_inside) * level_row.transpose();
-        jtj->block<2, 2>(level, level) += level_row * level_row.transpose();
-        jtr->segment<2>(level) += r * level_row;
+        residuals[c] = p.value[c] - (levels[2 * c] + levels[2 * c + 1] * printed[c]);
+        cost += residuals[c] * residuals[c];
       }
       if (!jtj) continue;
-      jtj->topLeftCorner<7, 7>() += pose_weight * d_inside * d_inside.transpose();
-      jtr->head<7>() += pose_residual * d_inside;
+      // Channel c's row is (-gain_c ∂printed_c/∂θ, -1, -printed_c) on (θ 0-6, its offset and
+      // gain). The pose block gets Σ_c row_c row_cᵀ; with one edge the rows are one vector
+      // scaled, so the channels share one outer product. Upper triangles, written out (Eigen's
+      // products of these small blocks took twice as long here).
+      double shared_weight = 0.0;  // one edge: Σ_c (gain_c jump_c)²
+      for (int c = 0; c < channels_; ++c) {
+        const double gain = levels[2 * c + 1];
+        const double r = residuals[c];
+        const Eigen::Matrix<double, 7, 1> row = -gain * d_printed.col(c);
+        if (p.edges == 1) {
+          const double scale = gain * layers_[pixels_.near_edges[p.first_edge].layer].jump[c];
+          shared_weight += scale * scale;
+        } else {
+          for (int i = 0; i < 7; ++i) {
+            for (int j = 0; j <= i; ++j) normal(j, i) += row[i] * row[j];
+          }
+        }
+        const int level = 7 + 2 * c;
+        for (int i = 0; i < 7; ++i) {
+          gradient[i] += r * row[i];
+          normal(i, level) -= row[i];
+          normal(i, level + 1) -= row[i] * printed[c];
+        }
+        normal(level, level) += 1.0;
+        normal(level, level + 1) += printed[c];
+        normal(level + 1, level + 1) += printed[c] * printed[c];
+        gradient[level] -= r;
+        gradient[level + 1] -= r * printed[c];
+      }
+      if (p.edges == 1) {
+        for (int i = 0; i < 7; ++i) {
+          for (int j = 0; j <= i; ++j) normal(j, i) += shared_weight * d_inside[i] * d_inside[j];
+        }
+      }
     }
     if (jtj) {
-      // The lower blocks of the levels' columns, by symmetry.
-      jtj->bottomLeftCorner(2 * channels_, 7) = jtj->topRightCorner(7, 2 * channels_).transpose();
+      // The lower triangle, by symmetry.
+      normal.triangularView<Eigen::StrictlyLower>() = normal.transpose();
+      *jtj = normal.topLeftCorner(Parameters(), Parameters());
+      *jtr = gradient.head(Parameters());
     }
     return cost;
   }
@@ -144,16 +208,20 @@ class PixelModel {
  private:
   Eigen::Matrix3d K_;
   const std::vector<EdgeLayer>& layers_;
-  const std::vector<Pixel>& pixels_;
+  const PixelSet& pixels_;
   int channels_;
 };
 
-// The marker's disks as edges seen through H (nullopt for other shapes, or a disk too small
-// for the blur), with their image conics.
+// The colour in the channels used: RGB, or its luma in the first for a grey image.
+Eigen::Vector3d InChannels(const Rgb& color, int channels) {
+  return channels == 3 ? color : Eigen::Vector3d(Luma(color), 0.0, 0.0);
+}
+
+// The marker's disks as edges seen through H (nullopt for other shapes), with their image
+// conics.
 std::optional<std::vector<EdgeLayer>> EdgeLayers(const MarkerSpec& marker,
                                                  const Eigen::Matrix3d& H,
-                                                 double sigma_px,
-                                                 const PhotometricOptions& options,
+                                                 int channels,
                                                  std::vector<Eigen::Matrix3d>* conics) {
   std::vector<EdgeLayer> layers;
   for (size_t i = 0; i < marker.layers.size(); ++i) {
@@ -171,88 +239,136 @@ std::optional<std::vector<EdgeLayer>> EdgeLayers(const MarkerSpec& marker,
           e.center.cwiseAbs().maxCoeff() < 1e6)) {
       return std::nullopt;
     }
-    if (sigma_px > options.max_blur_per_radius * std::sqrt(e.semi_major * e.semi_minor)) {
-      return std::nullopt;
-    }
     // Edge points about half a pixel apart.
     const int bins = std::max(32, static_cast<int>(std::ceil(4.0 * M_PI * e.semi_major)));
-    layers.push_back({*disk, marker.layers[i].color - below, bins, {}});
+    EdgeLayer layer;
+    layer.disk = *disk;
+    layer.jump = InChannels(marker.layers[i].color - below, channels);
+    layer.bins = bins;
+    layer.start_depth_m = (H * disk->center.homogeneous()).z();
     for (int k = 0; k < bins; ++k) {
-      const double angle = 2.0 * M_PI * k / bins;
-      layers.back().edge.push_back(
-          disk->center + disk->radius * Eigen::Vector2d(std::cos(angle), std::sin(angle)));
+      const Eigen::Vector2d radial(std::cos(2.0 * M_PI * k / bins),
+                                   std::sin(2.0 * M_PI * k / bins));
+      layer.edge.push_back(disk->center + disk->radius * radial);
+      layer.start_px.push_back((H * layer.edge.back().homogeneous()).hnormalized());
+      const Eigen::Vector2d outward_px =
+          (H * (layer.edge.back() + 1e-3 * disk->radius * radial).homogeneous()).hnormalized() -
+          layer.start_px.back();
+      Eigen::Vector2d normal = (conics->back() * layer.start_px.back().homogeneous()).head<2>();
+      layer.start_normal.push_back(normal.dot(outward_px) < 0.0 ? -normal.normalized()
+                                                                : normal.normalized());
     }
+    for (int k = 0; k < bins; ++k) {
+      layer.start_curvature_radius_px.push_back(CircumRadius(layer.start_px[(k + bins - 1) % bins],
+                                                             layer.start_px[k],
+                                                             layer.start_px[(k + 1) % bins]));
+    }
+    layers.push_back(std::move(layer));
   }
   return layers;
 }
 
-// The pixels within `band` of an edge through H, each tied to its nearest edge.
-std::vector<Pixel> PixelsNearEdges(const Image8& image,
-                                   const Camera& camera,
-                                   const MarkerSpec& marker,
-                                   const std::vector<EdgeLayer>& layers,
-                                   const std::vector<Eigen::Matrix3d>& conics,
-                                   const Eigen::Matrix3d& H,
-                                   double band) {
+// The bin of `layer`'s edge point nearest a pixel at `ideal_px` at the start pose (the foot of
+// its perpendicular), searched from the one at the pixel's angle about the disk, `on_plane`.
+int NearestBin(const EdgeLayer& layer,
+               const Eigen::Vector2d& ideal_px,
+               const Eigen::Vector2d& on_plane) {
+  const auto at = [&](int bin) { return (bin % layer.bins + layer.bins) % layer.bins; };
+  const Eigen::Vector2d radial = on_plane - layer.disk.center;
+  int bin = at(static_cast<int>(
+      std::lround(std::atan2(radial.y(), radial.x()) / (2.0 * M_PI) * layer.bins)));
+  double distance = (layer.start_px[bin] - ideal_px).squaredNorm();
+  for (const int step : {1, -1}) {
+    for (int next = at(bin + step), n = 1; n < layer.bins; next = at(next + step), ++n) {
+      const double next_distance = (layer.start_px[next] - ideal_px).squaredNorm();
+      if (!(next_distance < distance)) break;
+      bin = next;
+      distance = next_distance;
+    }
+  }
+  return bin;
+}
+
+// The pixels within `band` of an edge through H, each with every edge within `band` of it,
+// but none deeper inside a disk than `max_depth_per_curvature` of its edge's radius of
+// curvature there (PhotometricOptions).
+PixelSet PixelsNearEdges(const Image8& image,
+                         const Camera& camera,
+                         const MarkerSpec& marker,
+                         const std::vector<EdgeLayer>& layers,
+                         const std::vector<Eigen::Matrix3d>& conics,
+                         const Eigen::Matrix3d& H,
+                         double band,
+                         double max_depth_per_curvature) {
   const Eigen::Matrix3d K = camera.K();
   const Eigen::Matrix3d plane_from_px = H.inverse();
-  std::vector<Pixel> pixels;
-  std::vector<uint8_t> taken(static_cast<size_t>(image.width) * image.height, 0);
-  for (size_t l = 0; l < layers.size(); ++l) {
-    const EdgeLayer& layer = layers[l];
-    const Ellipse e = EllipseFromConic(conics[l]);
+  const Eigen::Vector3d background = InChannels(marker.background, image.channels);
+  PixelSet set;
+  // Each edge's reach in the image; a pixel in two is taken once.
+  struct Box {
+    int u0, v0, u1, v1;
+  };
+  std::vector<Box> boxes;
+  Box all{image.width, image.height, -1, -1};
+  for (const Eigen::Matrix3d& conic : conics) {
+    const Ellipse e = EllipseFromConic(conic);
     const int reach = static_cast<int>(std::ceil(e.semi_major + band + 2.0));
-    const int u0 = std::max(0, static_cast<int>(e.center.x()) - reach);
-    const int v0 = std::max(0, static_cast<int>(e.center.y()) - reach);
-    const int u1 = std::min(image.width - 1, static_cast<int>(e.center.x()) + reach);
-    const int v1 = std::min(image.height - 1, static_cast<int>(e.center.y()) + reach);
-    for (int v = v0; v <= v1; ++v) {
-      for (int u = u0; u <= u1; ++u) {
-        uint8_t& seen = taken[static_cast<size_t>(v) * image.width + u];
+    boxes.push_back({std::max(0, static_cast<int>(e.center.x()) - reach),
+                     std::max(0, static_cast<int>(e.center.y()) - reach),
+                     std::min(image.width - 1, static_cast<int>(e.center.x()) + reach),
+                     std::min(image.height - 1, static_cast<int>(e.center.y()) + reach)});
+    all = {std::min(all.u0, boxes.back().u0),
+           std::min(all.v0, boxes.back().v0),
+           std::max(all.u1, boxes.back().u1),
+           std::max(all.v1, boxes.back().v1)};
+  }
+  const int all_width = all.u1 - all.u0 + 1;
+  std::vector<uint8_t> taken(
+      static_cast<size_t>(std::max(0, all_width)) * std::max(0, all.v1 - all.v0 + 1), 0);
+  std::vector<double> distances(layers.size());
+  for (const Box& box : boxes) {
+    for (int v = box.v0; v <= box.v1; ++v) {
+      for (int u = box.u0; u <= box.u1; ++u) {
+        uint8_t& seen = taken[static_cast<size_t>(v - all.v0) * all_width + (u - all.u0)];
         if (seen) continue;
+        seen = 1;
         const Eigen::Vector3d ray = camera.CamFromImg(Eigen::Vector2d(u, v));
         const Eigen::Vector2d ideal(K(0, 0) * ray.x() + K(0, 2), K(1, 1) * ray.y() + K(1, 2));
-        int nearest = -1;
-        double nearest_distance = band;
+        // Signed distance to each edge, negative inside.
+        bool near_any = false;
         for (size_t m = 0; m < layers.size(); ++m) {
-          const double d = std::abs(PndResidual<double>(conics[m], ideal.x(), ideal.y()));
-          if (d <= nearest_distance) {
-            nearest = static_cast<int>(m);
-            nearest_distance = d;
-          }
+          distances[m] = PndResidual<double>(conics[m], ideal.x(), ideal.y());
+          near_any = near_any || std::abs(distances[m]) <= band;
         }
-        if (nearest != static_cast<int>(l)) continue;
-        seen = 1;
+        if (!near_any) continue;
         Pixel p;
         p.ideal_px = ideal;
         p.value = Eigen::Vector3d::Zero();
         for (int c = 0; c < image.channels; ++c) p.value[c] = image.at(u, v, c) / 255.0;
-        p.layer = nearest;
+        p.base = background;
+        p.first_edge = static_cast<int>(set.near_edges.size());
         const Eigen::Vector2d on_plane = (plane_from_px * ideal.homogeneous()).hnormalized();
-        const Eigen::Vector2d radial = on_plane - layer.disk.center;
-        double angle = std::atan2(radial.y(), radial.x());
-        if (angle < 0.0) angle += 2.0 * M_PI;
-        p.bin = static_cast<int>(std::lround(angle / (2.0 * M_PI) * layer.bins)) % layer.bins;
-        // The printed colour without this layer: the top-most other layer painting it.
-        p.base = marker.background;
+        bool modelled = true;
         for (size_t m = 0; m < layers.size(); ++m) {
-          const PaintSample other = PaintAt(marker.layers[m], on_plane);
-          if (m != l && other.color) p.base = *other.color;
+          if (std::abs(distances[m]) <= band) {
+            const int bin = NearestBin(layers[m], ideal, on_plane);
+            set.near_edges.push_back({static_cast<int>(m), bin});
+            ++p.edges;
+            modelled = modelled && distances[m] >= -max_depth_per_curvature *
+                                                       layers[m].start_curvature_radius_px[bin];
+          } else if (distances[m] < 0.0) {
+            p.base += layers[m].jump;
+          }
         }
-        // The edge's outward normal at the start pose, at the pixel's bin.
-        const Eigen::Vector2d edge_plane = layer.edge[p.bin];
-        const Eigen::Vector2d edge_px = (H * edge_plane.homogeneous()).hnormalized();
-        const Eigen::Vector2d outward_px =
-            (H * (edge_plane + 1e-3 * (edge_plane - layer.disk.center)).homogeneous())
-                .hnormalized() -
-            edge_px;
-        p.normal = (conics[l] * edge_px.homogeneous()).head<2>().normalized();
-        if (p.normal.dot(outward_px) < 0.0) p.normal = -p.normal;
-        pixels.push_back(p);
+        if (modelled) {
+          set.pixels.push_back(p);
+        } else {
+          set.near_edges.resize(p.first_edge);
+        }
       }
     }
   }
-  return pixels;
+  return set;
 }
 
 // Levenberg-Marquardt on the normal equations (Marquardt's diagonal scaling) from a pose and
@@ -299,7 +415,7 @@ PhotometricResult Solve(const PixelModel& model,
   return result;
 }
 
-// One solve on the pixels near the edges at `cam_from_marker`, each tied to its edge point.
+// One solve on the pixels near the edges at `cam_from_marker`, each tied to its edges' points.
 std::optional<PhotometricResult> RefineOnce(const Image8& image,
                                             const Camera& camera,
                                             const MarkerSpec& marker,
@@ -309,15 +425,21 @@ std::optional<PhotometricResult> RefineOnce(const Image8& image,
   const Eigen::Matrix3d H = camera.K() * RayFromPlane(cam_from_marker);
   std::vector<Eigen::Matrix3d> conics;
   const std::optional<std::vector<EdgeLayer>> layers =
-      EdgeLayers(marker, H, sigma_px, options, &conics);
+      EdgeLayers(marker, H, image.channels, &conics);
   if (!layers) return std::nullopt;
   const double sigma = std::max(sigma_px, 0.3);
-  const std::vector<Pixel> pixels =
-      PixelsNearEdges(image, camera, marker, *layers, conics, H, options.band_sigmas * sigma + 1.0);
-  if (pixels.size() < 20) return std::nullopt;
+  const PixelSet pixels = PixelsNearEdges(image,
+                                          camera,
+                                          marker,
+                                          *layers,
+                                          conics,
+                                          H,
+                                          options.band_sigmas * sigma + 1.0,
+                                          options.max_depth_per_curvature);
+  if (pixels.pixels.size() < 20) return std::nullopt;
   const PixelModel model(camera.K(), *layers, pixels, image.channels);
   PhotometricResult result = Solve(model, cam_from_marker, sigma, options.max_iterations);
-  result.pixels = static_cast<int>(pixels.size());
+  result.pixels = static_cast<int>(pixels.pixels.size());
   return result;
 }
 

@@ -42,12 +42,6 @@ TEST(PhotometricRefinement, RecoversThePoseAndTheBlurFromAPerturbedStart) {
       const RenderedFrame frame = RenderMarker(marker, truth, 0.005, blur, 7);
       const std::optional<PhotometricResult> refined =
           RefinePhotometric(frame.image, camera, marker, Perturbed(truth, &rng), 1.0);
-      if (refined)
-        printf("err %g mm %g deg sigma %g it %d\n",
-               1e3 * PositionError(refined->cam_from_marker, truth),
-               RotationErrorDeg(refined->cam_from_marker, truth),
-               refined->sigma_px,
-               refined->iterations);
       ASSERT_TRUE(refined);
       // Measured: 0.23-0.90 mm and 0.026-0.11° over these eight frames.
       EXPECT_LE(PositionError(refined->cam_from_marker, truth), 1.2e-3);
@@ -93,17 +87,39 @@ TEST(PhotometricRefinement, BeatsTheEdgePointsOnTheSameFrames) {
   EXPECT_GE(better, 17);  // a sign test: P(>= 17 of 24 | no difference) = 0.032
 }
 
-TEST(PhotometricRefinement, DeclinesWhatItCannotModel) {
+// Under heavy blur the two disks' blurred edges overlap (circles_a at 0.6 m: 30 px disks, a
+// 20 px gap, σ = 8-10 px): the sum of the profiles models it, exactly for a frontal view
+// (circles) and to first order in σ/ρ for a tilted one (ellipses). Without noise, from a start
+// 1 mm and 0.25° off, so what is left is the model's bias.
+TEST(PhotometricRefinement, ModelsOverlappingHeavilyBlurredEdges) {
+  const Camera camera;
+  const MarkerSpec marker = Load("circles_a");
+  Rng rng(5);
+  struct Case {
+    double tilt_deg, blur, max_error_mm;
+  };
+  // Measured: 0.24, 1.1, 2.3 and 6.1 mm. The edge points' pose on these noise-free frames is
+  // 0.40, 0.50, 1.5 and 2.5 mm: past first order the osculating disk is biased (under the
+  // paper sweep's noise the pixels still win, results/circle_accuracy.md).
+  for (const Case& c :
+       {Case{0.0, 10.0, 0.4}, Case{20.0, 8.0, 1.6}, Case{35.0, 8.0, 3.2}, Case{35.0, 10.0, 8.0}}) {
+    SCOPED_TRACE("tilt " + std::to_string(c.tilt_deg) + " blur " + std::to_string(c.blur));
+    const Rigid3 truth = TiltedView(0.6, c.tilt_deg, 40.0);
+    const RenderedFrame frame = RenderMarker(marker, truth, 0.0, c.blur, 7);
+    const std::optional<PhotometricResult> refined =
+        RefinePhotometric(frame.image, camera, marker, Perturbed(truth, &rng), c.blur);
+    ASSERT_TRUE(refined);
+    EXPECT_LE(PositionError(refined->cam_from_marker, truth), 1e-3 * c.max_error_mm);
+    EXPECT_NEAR(refined->sigma_px, c.blur, 0.02 * c.blur);
+  }
+}
+
+TEST(PhotometricRefinement, DeclinesDesignsOtherThanDisks) {
   const Camera camera;
   const Rigid3 truth = TiltedView(0.6, 20.0, 0.0);
   const MarkerSpec face = Load("circle_e");  // a crescent: not disks only
   const RenderedFrame frame = RenderMarker(face, truth, 0.0, 0.0, 1);
   EXPECT_FALSE(RefinePhotometric(frame.image, camera, face, truth, 0.5));
-  // circles_a's disks are 30 px in radius here: σ = 8 px is beyond a quarter of that.
-  const MarkerSpec disks = Load("circles_a");
-  const RenderedFrame blurred = RenderMarker(disks, truth, 0.0, 8.0, 1);
-  EXPECT_FALSE(RefinePhotometric(blurred.image, camera, disks, truth, 8.0));
-  EXPECT_TRUE(RefinePhotometric(blurred.image, camera, disks, truth, 6.0));
 }
 
 }  // namespace
