@@ -71,7 +71,7 @@ const Table& TheTable() {
 
 BlurredDiskProfile::BlurredDiskProfile(double s) {
   const Table& table = TheTable();
-  const double t = 1.0 / std::clamp(s, kMinS, kMaxS);
+  const double t = 1.0 / (s > kMinS ? std::min(s, kMaxS) : kMinS);  // NaN: the smallest
   const double ti = (t - kMinT) / (kMaxT - kMinT) * kTSteps;
   const int i = std::min(static_cast<int>(ti), kTSteps - 1);
   row0_ = table.row(i);

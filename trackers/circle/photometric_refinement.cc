@@ -6,6 +6,7 @@
 #include <Eigen/Cholesky>
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <vector>
 
 #include "trackers/circle/blurred_disk_profile.h"
@@ -52,10 +53,11 @@ struct PixelSet {
   std::vector<NearEdge> near_edges;
 };
 
-// The radius of the circle through three points.
+// The radius of the circle through three points (infinite for collinear ones).
 double CircumRadius(const Eigen::Vector2d& a, const Eigen::Vector2d& b, const Eigen::Vector2d& c) {
   const Eigen::Vector2d ab = b - a, bc = c - b, ca = a - c;
   const double twice_area = std::abs(ab.x() * bc.y() - ab.y() * bc.x());
+  if (!(twice_area > 0.0)) return std::numeric_limits<double>::infinity();
   return std::sqrt(ab.squaredNorm() * bc.squaredNorm() * ca.squaredNorm()) / (2.0 * twice_area);
 }
 
