@@ -1,13 +1,14 @@
 #!/usr/bin/env python3
 """The README's figure tables, generated from the committed results so that they cannot drift.
 
-Each table sits in README.md (the circle accuracy table also in results/circle_accuracy.md)
-between
+Each table sits in README.md (the circle accuracy table also in results/circle_accuracy.md,
+the paper sweeps' times in results/speed.md) between
     <!-- readme_figures.py: NAME -->   and   <!-- end NAME -->
-and is computed from results/ (summary.csv of results/circle_accuracy and results/paper).
+and is computed from results/ (summary.csv of results/circle_accuracy and results/paper,
+results/paper/report.md, results/speed.md).
 
     readme_figures.py --check   exit 1 naming each table that differs from results/ (ctest)
-    readme_figures.py --write   rewrite the tables in README.md and results/circle_accuracy.md
+    readme_figures.py --write   rewrite the tables in the documents (DOCUMENTS)
 """
 import csv
 import math
@@ -217,11 +218,43 @@ def speed():
     return lines
 
 
+PAPER_SCENARIOS = ["fig6_noise", "fig7_blur", "fig8_distance"]
+
+
+def paper_sweep_times():
+    """Wall time per paper sweep (the "Ran ..." line of results/paper/report.md), then each
+    tracker's median time per call: the smallest and largest over the sweep's values."""
+    report = (ROOT / "results/paper/report.md").read_text()
+    lines = ["| scenario | frames | wall time | frames/s |", "|---|---|---|---|"]
+    for scenario in PAPER_SCENARIOS:
+        found = re.findall(rf"`scenarios/paper/{scenario}\.yaml`.*? Ran (\d+) frames in ([^ ]+) "
+                           rf"\(([0-9.]+) frames/s", report)
+        if len(found) != 1:
+            raise SystemExit(f"readme_figures: results/paper/report.md: no run line for {scenario}")
+        frames, wall, rate = found[0]
+        lines.append(f"| `{scenario}` | {int(frames):,} | {wall} | {rate} |")
+    rows = read_summary("results/paper/summary.csv")
+    lines += ["", "| tracker (median ms per call) | " + " | ".join(PAPER_SCENARIOS) + " |",
+              "|---" * (len(PAPER_SCENARIOS) + 1) + "|"]
+    trackers = list(dict.fromkeys(r["tracker"] for r in rows))
+    for tracker in trackers:
+        ranges = []
+        for scenario in PAPER_SCENARIOS:
+            times = [number(r["time_median_ms"]) for r in rows
+                     if r["scenario"] == scenario and r["tracker"] == tracker]
+            low, high = significant(min(times), 2), significant(max(times), 2)
+            ranges.append(low if low == high else f"{low}-{high}")
+        lines.append(f"| `{tracker}` | " + " | ".join(ranges) + " |")
+    return lines
+
+
 TABLES = {"circle_accuracy": circle_accuracy, "efficiency": efficiency,
           "breakdowns": breakdowns, "baselines": baselines, "clean_accuracy": clean_accuracy,
-          "speed": speed}
+          "speed": speed, "paper_sweep_times": paper_sweep_times}
 # The documents and the tables each holds.
-DOCUMENTS = {"README.md": list(TABLES), "results/circle_accuracy.md": ["circle_accuracy"]}
+DOCUMENTS = {"README.md": [t for t in TABLES if t != "paper_sweep_times"],
+             "results/circle_accuracy.md": ["circle_accuracy"],
+             "results/speed.md": ["paper_sweep_times"]}
 
 
 def main():
