@@ -20,34 +20,47 @@ struct TrackedFrame {
   TrackResult result;
 };
 
+// The request for `marker` at a pose from the default camera, with noise and blur.
+inline FrameRequest MarkerFrameRequest(const MarkerSpec& marker,
+                                       const Rigid3& cam_from_marker,
+                                       double noise_var,
+                                       double blur_sigma_px,
+                                       uint64_t seed,
+                                       int channels) {
+  FrameRequest request;
+  request.scene.marker = &marker;
+  request.scene.cam_from_marker = cam_from_marker;
+  request.degradations.noise_var = noise_var;
+  request.degradations.blur_sigma_px = blur_sigma_px;
+  request.channels = channels;
+  request.noise_seed = SeedFor(seed, 0, 0, SeedPurpose::kNoise);
+  return request;
+}
+
 // `marker` at a pose, with noise and blur, in RGB when it has colour, from the default camera.
 inline RenderedFrame RenderMarker(const MarkerSpec& marker,
                                   const Rigid3& cam_from_marker,
                                   double noise_var,
                                   double blur_sigma_px,
                                   uint64_t seed) {
-  FrameRequest request;
-  request.scene.marker = &marker;
-  request.scene.cam_from_marker = cam_from_marker;
-  request.degradations.noise_var = noise_var;
-  request.degradations.blur_sigma_px = blur_sigma_px;
-  request.channels = marker.HasColor() ? 3 : 1;
-  request.noise_seed = SeedFor(seed, 0, 0, SeedPurpose::kNoise);
-  return RenderFrame(request);
+  return RenderFrame(MarkerFrameRequest(
+      marker, cam_from_marker, noise_var, blur_sigma_px, seed, marker.HasColor() ? 3 : 1));
 }
 
+// `rendered` at a pose (RGB when it or `expected` has colour), tracked as `expected`.
 inline TrackedFrame RenderAndTrack(Tracker* tracker,
                                    const MarkerSpec& rendered,
                                    const MarkerSpec& expected,
                                    const Rigid3& cam_from_marker,
                                    double noise_var,
                                    uint64_t seed) {
-  FrameRequest request;
-  request.scene.marker = &rendered;
-  request.scene.cam_from_marker = cam_from_marker;
-  request.degradations.noise_var = noise_var;
-  request.channels = rendered.HasColor() || expected.HasColor() ? 3 : 1;
-  request.noise_seed = SeedFor(seed, 0, 0, SeedPurpose::kNoise);
+  const FrameRequest request =
+      MarkerFrameRequest(rendered,
+                         cam_from_marker,
+                         noise_var,
+                         0.0,
+                         seed,
+                         rendered.HasColor() || expected.HasColor() ? 3 : 1);
   TrackedFrame out;
   out.frame = RenderFrame(request);
   const Camera camera = request.scene.camera;
