@@ -1,6 +1,7 @@
 // The photometric refinement (issue 21) on rendered frames with known ground truth: from a
 // perturbed start it recovers the pose and the blur; over the same frames it beats the edge-
-// point refinement (a paired comparison); it declines designs and blurs it cannot model.
+// point refinement (a paired comparison); under heavy blur, with overlapping edges, it stays
+// within its model's bias; it declines designs other than disks.
 #include "trackers/circle/photometric_refinement.h"
 
 #include <gtest/gtest.h>
@@ -98,11 +99,13 @@ TEST(PhotometricRefinement, ModelsOverlappingHeavilyBlurredEdges) {
   struct Case {
     double tilt_deg, blur, max_error_mm;
   };
-  // Measured: 0.24, 1.1, 2.3 and 6.1 mm. The edge points' pose on these noise-free frames is
-  // 0.40, 0.50, 1.5 and 2.5 mm: past first order the osculating disk is biased (under the
-  // paper sweep's noise the pixels still win, results/circle_accuracy.md).
+  // Measured: 0.16, 1.1, 2.7 and 7.9 mm (6.1 mm for the last when ρ's change of shape with the
+  // pose was differentiated too, for about 6 % more time; the paper's blur sweep did not tell
+  // the two apart). The edge points' pose on these noise-free frames is 0.40, 0.50, 1.5 and
+  // 2.5 mm: past first order the osculating disk is biased (under the paper sweep's noise the
+  // pixels still win, results/circle_accuracy.md).
   for (const Case& c :
-       {Case{0.0, 10.0, 0.4}, Case{20.0, 8.0, 1.6}, Case{35.0, 8.0, 3.2}, Case{35.0, 10.0, 8.0}}) {
+       {Case{0.0, 10.0, 0.4}, Case{20.0, 8.0, 1.6}, Case{35.0, 8.0, 3.2}, Case{35.0, 10.0, 9.5}}) {
     SCOPED_TRACE("tilt " + std::to_string(c.tilt_deg) + " blur " + std::to_string(c.blur));
     const Rigid3 truth = TiltedView(0.6, c.tilt_deg, 40.0);
     const RenderedFrame frame = RenderMarker(marker, truth, 0.0, c.blur, 7);
