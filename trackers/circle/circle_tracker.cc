@@ -307,7 +307,10 @@ TrackResult CircleTracker::TrackIn(const Observation& observation,
   }
 
   diagnostics_.edge_rms_px = EdgeRmsPx(problem, cam_from_paper);
-  if (options_.refine && options_.photometric) {
+  // On the pixels only where the edges pass acceptance (below): on ellipses that do not fit
+  // (most of them clutter) it would cost its time for nothing.
+  if (options_.refine && options_.photometric &&
+      diagnostics_.edge_rms_px <= options_.max_edge_rms_px) {
     const std::optional<PhotometricResult> direct =
         RefinePhotometric(*observation.image,
                           camera,

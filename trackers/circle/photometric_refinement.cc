@@ -312,13 +312,20 @@ PixelSet PixelsNearEdges(const Image8& image,
   };
   std::vector<Box> boxes;
   Box all{image.width, image.height, -1, -1};
+  // Pixel coordinates clamped to the image (as doubles first: an ellipse may lie far off it).
+  const auto column = [&](double u) {
+    return static_cast<int>(std::clamp(std::floor(u), 0.0, image.width - 1.0));
+  };
+  const auto row = [&](double v) {
+    return static_cast<int>(std::clamp(std::floor(v), 0.0, image.height - 1.0));
+  };
   for (const Eigen::Matrix3d& conic : conics) {
     const Ellipse e = EllipseFromConic(conic);
-    const int reach = static_cast<int>(std::ceil(e.semi_major + band + 2.0));
-    boxes.push_back({std::max(0, static_cast<int>(e.center.x()) - reach),
-                     std::max(0, static_cast<int>(e.center.y()) - reach),
-                     std::min(image.width - 1, static_cast<int>(e.center.x()) + reach),
-                     std::min(image.height - 1, static_cast<int>(e.center.y()) + reach)});
+    const double reach = e.semi_major + band + 2.0;
+    boxes.push_back({column(e.center.x() - reach),
+                     row(e.center.y() - reach),
+                     column(e.center.x() + reach),
+                     row(e.center.y() + reach)});
     all = {std::min(all.u0, boxes.back().u0),
            std::min(all.v0, boxes.back().v0),
            std::max(all.u1, boxes.back().u1),
@@ -429,6 +436,12 @@ std::optional<PhotometricResult> RefineOnce(const Image8& image,
   const std::optional<std::vector<EdgeLayer>> layers =
       EdgeLayers(marker, H, image.channels, &conics);
   if (!layers) return std::nullopt;
+  double largest_radius_px = 0.0;
+  for (const Eigen::Matrix3d& conic : conics) {
+    const Ellipse e = EllipseFromConic(conic);
+    largest_radius_px = std::max(largest_radius_px, std::sqrt(e.semi_major * e.semi_minor));
+  }
+  if (!(sigma_px <= options.max_blur_per_radius * largest_radius_px)) return std::nullopt;
   const double sigma = std::max(sigma_px, 0.3);
   const PixelSet pixels = PixelsNearEdges(image,
                                           camera,

@@ -31,6 +31,10 @@ struct PhotometricOptions {
   // noise, 23 mm at 0.3; 0.5 gives 63 mm). Pixels deeper inside a disk than this fraction of
   // its edge's radius of curvature are left out.
   double max_depth_per_curvature = 0.3;
+  // Beyond a blur of the largest disk's radius in pixels the design is one blob, and the
+  // pose stays the edge points' (the paper's blur sweep reaches σ ≈ 0.55 R). This also bounds
+  // the pixels modelled, whose band grows with σ.
+  double max_blur_per_radius = 1.0;
   int max_iterations = 15;  // per solve
   // Solves, each on the pixels chosen at the last result, until the translation moves by less
   // than 1e-4 of its length.
@@ -46,7 +50,8 @@ struct PhotometricResult {
   double final_cost = 0.0;
 };
 
-// nullopt for designs with layers other than disks, or too few pixels.
+// nullopt for designs with layers other than disks, blur beyond max_blur_per_radius, or too
+// few pixels.
 std::optional<PhotometricResult> RefinePhotometric(const Image8& image,
                                                    const Camera& camera,
                                                    const MarkerSpec& marker,
