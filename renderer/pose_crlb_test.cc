@@ -15,20 +15,6 @@ namespace {
 constexpr double kPi = 3.14159265358979323846;
 constexpr double kDeg = kPi / 180.0;
 
-FrameRequest Request(const MarkerSpec& marker,
-                     const Rigid3& cam_from_marker,
-                     double noise_var,
-                     double blur_sigma_px,
-                     int channels) {
-  FrameRequest request;
-  request.scene.marker = &marker;
-  request.scene.cam_from_marker = cam_from_marker;
-  request.degradations.noise_var = noise_var;
-  request.degradations.blur_sigma_px = blur_sigma_px;
-  request.channels = channels;
-  return request;
-}
-
 // crlb.md's circles_a: red and blue disks, r = 33 mm, centres 87 mm apart, on white.
 MarkerSpec CrlbCirclesA() {
   MarkerSpec spec;
@@ -82,11 +68,11 @@ Eigen::Vector3d MedianBounds(const MarkerSpec& marker,
     const double tilt = 40.0 * (i + 0.5) / poses;
     const double azimuth = 360.0 * std::fmod(i * 0.6180339887, 1.0);
     const double roll = 360.0 * std::fmod(i * 0.7548776662, 1.0);
-    const PoseBound b = PoseCrlb(Request(marker,
-                                         LookAt(center, distance_m, tilt, azimuth, roll),
-                                         noise_var,
-                                         blur_sigma_px,
-                                         channels));
+    const PoseBound b = PoseCrlb(MarkerFrameRequest(marker,
+                                                    LookAt(center, distance_m, tilt, azimuth, roll),
+                                                    noise_var,
+                                                    blur_sigma_px,
+                                                    channels));
     rms.push_back(b.position_rms_m);
     median.push_back(b.position_median_m);
     rotation.push_back(b.rotation_rms_deg);
@@ -127,8 +113,8 @@ TEST(PoseCrlbTest, BlurredDiskCentreMatchesTheClosedForm) {
   for (const double radius_px : {25.0, 40.0}) {
     for (const double blur : {2.0, 4.0, 6.0}) {
       const MarkerSpec disk = BlackDiskMarker(radius_px * kDistance / kFocal);
-      const Matrix6d F =
-          PoseFisherInformation(Request(disk, TiltedView(kDistance, 0.0, 0.0), kNoiseVar, blur, 1));
+      const Matrix6d F = PoseFisherInformation(
+          MarkerFrameRequest(disk, TiltedView(kDistance, 0.0, 0.0), kNoiseVar, blur, 1));
       // t_x shifts a fronto-parallel marker's image rigidly by f/z per metre.
       const double sd_px = kFocal / kDistance / std::sqrt(F(3, 3));
       const double closed =
@@ -142,15 +128,15 @@ TEST(PoseCrlbTest, BlurredDiskCentreMatchesTheClosedForm) {
 TEST(PoseCrlbTest, ScalesWithTheNoiseAndRisesWithBlur) {
   const MarkerSpec marker = CrlbCirclesA();
   const Rigid3 pose = LookAt(marker.InkBounds().center(), 0.8, 25.0, 40.0, 10.0);
-  const PoseBound low = PoseCrlb(Request(marker, pose, 0.02, 0.0, 3));
-  const PoseBound high = PoseCrlb(Request(marker, pose, 0.18, 0.0, 3));
+  const PoseBound low = PoseCrlb(MarkerFrameRequest(marker, pose, 0.02, 0.0, 3));
+  const PoseBound high = PoseCrlb(MarkerFrameRequest(marker, pose, 0.18, 0.0, 3));
   const double expected =
       std::sqrt((0.18 + kQuantisationVariance) / (0.02 + kQuantisationVariance));
   EXPECT_NEAR(high.position_rms_m / low.position_rms_m, expected, 1e-9 * expected);
   EXPECT_NEAR(high.rotation_median_deg / low.rotation_median_deg, expected, 1e-6 * expected);
   double previous = 0.0;
   for (const double blur : {0.0, 0.5, 1.0, 2.0, 4.0, 8.0}) {
-    const PoseBound b = PoseCrlb(Request(marker, pose, 0.02, blur, 3));
+    const PoseBound b = PoseCrlb(MarkerFrameRequest(marker, pose, 0.02, blur, 3));
     EXPECT_GT(b.position_rms_m, previous) << "blur " << blur;
     previous = b.position_rms_m;
   }
@@ -162,7 +148,7 @@ TEST(PoseCrlbTest, DoesNotChangeWhenTheEdgesAreSampledFiner) {
   const MarkerSpec square = BlackSquareMarker(-0.05, -0.05, 0.1);
   for (const MarkerSpec* marker : {&circles, &square}) {
     for (const double blur : {0.0, 3.0}) {
-      const FrameRequest request = Request(
+      const FrameRequest request = MarkerFrameRequest(
           *marker, LookAt(marker->InkBounds().center(), 1.0, 30.0, 60.0, 20.0), 0.02, blur, 3);
       const PoseBound coarse = PoseCrlb(request, {0.25});
       const PoseBound fine = PoseCrlb(request, {0.05});
@@ -180,7 +166,7 @@ TEST(PoseCrlbTest, FisherMatchesFiniteDifferencesOfTheRenderer) {
   const MarkerSpec disk = BlackDiskMarker(0.04);
   for (const MarkerSpec* marker : {&square, &disk}) {
     const Rigid3 pose = LookAt(marker->InkBounds().center(), 0.6, 30.0, 75.0, 20.0);
-    FrameRequest request = Request(*marker, pose, 0.0, 1.5, 1);
+    FrameRequest request = MarkerFrameRequest(*marker, pose, 0.0, 1.5, 1);
     request.keep_linear = true;
     const Matrix6d F = PoseFisherInformation(request);
     // Steps of about 0.2 px in the image.
@@ -259,12 +245,13 @@ TEST(PoseCrlbTest, IsLargestFaceOn) {
   const MarkerSpec circles = CrlbCirclesA();
   const Eigen::Vector2d center = circles.InkBounds().center();
   const PoseBound face_on =
-      PoseCrlb(Request(circles, LookAt(center, 0.6, 0.0, 0.0, 30.0), 0.02, 0.0, 3));
+      PoseCrlb(MarkerFrameRequest(circles, LookAt(center, 0.6, 0.0, 0.0, 30.0), 0.02, 0.0, 3));
   EXPECT_NEAR(1e3 * face_on.position_rms_m, 3.68, kTol * 3.68);
   std::vector<double> tilted;
   for (int i = 0; i < 12; ++i) {
     tilted.push_back(
-        PoseCrlb(Request(circles, LookAt(center, 0.6, 30.0, 30.0 * i, 77.0 * i), 0.02, 0.0, 3))
+        PoseCrlb(MarkerFrameRequest(
+                     circles, LookAt(center, 0.6, 30.0, 30.0 * i, 77.0 * i), 0.02, 0.0, 3))
             .position_rms_m);
   }
   std::sort(tilted.begin(), tilted.end());
@@ -275,7 +262,7 @@ TEST(PoseCrlbTest, AMarkerOutOfViewHasNoBound) {
   const MarkerSpec disk = BlackDiskMarker(0.03);
   Rigid3 pose = TiltedView(1.0, 20.0, 0.0);
   pose.translation.x() = 5.0;  // far to the side of the image
-  const PoseBound b = PoseCrlb(Request(disk, pose, 0.02, 2.0, 1));
+  const PoseBound b = PoseCrlb(MarkerFrameRequest(disk, pose, 0.02, 2.0, 1));
   EXPECT_FALSE(b.observable);
   EXPECT_TRUE(std::isinf(b.position_rms_m));
   EXPECT_TRUE(std::isinf(b.rotation_median_deg));

@@ -6,6 +6,7 @@
 
 #include "core/marker_spec.h"
 #include "core/rigid3.h"
+#include "renderer/render_frame.h"
 
 namespace markerbench {
 
@@ -42,6 +43,22 @@ inline Rigid3 TiltedView(double distance_m, double tilt_deg, double roll_deg) {
   const Eigen::Matrix3d R = Eigen::AngleAxisd(roll_deg * kDeg, Eigen::Vector3d::UnitZ()) * frontal *
                             Eigen::AngleAxisd(tilt_deg * kDeg, Eigen::Vector3d::UnitX());
   return {R, Eigen::Vector3d(0.0, 0.0, distance_m)};
+}
+
+// The request for `marker` at a pose from the default camera, with noise and blur (the noise
+// seed left at its default).
+inline FrameRequest MarkerFrameRequest(const MarkerSpec& marker,
+                                       const Rigid3& cam_from_marker,
+                                       double noise_var,
+                                       double blur_sigma_px,
+                                       int channels) {
+  FrameRequest request;
+  request.scene.marker = &marker;
+  request.scene.cam_from_marker = cam_from_marker;
+  request.degradations.noise_var = noise_var;
+  request.degradations.blur_sigma_px = blur_sigma_px;
+  request.channels = channels;
+  return request;
 }
 
 }  // namespace markerbench

@@ -20,19 +20,15 @@ struct TrackedFrame {
   TrackResult result;
 };
 
-// The request for `marker` at a pose from the default camera, with noise and blur.
-inline FrameRequest MarkerFrameRequest(const MarkerSpec& marker,
+// renderer/test_scenes.h's request with a noise seed from `seed`.
+inline FrameRequest SeededFrameRequest(const MarkerSpec& marker,
                                        const Rigid3& cam_from_marker,
                                        double noise_var,
                                        double blur_sigma_px,
                                        uint64_t seed,
                                        int channels) {
-  FrameRequest request;
-  request.scene.marker = &marker;
-  request.scene.cam_from_marker = cam_from_marker;
-  request.degradations.noise_var = noise_var;
-  request.degradations.blur_sigma_px = blur_sigma_px;
-  request.channels = channels;
+  FrameRequest request =
+      MarkerFrameRequest(marker, cam_from_marker, noise_var, blur_sigma_px, channels);
   request.noise_seed = SeedFor(seed, 0, 0, SeedPurpose::kNoise);
   return request;
 }
@@ -43,7 +39,7 @@ inline RenderedFrame RenderMarker(const MarkerSpec& marker,
                                   double noise_var,
                                   double blur_sigma_px,
                                   uint64_t seed) {
-  return RenderFrame(MarkerFrameRequest(
+  return RenderFrame(SeededFrameRequest(
       marker, cam_from_marker, noise_var, blur_sigma_px, seed, marker.HasColor() ? 3 : 1));
 }
 
@@ -55,7 +51,7 @@ inline TrackedFrame RenderAndTrack(Tracker* tracker,
                                    double noise_var,
                                    uint64_t seed) {
   const FrameRequest request =
-      MarkerFrameRequest(rendered,
+      SeededFrameRequest(rendered,
                          cam_from_marker,
                          noise_var,
                          0.0,
