@@ -10,11 +10,15 @@
 namespace markerbench {
 namespace {
 
-// The pixel at integer coordinates `round` gives for p, clamped to the image.
+// The pixel at integer coordinates `round` gives for p, clamped to the image (as a double
+// before the cast: a point far off the image, or not a number, never overflows an int).
 template <typename Round>
 double PixelAt(const uint8_t* grey, int width, int height, const Eigen::Vector2d& p, Round round) {
-  const int x = std::clamp(static_cast<int>(round(p.x())), 0, width - 1);
-  const int y = std::clamp(static_cast<int>(round(p.y())), 0, height - 1);
+  const auto clamped = [](double rounded, int size) {
+    return rounded > 0.0 ? static_cast<int>(std::min(rounded, size - 1.0)) : 0;
+  };
+  const int x = clamped(round(p.x()), width);
+  const int y = clamped(round(p.y()), height);
   return grey[static_cast<size_t>(y) * width + x];
 }
 
