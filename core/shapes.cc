@@ -47,31 +47,44 @@ PaintSample GridPaint(const GridShape& grid, const Rgb& ink, const Eigen::Vector
 
 }  // namespace
 
-PaintSample PaintAt(const PaintedShape& painted, const Eigen::Vector2d& p) {
-  // Each shape as signed distances to its bounding circles and lines (inside: all negative).
-  std::array<double, 3> distances;
-  size_t count = 0;
-  if (const auto* disk = std::get_if<DiskShape>(&painted.shape)) {
-    distances[count++] = CircleDistance(*disk, p);
-  } else if (const auto* crescent = std::get_if<CrescentShape>(&painted.shape)) {
-    distances[count++] = CircleDistance(crescent->outer, p);
-    distances[count++] = -CircleDistance(crescent->inner, p);
-  } else if (const auto* sector = std::get_if<SectorShape>(&painted.shape)) {
+BoundaryDistances DistancesTo(const Shape& shape, const Eigen::Vector2d& p) {
+  BoundaryDistances b;
+  auto circle = [&](const DiskShape& disk, double sign) {
+    const Eigen::Vector2d d = p - disk.center;
+    const double r = d.norm();
+    const Eigen::Vector2d gradient = r > 0.0 ? Eigen::Vector2d(d / r) : Eigen::Vector2d::UnitX();
+    b.terms[b.count++] = {sign * CircleDistance(disk, p), sign * gradient};
+  };
+  if (const auto* disk = std::get_if<DiskShape>(&shape)) {
+    circle(*disk, 1.0);
+  } else if (const auto* crescent = std::get_if<CrescentShape>(&shape)) {
+    circle(crescent->outer, 1.0);
+    circle(crescent->inner, -1.0);
+  } else if (const auto* sector = std::get_if<SectorShape>(&shape)) {
     // Left of the start ray's line and right of the end ray's (span <= π).
     const Eigen::Vector2d d = p - sector->center;
-    auto cross = [&d](double angle) { return std::cos(angle) * d.y() - std::sin(angle) * d.x(); };
-    distances[count++] = CircleDistance({sector->center, sector->radius}, p);
-    distances[count++] = -cross(sector->start_rad);
-    distances[count++] = cross(sector->end_rad);
-  } else {
-    return GridPaint(std::get<GridShape>(painted.shape), painted.color, p);
+    auto line = [&](double angle, double sign) {
+      const Eigen::Vector2d normal(-std::sin(angle), std::cos(angle));  // left of the ray
+      b.terms[b.count++] = {sign * normal.dot(d), sign * normal};
+    };
+    circle({sector->center, sector->radius}, 1.0);
+    line(sector->start_rad, -1.0);
+    line(sector->end_rad, 1.0);
   }
+  return b;
+}
+
+PaintSample PaintAt(const PaintedShape& painted, const Eigen::Vector2d& p) {
+  if (const auto* grid = std::get_if<GridShape>(&painted.shape)) {
+    return GridPaint(*grid, painted.color, p);
+  }
+  const BoundaryDistances b = DistancesTo(painted.shape, p);
   PaintSample sample;
   bool inside = true;
   sample.clearance_m = std::numeric_limits<double>::infinity();
-  for (size_t i = 0; i < count; ++i) {
-    inside &= distances[i] < 0.0;
-    sample.clearance_m = std::min(sample.clearance_m, std::abs(distances[i]));
+  for (size_t i = 0; i < b.count; ++i) {
+    inside &= b.terms[i].metres < 0.0;
+    sample.clearance_m = std::min(sample.clearance_m, std::abs(b.terms[i].metres));
   }
   if (inside) sample.color = painted.color;
   return sample;

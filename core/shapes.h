@@ -5,6 +5,7 @@
 
 #include <Eigen/Core>
 #include <Eigen/Geometry>
+#include <array>
 #include <cstdint>
 #include <optional>
 #include <variant>
@@ -68,6 +69,19 @@ struct PaintSample {
   int layer = -1;  // MarkerSpec::ColorAt: the top-most layer painting the point; -1 none
 };
 PaintSample PaintAt(const PaintedShape& painted, const Eigen::Vector2d& p);
+
+// A disk, crescent or sector as the signed distances from a point to the circles and lines
+// that bound it (the shape is where all are negative), each with its unit gradient; none for
+// grids.
+struct EdgeDistance {
+  double metres = 0.0;
+  Eigen::Vector2d gradient = Eigen::Vector2d::UnitX();
+};
+struct BoundaryDistances {
+  std::array<EdgeDistance, 3> terms;
+  size_t count = 0;
+};
+BoundaryDistances DistancesTo(const Shape& shape, const Eigen::Vector2d& p);
 
 // Axis-aligned bounds of a shape in the marker plane.
 Eigen::AlignedBox2d ShapeBounds(const Shape& shape);

@@ -4,6 +4,8 @@
 
 #include <cmath>
 
+#include "core/random.h"
+
 namespace markerbench {
 namespace {
 
@@ -95,6 +97,33 @@ TEST(Shapes, PaintAtKnowsInsideAndKeepsItsColourWithinTheClearance) {
       }
     }
   }
+}
+
+// DistancesTo: a point is inside (PaintAt) where every distance is negative; stepping back
+// along a term's gradient by its distance lands on that term's circle or line; grids have
+// none.
+TEST(Shapes, DistancesToLeadToEachBoundary) {
+  const std::vector<Shape> shapes = {DiskShape{{0.01, -0.01}, 0.03},
+                                     CrescentFromTips({0.03, 0.0}, {0.0, -0.03}, 0.012, 0.005),
+                                     SectorShape{{0.0, 0.01}, 0.04, 0.3, 0.3 + 2.0}};
+  const size_t counts[] = {1, 2, 3};
+  Rng rng(7);
+  for (size_t k = 0; k < shapes.size(); ++k) {
+    for (int i = 0; i < 1000; ++i) {
+      const Eigen::Vector2d p(rng.Uniform(-0.05, 0.05), rng.Uniform(-0.05, 0.05));
+      const BoundaryDistances b = DistancesTo(shapes[k], p);
+      ASSERT_EQ(b.count, counts[k]);
+      bool inside = true;
+      for (size_t t = 0; t < b.count; ++t) {
+        inside &= b.terms[t].metres < 0.0;
+        EXPECT_NEAR(b.terms[t].gradient.norm(), 1.0, 1e-12);
+        const Eigen::Vector2d foot = p - b.terms[t].metres * b.terms[t].gradient;
+        EXPECT_NEAR(DistancesTo(shapes[k], foot).terms[t].metres, 0.0, 1e-12) << k << " " << t;
+      }
+      EXPECT_EQ(inside, PaintAt({shapes[k], Rgb::Zero()}, p).color.has_value()) << k;
+    }
+  }
+  EXPECT_EQ(DistancesTo(GridShape{}, Eigen::Vector2d::Zero()).count, 0u);
 }
 
 }  // namespace

@@ -1,8 +1,9 @@
-// The negative set: frames that show no circle marker (paper Fig. 3 a-d), for false-positive
+// The negative set: frames that show no circle marker a-d (paper Fig. 3), for false-positive
 // tests (issue 21). Each is a sheet of clutter drawn by the renderer at a random pose, with
 // random noise and blur: blank paper, checkerboards, scattered squares, black dots, rings
 // (disks with a concentric hole, no feature dot), coloured dots, and the other marker
-// systems. Sheets that would be a circle marker by construction (a red and a blue disk of
+// systems, e and f among them (negatives for every kind but their own; the label names the
+// marker). Sheets that would be a circle marker by construction (a red and a blue disk of
 // one size) are not drawn. Deterministic in the index: the same set on every machine.
 #pragma once
 

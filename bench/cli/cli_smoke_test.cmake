@@ -21,7 +21,9 @@ if(NOT last_output MATCHES "^markerbench [^\n]+ \\(" OR NOT last_output MATCHES 
   message(FATAL_ERROR "unexpected --version: ${last_output}")
 endif()
 run(0 list trackers)
-foreach(expected "circle\n  reads: circle_d \\(circle_d\\), circles_a" "    tracking: true"
+foreach(expected
+        "circle\n  reads: circle_d \\(circle_d\\), circle_e \\(circle_e\\), circle_f \\(circle_f\\)"
+        "    tracking: true"
                  "apriltag  \\[isolated in sweeps by default\\]" "runetag\n  reads: runetag")
   if(NOT last_output MATCHES "${expected}")
     message(FATAL_ERROR "list trackers lacks '${expected}':\n${last_output}")

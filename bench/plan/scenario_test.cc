@@ -259,7 +259,7 @@ TEST(Scenario, ShippedScenariosLoad) {
                            "scenarios/paper/fig7_blur.yaml",
                            "scenarios/paper/fig8_distance.yaml",
                            "scenarios/examples/all_markers.yaml",
-                           "scenarios/render_only/circle_e.yaml"}) {
+                           "scenarios/render_only/bit_grid.yaml"}) {
     EXPECT_NO_THROW(LoadScenario(path)) << path;
   }
 }

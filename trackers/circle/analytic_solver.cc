@@ -53,6 +53,9 @@ std::optional<Eigen::Vector3d> ProjectiveLineAtInfinity(
         return std::nullopt;
       }
       return LineAtInfinityFromCenter(conics_n[0], K_inv * measurements.m0_px->homogeneous());
+    case CircleLayout::kSingleCircle:
+      // One of the two; AnalyticCandidates gives both, and the design tells them apart.
+      return SingleCircleNormals(conics_n[0])[0];
   }
   return std::nullopt;
 }
@@ -78,6 +81,11 @@ std::optional<AnalyticSolution> SolutionFromLine(const CircleGeometry& geometry,
   Eigen::Vector3d m1;
   if (geometry.m1_circle >= 0) {
     m1 = centers_n[geometry.m1_circle];
+  } else if (geometry.roll_from_design) {
+    // Any direction: the caller turns the pose about the circle's axis to the design
+    // (roll_feature.h), and the depth comes from the radius.
+    m1 = m0 + Eigen::Vector3d(0.01, 0.0, 0.0);
+    depth = AnalyticDepth::kRadius;
   } else if (measurements.m1_px) {
     m1 = K_inv * measurements.m1_px->homogeneous();
   } else {

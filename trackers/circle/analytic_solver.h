@@ -27,7 +27,9 @@ struct AnalyticOptions {
 };
 
 // What the image gave: one pixel conic per circle of the geometry, in its order, and the
-// detected points the layout needs (m0 for kCircleWithCenter; m1 unless a circle gives it).
+// detected points the layout needs (m0 for kCircleWithCenter; m1 unless a circle or the
+// design gives it). With `roll_from_design` the pose's rotation about the circle's axis is
+// arbitrary, and its depth always comes from the radius.
 struct CircleMeasurements {
   std::vector<Eigen::Matrix3d> conics_px;
   std::optional<Eigen::Vector2d> m0_px;

@@ -47,7 +47,8 @@ struct Threshold {
   double contrast = 0.0;
 };
 
-Threshold FindThreshold(const cv::Mat& smoothed, bool ink_dark) {
+// `fraction`: how far from the paper's level towards the most extreme ink's the level sits.
+Threshold FindThreshold(const cv::Mat& smoothed, bool ink_dark, double fraction) {
   std::array<int, 256> histogram{};
   for (int y = 0; y < smoothed.rows; ++y) {
     const uint8_t* row = smoothed.ptr<uint8_t>(y);
@@ -60,7 +61,7 @@ Threshold FindThreshold(const cv::Mat& smoothed, bool ink_dark) {
   while (histogram[extreme] == 0 && extreme != median) extreme += ink_dark ? 1 : -1;
   Threshold t;
   t.paper = median;
-  t.level = 0.5 * (median + extreme);
+  t.level = median + fraction * (extreme - median);
   t.contrast = std::abs(median - extreme) / 255.0;
   return t;
 }
@@ -238,7 +239,20 @@ CircleDetector::CircleDetector(const MarkerSpec& marker,
     double inward = circle.radius_m, outward = std::numeric_limits<double>::infinity();
     for (const PaintedShape& layer : marker.layers) {
       const auto* disk = std::get_if<DiskShape>(&layer.shape);
-      if (!disk) continue;
+      if (!disk) {
+        // Another shape painted inside the circle (the mouth of e, the wedge of f): clear of
+        // it beyond its bounding box's farthest corner.
+        const Eigen::AlignedBox2d box = ShapeBounds(layer.shape);
+        double reach = 0.0;
+        for (const auto corner : {Eigen::AlignedBox2d::BottomLeft,
+                                  Eigen::AlignedBox2d::BottomRight,
+                                  Eigen::AlignedBox2d::TopLeft,
+                                  Eigen::AlignedBox2d::TopRight}) {
+          reach = std::max(reach, (box.corner(corner) - circle.center).norm());
+        }
+        inward = std::min(inward, std::max(0.0, circle.radius_m - reach));
+        continue;
+      }
       const double d = (disk->center - circle.center).norm();
       if (d < 1e-12 && std::abs(disk->radius - circle.radius_m) < 1e-12) continue;
       if (needs_color_ &&
@@ -256,6 +270,15 @@ CircleDetector::CircleDetector(const MarkerSpec& marker,
     outward_clear_m_.push_back(std::max(outward, 0.3 * circle.radius_m));
   }
   // The dots: every painted disk that is not one of the circles.
+  // Ink lighter than the circles (the grey wedge of f) must fall on the ink side of the
+  // threshold: halfway between it and the paper.
+  for (const PaintedShape& layer : marker.layers) {
+    const double ink = std::abs(Luma(layer.color) - Luma(marker.background));
+    const double circle_ink = std::abs(Luma(marker.circles[0].color) - Luma(marker.background));
+    if (ink >= 0.1 && ink < circle_ink) {
+      threshold_fraction_ = std::min(threshold_fraction_, 0.5 * ink / circle_ink);
+    }
+  }
   for (const PaintedShape& layer : marker.layers) {
     const auto* disk = std::get_if<DiskShape>(&layer.shape);
     if (!disk) continue;
@@ -347,7 +370,8 @@ std::optional<MarkerDetection> CircleDetector::Detect(
   for (const ChannelPlan& plan : plans_) {
     if (from_prediction) break;
     if (candidates.count(plan.channel)) continue;
-    const Threshold threshold = FindThreshold(search[plan.channel], plan.ink_dark);
+    const Threshold threshold =
+        FindThreshold(search[plan.channel], plan.ink_dark, threshold_fraction_);
     if (threshold.contrast < options_.min_contrast) return fail("no ink in the search region");
     candidates[plan.channel] =
         FindCandidates(search[plan.channel], plan.ink_dark, threshold, search_options);
@@ -428,6 +452,11 @@ std::optional<MarkerDetection> CircleDetector::Detect(
         const Hole* center = FindHole(
             c, c.ellipse.center, 0.3 * c.ellipse.semi_minor, 0.2 * dot_area, 4.0 * dot_area);
         if (!center) continue;
+        if (geometry_.roll_from_design) {  // e: the mouth gives the roll, later
+          initial = {c.conic};
+          detection.m0_px = center->centroid + offset;
+          break;
+        }
         const double expected = geometry_.Lx / r[0] * std::sqrt(c.area_px / M_PI);
         const Candidate* dot = nullptr;
         for (const Candidate& other : all) {
@@ -445,6 +474,13 @@ std::optional<MarkerDetection> CircleDetector::Detect(
         break;
       }
       if (initial.empty()) return fail("no disk with its centre dot and feature dot");
+      break;
+    }
+    case CircleLayout::kSingleCircle: {
+      // f: the largest ellipse; the wedge and the printed design decide later.
+      const std::vector<Candidate>& all = candidates[plans_[0].channel];
+      if (all.empty()) return fail("no ellipse in the search region");
+      initial = {all.front().conic};
       break;
     }
   }

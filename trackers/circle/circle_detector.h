@@ -1,7 +1,8 @@
-// Finds the circles of one circle marker (paper Fig. 3 a-d) in an image region and measures
+// Finds the circles of one circle marker (paper Fig. 3 a-f) in an image region and measures
 // them: ink segmentation per channel on a noise-adapted smoothing, contour candidates with
 // ellipse hypotheses, identification of each circle (colour for a, the feature dot for b,
-// nesting for c, the centre dot for d), then sub-pixel edges and a PND conic fit per circle.
+// nesting for c, the centre dot for d and e, the largest ellipse for f), then sub-pixel
+// edges and a PND conic fit per circle.
 #pragma once
 
 #include <Eigen/Core>
@@ -45,7 +46,7 @@ struct DetectedCircle {
 
 struct MarkerDetection {
   std::vector<DetectedCircle> circles;   // in CircleGeometry order
-  std::optional<Eigen::Vector2d> m0_px;  // detected centre dot (d)
+  std::optional<Eigen::Vector2d> m0_px;  // detected centre dot (d, e)
   std::optional<Eigen::Vector2d> m1_px;  // detected feature point (b, c, d)
   double noise_sigma = 0.0;              // estimated image noise σ, 0-1 units
   double smoothing_sigma_px = 0.0;
@@ -82,6 +83,7 @@ class CircleDetector {
   std::vector<double> inward_clear_m_;   // per circle: ink-free margin inside its edge
   std::vector<double> outward_clear_m_;  // and outside it, in the circle's channel
   double dot_radius_m_ = 0.0;            // feature (and centre) dot radius
+  double threshold_fraction_ = 0.5;      // of the way from the paper to the darkest ink
 };
 
 }  // namespace markerbench

@@ -1,6 +1,7 @@
 // False positives of the circle tracker (issue 21): on the negative set (testing/
-// negative_scenes.h, 560 frames of clutter and other marker systems) no circle marker a-d
-// may be reported, in detection mode or in tracking mode after a frame that showed it.
+// negative_scenes.h, 560 frames of clutter and other marker systems) no circle marker a-f
+// may be reported, in detection mode or in tracking mode after a frame that showed it (the
+// set's frames of e and f do not count for those two).
 #include <gtest/gtest.h>
 
 #include "core/marker_yaml.h"
@@ -13,7 +14,7 @@ namespace markerbench {
 namespace {
 
 TEST(CircleFalsePositives, NoMarkerOnTheNegativeSet) {
-  const char* kinds[] = {"circles_a", "circles_b", "circles_c", "circle_d"};
+  const char* kinds[] = {"circles_a", "circles_b", "circles_c", "circle_d", "circle_e", "circle_f"};
   std::vector<MarkerSpec> markers;
   std::vector<CircleTracker> tracking;  // each has just tracked its marker
   for (const char* kind : kinds) {
@@ -24,17 +25,19 @@ TEST(CircleFalsePositives, NoMarkerOnTheNegativeSet) {
     ASSERT_EQ(primed.result.status, TrackStatus::kOk) << kind;
   }
   const Camera camera = FrameRequest().scene.camera;
-  int found = 0;
+  int found = 0, tries = 0;
   for (int i = 0; i < kNegativeSetSize; ++i) {
     const NegativeFrame negative = RenderNegative(i);
     const Observation observation{&negative.frame.image, &camera, nullptr};
     for (size_t k = 0; k < markers.size(); ++k) {
+      if (negative.label.find(std::string("(") + kinds[k] + ")") != std::string::npos) continue;
       Observation of_marker = observation;
       of_marker.marker = &markers[k];
       CircleTracker detection;
       CircleTracker after_the_marker = tracking[k];
       for (CircleTracker* tracker : {&detection, &after_the_marker}) {
         const TrackResult result = tracker->Track(of_marker);
+        ++tries;
         found += result.status == TrackStatus::kOk;
         EXPECT_NE(result.status, TrackStatus::kOk)
             << kinds[k] << " found in " << negative.label
@@ -42,7 +45,8 @@ TEST(CircleFalsePositives, NoMarkerOnTheNegativeSet) {
       }
     }
   }
-  EXPECT_EQ(found, 0) << "of " << 2 * 4 * kNegativeSetSize << " tries";
+  EXPECT_EQ(found, 0) << "of " << tries << " tries";
+  EXPECT_GT(tries, 2 * 6 * (kNegativeSetSize - 30));
 }
 
 }  // namespace

@@ -17,15 +17,26 @@ std::optional<CircleGeometry> CircleGeometryOf(const MarkerSpec& marker, std::st
     case MarkerKind::kCircleD:
       geometry.layout = CircleLayout::kCircleWithCenter;
       break;
+    case MarkerKind::kCircleE:
+      geometry.layout = CircleLayout::kCircleWithCenter;
+      geometry.roll_from_design = true;
+      break;
+    case MarkerKind::kCircleF:
+      geometry.layout = CircleLayout::kSingleCircle;
+      geometry.roll_from_design = true;
+      break;
     default:
       if (error)
         *error = std::string(
                      "the circle tracker supports circles_a, circles_b, circles_c "
-                     "and circle_d, not ") +
+                     "and circle_d, circle_e, circle_f, not ") +
                  ToString(marker.kind);
       return std::nullopt;
   }
-  const size_t expected_circles = geometry.layout == CircleLayout::kCircleWithCenter ? 1 : 2;
+  const size_t expected_circles =
+      geometry.layout == CircleLayout::kTwoCircles || geometry.layout == CircleLayout::kConcentric
+          ? 2
+          : 1;
   if (marker.circles.size() != expected_circles || marker.keypoints.size() < 2) {
     if (error) *error = std::string("malformed ") + ToString(marker.kind) + " marker";
     return std::nullopt;

@@ -1,4 +1,4 @@
-// The geometry a circle tracker needs, read from a MarkerSpec (markers a-d of the paper's
+// The geometry a circle tracker needs, read from a MarkerSpec (markers a-f of the paper's
 // Fig. 3) and expressed in the paper's frame: origin at m0, +X towards m1, +Z towards the
 // camera (circle-method.md §0). `marker_from_paper` maps it back to the marker file's frame,
 // so poses are reported in the frame of the YAML even where the two differ.
@@ -18,7 +18,8 @@ namespace markerbench {
 enum class CircleLayout {
   kTwoCircles,        // (a), (b): the pencil of two separate circles (§4.3)
   kConcentric,        // (c): two concentric circles (§4.4)
-  kCircleWithCenter,  // (d): one circle and its detected centre dot (§4.5)
+  kCircleWithCenter,  // (d), (e): one circle and its detected centre dot (§4.5)
+  kSingleCircle,      // (f): one circle alone, its two calibrated normals (§4.7)
 };
 
 struct CircleGeometry {
@@ -29,10 +30,14 @@ struct CircleGeometry {
   // Index of a circle centred at m1, whose imaged centre (a pole) then gives m1; -1 when m1 is
   // a detected feature point.
   int m1_circle = -1;
+  // (e), (f): m1 is a point of a design painted inside the circle (a mouth tip, the end of a
+  // radius), and the rotation about the circle's axis comes from that design (roll_feature.h)
+  // rather than from a detected point.
+  bool roll_from_design = false;
   Rigid3 marker_from_paper;
 };
 
-// nullopt (with `error` set) for markers other than circles_a/b/c and circle_d.
+// nullopt (with `error` set) for markers other than circles_a/b/c and circle_d/e/f.
 std::optional<CircleGeometry> CircleGeometryOf(const MarkerSpec& marker, std::string* error);
 
 }  // namespace markerbench

@@ -8,6 +8,7 @@
 #include "core/yaml_reader.h"
 #include "trackers/circle/conic.h"
 #include "trackers/circle/photometric_refinement.h"
+#include "trackers/circle/roll_feature.h"
 #include "trackers/printed_appearance.h"
 
 namespace markerbench {
@@ -281,29 +282,74 @@ TrackResult CircleTracker::TrackIn(const Observation& observation,
   // The refinement starts from whichever start explains the image best: in tracking mode the
   // analytic pose or the previous one; otherwise every analytic candidate, since with small
   // or blurred ellipses the chosen l_inf can land in the wrong basin.
-  Rigid3 cam_from_paper = analytic->pose.cam_from_paper;
-  if (options_.refine) {
-    std::vector<Rigid3> starts;
-    if (previous_cam_from_paper) {
-      starts.push_back(*previous_cam_from_paper);
-    } else {
-      for (const AnalyticSolution& candidate :
-           AnalyticCandidates(geometry, K, measurements, options_.analytic.depth)) {
-        starts.push_back(candidate.pose.cam_from_paper);
-      }
+  std::vector<Rigid3> candidates;
+  if (!previous_cam_from_paper) {
+    for (const AnalyticSolution& candidate :
+         AnalyticCandidates(geometry, K, measurements, options_.analytic.depth)) {
+      candidates.push_back(candidate.pose.cam_from_paper);
     }
-    double best_cost = RefinementCostAt(problem, cam_from_paper, options_.refinement);
-    for (const Rigid3& start : starts) {
-      const double cost = RefinementCostAt(problem, start, options_.refinement);
+  }
+  auto refined_from_best = [&](Rigid3 start, const std::vector<Rigid3>& others) {
+    if (!options_.refine) return start;
+    double best_cost = RefinementCostAt(problem, start, options_.refinement);
+    for (const Rigid3& other : others) {
+      const double cost = RefinementCostAt(problem, other, options_.refinement);
       if (cost < best_cost) {
         best_cost = cost;
-        cam_from_paper = start;
+        start = other;
       }
     }
-    const RefinementResult refined = RefinePose(problem, cam_from_paper, options_.refinement);
-    cam_from_paper = refined.cam_from_paper;
+    const RefinementResult refined = RefinePose(problem, start, options_.refinement);
     diagnostics_.iterations = refined.iterations;
     diagnostics_.final_cost = refined.final_cost;
+    return refined.cam_from_paper;
+  };
+  std::vector<Rigid3> starts = candidates;
+  if (previous_cam_from_paper) starts.push_back(*previous_cam_from_paper);
+  Rigid3 cam_from_paper = refined_from_best(analytic->pose.cam_from_paper, starts);
+
+  if (geometry.roll_from_design) {
+    // e, f: the circle (and e's nose) are blind to the roll, and f's circle alone to which of
+    // its two tilts is seen (§4.7). The design inside the circle gives the roll and its
+    // centre m0 (roll_feature.h); m0 becomes the point term (for e in place of the nose's
+    // centroid), the pose is refined again, and the roll fitted at that pose.
+    const RollFeature feature(*observation.marker, geometry);
+    const double paper_level = detection->circles[0].edges.outside_level;
+    auto align = [&](const Rigid3& pose, bool fit_center) {
+      return feature.Align(*observation.image,
+                           camera,
+                           pose,
+                           paper_level,
+                           diagnostics_.image_blur_sigma_px,
+                           255.0 * diagnostics_.noise_sigma,
+                           fit_center);
+    };
+    std::optional<RollAlignment> aligned = align(cam_from_paper, true);
+    if (aligned) {
+      const Eigen::Vector3d center =
+          aligned->cam_from_paper *
+          Eigen::Vector3d(aligned->center_m.x(), aligned->center_m.y(), 0);
+      problem.points = {{Eigen::Vector2d::Zero(), (K * center).hnormalized()}};
+      cam_from_paper = refined_from_best(aligned->cam_from_paper, starts);
+      aligned = align(cam_from_paper, false);
+    }
+    if (!aligned) {
+      result.status = TrackStatus::kNotDetected;
+      result.message = "the design inside the circle does not show";
+      return result;
+    }
+    if (!aligned->shows_design) {
+      result.status = TrackStatus::kNotDetected;
+      result.message = "the design inside the circle does not fit the image: misfit " +
+                       NumberText(aligned->misfit) + ", contrast ratio " +
+                       NumberText(aligned->contrast_ratio) + " +- " +
+                       NumberText(aligned->contrast_ratio_error);
+      return result;
+    }
+    cam_from_paper = aligned->cam_from_paper;
+    // m1 as the design places it, for the tracking mode's check of the prediction.
+    diagnostics_.m1_px =
+        (K * (cam_from_paper * Eigen::Vector3d(geometry.Lx, 0.0, 0.0))).hnormalized();
   }
 
   diagnostics_.edge_rms_px = EdgeRmsPx(problem, cam_from_paper);

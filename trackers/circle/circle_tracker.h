@@ -51,10 +51,11 @@ struct CircleDiagnostics {
   bool used_tracking_region = false;
   std::vector<Eigen::Matrix3d> conics_px;           // fitted, canonical
   std::vector<std::vector<Eigen::Vector2d>> edges;  // per circle, bias-corrected
-  std::optional<Eigen::Vector2d> m1_px;             // detected feature point (b, c, d), undistorted
-  double blur_sigma_px = 0.0;                       // fitted edge σ (blur + pre-smoothing)
-  double image_blur_sigma_px = 0.0;                 // the image's own: without the smoothing
-  double noise_sigma = 0.0;                         // estimated image noise σ, 0-1 units
+  std::optional<Eigen::Vector2d>
+      m1_px;                   // detected feature point (b-d; e, f: by the design), undistorted
+  double blur_sigma_px = 0.0;  // fitted edge σ (blur + pre-smoothing)
+  double image_blur_sigma_px = 0.0;  // the image's own: without the smoothing
+  double noise_sigma = 0.0;          // estimated image noise σ, 0-1 units
   Eigen::Vector3d l_inf_norm = Eigen::Vector3d::Zero();
   std::optional<Rigid3> analytic_cam_from_marker;
   std::optional<Rigid3> refined_cam_from_marker;

@@ -1,0 +1,315 @@
+#include "trackers/circle/roll_feature.h"
+
+#include <Eigen/Geometry>
+#include <Eigen/LU>
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <vector>
+
+#include "trackers/printed_appearance.h"
+
+namespace markerbench {
+namespace {
+
+// Cells start at 1/16 of the window's width and split where a colour edge or the window's
+// taper may cross them, down to 1/1024 of it (about 80 µm on the paper's markers).
+constexpr int kTopCells = 16;
+constexpr int kSplits = 6;
+
+// The window's weight at distance r from the centre: 1 out to window - taper, then falling
+// linearly to 0 at the window's edge, so that pixels cut by it count smoothly.
+struct Window {
+  double outer_m;
+  double taper_m;
+  double At(double r) const { return std::clamp((outer_m - r) / taper_m, 0.0, 1.0); }
+};
+
+struct DesignIntegral {
+  const MarkerSpec& marker;
+  const Rigid3& marker_from_paper;
+  Window window;
+  double disk_luma;
+  Eigen::Vector2d moment = Eigen::Vector2d::Zero();
+
+  // Adds ∫ w(|q|) (luma - disk_luma) q dq over the square cell of centre q and half width
+  // `half`.
+  void Add(const Eigen::Vector2d& q, double half, int splits_left) {
+    const double reach = half * std::sqrt(2.0);
+    if (q.norm() - reach >= window.outer_m) return;
+    const Eigen::Vector3d p = marker_from_paper * Eigen::Vector3d(q.x(), q.y(), 0.0);
+    const PaintSample sample = marker.ColorAt(p.head<2>());
+    const double ink = Luma(*sample.color) - disk_luma;
+    const bool one_colour = sample.clearance_m >= reach;
+    if (one_colour && ink == 0.0) return;
+    const bool full_weight = q.norm() + reach <= window.outer_m - window.taper_m;
+    if ((one_colour && full_weight) || splits_left == 0) {
+      moment += window.At(q.norm()) * ink * 4.0 * half * half * q;
+      return;
+    }
+    const double quarter = 0.5 * half;
+    for (double dx : {-quarter, quarter}) {
+      for (double dy : {-quarter, quarter})
+        Add(q + Eigen::Vector2d(dx, dy), quarter, splits_left - 1);
+    }
+  }
+};
+
+double LumaAt(const Image8& image, int x, int y) {
+  const uint8_t* p = &image.pixels[(static_cast<size_t>(y) * image.width + x) * image.channels];
+  return image.channels == 3 ? 0.299 * p[0] + 0.587 * p[1] + 0.114 * p[2] : p[0];
+}
+
+}  // namespace
+
+RollFeature::RollFeature(const MarkerSpec& marker,
+                         const CircleGeometry& geometry,
+                         const RollFeatureOptions& options)
+    : marker_(marker),
+      marker_from_paper_(geometry.marker_from_paper),
+      window_m_(options.window_per_radius * geometry.radii_m[0]),
+      taper_m_(options.taper_per_radius * geometry.radii_m[0]),
+      disk_luma_(Luma(marker.circles[0].color)),
+      background_luma_(Luma(marker.background)),
+      options_(options) {
+  DesignIntegral integral{marker, geometry.marker_from_paper, {window_m_, taper_m_}, disk_luma_};
+  const double half_width = window_m_;
+  const double cell = 2.0 * half_width / kTopCells;
+  for (int i = 0; i < kTopCells; ++i) {
+    for (int j = 0; j < kTopCells; ++j) {
+      const Eigen::Vector2d q(-half_width + (i + 0.5) * cell, -half_width + (j + 0.5) * cell);
+      integral.Add(q, 0.5 * cell, kSplits);
+    }
+  }
+  design_moment_ = integral.moment;
+}
+
+std::optional<RollAlignment> RollFeature::Align(const Image8& image,
+                                                const Camera& camera,
+                                                const Rigid3& cam_from_paper,
+                                                double paper_level,
+                                                double blur_sigma_px,
+                                                double noise_sigma,
+                                                bool fit_center) const {
+  // The window's image: its bounding box from points on its rim.
+  const Eigen::Matrix3d ray_from_plane = RayFromPlane(cam_from_paper);
+  double x0 = image.width, y0 = image.height, x1 = -1.0, y1 = -1.0;
+  for (int k = 0; k < 32; ++k) {
+    const double a = 2.0 * M_PI * k / 32;
+    const double r = window_m_;
+    const Eigen::Vector3d ray =
+        ray_from_plane * Eigen::Vector3d(r * std::cos(a), r * std::sin(a), 1.0);
+    if (!(ray.z() > 0.0)) return std::nullopt;
+    const Eigen::Vector2d px = camera.ImgFromCam(ray);
+    x0 = std::min(x0, px.x()), y0 = std::min(y0, px.y());
+    x1 = std::max(x1, px.x()), y1 = std::max(y1, px.y());
+  }
+  if (!(x0 >= 0.0 && y0 >= 0.0 && x1 <= image.width - 1 && y1 <= image.height - 1)) {
+    return std::nullopt;
+  }
+
+  // Each pixel inside the window, at its plane point q, covers |det H⁻¹| / q̃_z³ of the
+  // normalized image's area per unit of it (H = [r1 r2 t], q̃ = H⁻¹ ray).
+  const Window window{window_m_, taper_m_};
+  const Eigen::Matrix3d plane_from_ray = ray_from_plane.inverse();
+  const Eigen::Matrix3d plane_from_px_h = plane_from_ray * camera.K().inverse();
+  const double pixel_area = std::abs(plane_from_ray.determinant()) / (camera.fx * camera.fy);
+  struct Pixel {
+    int x, y;
+    double value;
+    Eigen::Vector2d q;  // plane point
+    double area;        // times the window's weight
+    Eigen::Matrix2d plane_from_px;
+  };
+  std::vector<Pixel> pixels;
+  for (int y = static_cast<int>(std::floor(y0)); y <= static_cast<int>(std::ceil(y1)); ++y) {
+    for (int x = static_cast<int>(std::floor(x0)); x <= static_cast<int>(std::ceil(x1)); ++x) {
+      const Eigen::Vector3d q = plane_from_ray * camera.CamFromImg(Eigen::Vector2d(x, y));
+      const Eigen::Vector2d on_plane = q.head<2>() / q.z();
+      const double weight = window.At(on_plane.norm());
+      if (!(weight > 0.0)) continue;
+      const double area = weight * pixel_area / std::abs(q.z() * q.z() * q.z());
+      // d(plane point)/d(pixel) through the pinhole (the lens's distortion is smooth).
+      Eigen::Matrix2d plane_from_px;
+      for (int j = 0; j < 2; ++j) {
+        plane_from_px.col(j) =
+            (plane_from_px_h.block<2, 1>(0, j) - on_plane * plane_from_px_h(2, j)) / q.z();
+      }
+      pixels.push_back({x, y, LumaAt(image, x, y), on_plane, area, plane_from_px});
+    }
+  }
+  if (pixels.size() < 16) return std::nullopt;
+  // The disk's level: most of the window is bare disk (the median ignores the weights).
+  std::vector<double> sorted;
+  for (const Pixel& p : pixels) sorted.push_back(p.value);
+  std::nth_element(sorted.begin(), sorted.begin() + sorted.size() / 2, sorted.end());
+  const double disk_level = sorted[sorted.size() / 2];
+  const double gain = (paper_level - disk_level) / (background_luma_ - disk_luma_);
+  const Eigen::Vector2d design = gain * design_moment_;
+  auto moment_over = [&](const std::vector<bool>* mask) {
+    Eigen::Vector2d moment = Eigen::Vector2d::Zero();
+    for (size_t i = 0; i < pixels.size(); ++i) {
+      if (!mask || (*mask)[i])
+        moment += (pixels[i].value - disk_level) * pixels[i].area * pixels[i].q;
+    }
+    return moment;
+  };
+  // The design's direction, turned by the pose's roll error, is where the image's points:
+  // cam_from_paper_true = cam_from_paper * Rz(turn).
+  auto turn_to = [&](const Eigen::Vector2d& moment) {
+    return std::atan2(design.x() * moment.y() - design.y() * moment.x(), design.dot(moment));
+  };
+
+  // First over the whole window, which finds the design at any roll.
+  const Eigen::Vector2d moment = moment_over(nullptr);
+  RollAlignment alignment;
+  const double expected = design.norm();
+  alignment.moment_ratio = expected > 0.0 ? moment.norm() / expected : 0.0;
+  if (!(alignment.moment_ratio >= options_.min_moment_fraction)) return std::nullopt;
+  const double coarse_turn = turn_to(moment);
+
+  // Then the roll that fits the printed design best, by Gauss-Newton on the pixels within
+  // reach of its ink (the bare disk's carry noise and nothing of the roll): the maximum-
+  // likelihood estimate under Gaussian noise, pixel = level + gain * printed luma blurred as
+  // the image is. The reach covers the blur, two pixels and a tenth of a radian of roll at
+  // the window's edge, so no ink the fit may turn to falls outside it.
+  const double depth = cam_from_paper.translation.norm();
+  const double facing =
+      std::abs(cam_from_paper.rotation.col(2).dot(cam_from_paper.translation)) / depth;
+  const double metres_per_px = depth / (camera.fx * std::max(facing, 0.1));
+  const double reach_m = (3.0 * blur_sigma_px + 2.0) * metres_per_px + 0.1 * window_m_;
+  const Eigen::Matrix2d marker_rotation = marker_from_paper_.rotation.topLeftCorner<2, 2>();
+  const Eigen::Vector2d marker_shift = marker_from_paper_.translation.head<2>();
+  std::vector<const Pixel*> near_ink;
+  for (const Pixel& pixel : pixels) {
+    const Eigen::Vector2d q = Eigen::Rotation2Dd(-coarse_turn) * pixel.q;
+    const PaintSample sample = marker_.ColorAt(marker_rotation * q + marker_shift);
+    if (Luma(*sample.color) != disk_luma_ || sample.clearance_m < reach_m) {
+      near_ink.push_back(&pixel);
+    }
+  }
+  // The printed luma at a pixel, with the design turned by `turn` and its centre moved to
+  // `center` in the paper frame, and its gradient in the marker point: each layer over the
+  // ones below it with the product of the blurred steps Φ(-d/σ) of the circles and lines
+  // that bound it (d in pixels across each; exact for one straight edge, and it keeps a thin
+  // crescent's tips thin). Smooth in the pose, unlike sampled colours.
+  const double sigma_px = std::max(blur_sigma_px, 0.3);
+  struct Printed {
+    double luma;
+    Eigen::Vector2d gradient;  // d luma / d marker point
+  };
+  auto printed =
+      [&](const Pixel& pixel, const Eigen::Matrix2d& to_marker, const Eigen::Vector2d& center) {
+        const Eigen::Vector2d p = to_marker * (pixel.q - center) + marker_shift;
+        const Eigen::Matrix2d marker_from_px = to_marker * pixel.plane_from_px;
+        Printed out{background_luma_, Eigen::Vector2d::Zero()};
+        for (const PaintedShape& layer : marker_.layers) {
+          const BoundaryDistances b = DistancesTo(layer.shape, p);
+          double cover = 1.0;
+          Eigen::Vector2d cover_gradient = Eigen::Vector2d::Zero();
+          for (size_t i = 0; i < b.count; ++i) {
+            const EdgeDistance& edge = b.terms[i];
+            const double metres_per_px = 1.0 / (marker_from_px.transpose() * edge.gradient).norm();
+            const double a = edge.metres * metres_per_px / sigma_px;
+            const double step = 0.5 * std::erfc(a / std::sqrt(2.0));
+            const double density = std::exp(-0.5 * a * a) / std::sqrt(2.0 * M_PI);
+            cover_gradient =
+                cover_gradient * step - cover * density * metres_per_px / sigma_px * edge.gradient;
+            cover *= step;
+          }
+          const double contrast = Luma(layer.color) - out.luma;
+          out.gradient = out.gradient * (1.0 - cover) + contrast * cover_gradient;
+          out.luma += cover * contrast;
+        }
+        return out;
+      };
+  // Gauss-Newton on (offset, gain, turn[, centre]): pixel = offset + gain * printed.
+  Eigen::Matrix<double, 5, 1> x;
+  x << disk_level - gain * disk_luma_, gain, coarse_turn, 0.0, 0.0;
+  const Eigen::Matrix2d quarter_turn = Eigen::Rotation2Dd(M_PI / 2).matrix();
+  double gain_variance = 0.0;  // per unit noise variance, at the last linearisation
+  for (int iteration = 0; iteration < options_.max_iterations; ++iteration) {
+    const Eigen::Matrix2d to_marker = marker_rotation * Eigen::Rotation2Dd(-x(2)).matrix();
+    const Eigen::Vector2d center = x.tail<2>();
+    Eigen::Matrix<double, 5, 5> JtJ = Eigen::Matrix<double, 5, 5>::Zero();
+    Eigen::Matrix<double, 5, 1> Jtr = Eigen::Matrix<double, 5, 1>::Zero();
+    for (const Pixel* pixel : near_ink) {
+      const Printed model = printed(*pixel, to_marker, center);
+      // p = R_m Rz(-turn) (q - centre) + t_m.
+      const double d_turn = -model.gradient.dot(to_marker * quarter_turn * (pixel->q - center));
+      const Eigen::Vector2d d_center = -to_marker.transpose() * model.gradient;
+      Eigen::Matrix<double, 5, 1> J;
+      J << 1.0, model.luma, x(1) * d_turn, x(1) * d_center;
+      JtJ += J * J.transpose();
+      Jtr += J * (x(0) + x(1) * model.luma - pixel->value);
+    }
+    if (!fit_center) {
+      JtJ.bottomRows<2>().setZero();
+      JtJ.rightCols<2>().setZero();
+      JtJ.bottomRightCorner<2, 2>().setIdentity();
+      Jtr.tail<2>().setZero();
+    }
+    const Eigen::LDLT<Eigen::Matrix<double, 5, 5>> normal_equations(JtJ);
+    gain_variance = normal_equations.solve(Eigen::Matrix<double, 5, 1>::Unit(1))(1);
+    Eigen::Matrix<double, 5, 1> step = -normal_equations.solve(Jtr);
+    if (!step.allFinite()) break;
+    step(2) = std::clamp(step(2), -0.05, 0.05);
+    const double center_step = step.tail<2>().norm();
+    if (center_step > 0.05 * window_m_) step.tail<2>() *= 0.05 * window_m_ / center_step;
+    x += step;
+    if (std::abs(step(2)) * window_m_ + center_step < 1e-4 * metres_per_px) break;
+  }
+  alignment.turn_rad = x(2);
+  // How far the design misses the pixels near its ink, without an estimate of the noise:
+  // residuals of pixels two apart in u share the misfit and not the noise, so their mean
+  // product estimates the squared misfit (as printed_appearance.h does over the marker).
+  {
+    const Eigen::Matrix2d to_marker = marker_rotation * Eigen::Rotation2Dd(-x(2)).matrix();
+    const int x_begin = static_cast<int>(std::floor(x0));
+    const int y_begin = static_cast<int>(std::floor(y0));
+    const int columns = static_cast<int>(std::ceil(x1)) - x_begin + 1;
+    const int rows = static_cast<int>(std::ceil(y1)) - y_begin + 1;
+    std::vector<double> residual(static_cast<size_t>(columns) * rows,
+                                 std::numeric_limits<double>::quiet_NaN());
+    auto at = [&](int x_px, int y_px) -> double& {
+      return residual[static_cast<size_t>(y_px - y_begin) * columns + (x_px - x_begin)];
+    };
+    for (const Pixel* pixel : near_ink) {
+      at(pixel->x, pixel->y) =
+          x(0) + x(1) * printed(*pixel, to_marker, x.tail<2>()).luma - pixel->value;
+    }
+    double sum = 0.0;
+    int pairs = 0;
+    for (const Pixel* pixel : near_ink) {
+      if (pixel->x + 2 >= x_begin + columns) continue;
+      const double product = at(pixel->x, pixel->y) * at(pixel->x + 2, pixel->y);
+      if (std::isnan(product)) continue;
+      sum += product;
+      ++pairs;
+    }
+    const double contrast2 = (paper_level - disk_level) * (paper_level - disk_level);
+    if (pairs < 16 || !(contrast2 > 0.0)) return std::nullopt;
+    const double mean = sum / pairs;
+    // Under the noise alone a product has standard deviation σ² (σ at least the 8-bit
+    // quantisation's): the misfit must stand out of that.
+    const double noise2 = std::max(noise_sigma * noise_sigma, 1.0 / 12.0);
+    const double standard_error = noise2 / std::sqrt(static_cast<double>(pairs));
+    alignment.misfit = std::sqrt(std::max(0.0, mean) / contrast2);
+    const double allowed = options_.max_misfit * options_.max_misfit * contrast2;
+    alignment.contrast_ratio = x(1) / gain;
+    const double ratio_error = std::sqrt(std::max(0.0, noise2 * gain_variance)) / std::abs(gain);
+    alignment.contrast_ratio_error = ratio_error;
+    alignment.shows_design =
+        mean - allowed <= options_.min_significance * standard_error &&
+        std::abs(alignment.contrast_ratio - 1.0) <=
+            options_.max_contrast_error + options_.min_significance * ratio_error &&
+        ratio_error <= options_.max_contrast_ratio_error;
+  }
+  const Rigid3 turned(Eigen::AngleAxisd(x(2), Eigen::Vector3d::UnitZ()).matrix(),
+                      Eigen::Vector3d::Zero());
+  alignment.cam_from_paper = cam_from_paper * turned;
+  alignment.center_m = Eigen::Rotation2Dd(-x(2)) * x.tail<2>();
+  return alignment;
+}
+
+}  // namespace markerbench
