@@ -45,18 +45,6 @@ Rgb BlurredColor(const MarkerSpec& marker,
   return sum;
 }
 
-}  // namespace
-
-Rgb BlurredPrintedColor(const MarkerSpec& marker,
-                        const Eigen::Vector2d& p,
-                        const Eigen::Matrix2d& plane_from_px,
-                        double sigma_px) {
-  return BlurredColor(
-      marker, p, SmallestSingularValue(plane_from_px.inverse()), plane_from_px, sigma_px);
-}
-
-namespace {
-
 // The fit on a grid x grid lattice.
 AppearanceFit FitOnGrid(const Image8& image,
                         const Camera& camera,

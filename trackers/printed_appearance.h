@@ -49,14 +49,6 @@ struct AppearanceFit {
   bool ShowsMarker() const { return !surely_misfits; }
 };
 
-// The printed colour around marker-plane point `p` under an image Gaussian of `sigma_px`,
-// through the local map plane_from_px (metres per pixel), by 5x5 Gauss-Hermite quadrature;
-// where no edge is within its reach, the colour at p.
-Rgb BlurredPrintedColor(const MarkerSpec& marker,
-                        const Eigen::Vector2d& p,
-                        const Eigen::Matrix2d& plane_from_px,
-                        double sigma_px);
-
 // The fit on the coarse grid, and on the fine one when the coarse one can neither bound every
 // part's misfit below max_misfit nor show one surely above. `blur_sigma_px`: the Gaussian σ of the
 // image's edges (optics and pixel area together).

@@ -7,7 +7,7 @@
 #include <limits>
 #include <vector>
 
-#include "trackers/printed_appearance.h"
+#include "trackers/circle/blurred_design.h"
 
 namespace markerbench {
 namespace {
@@ -188,57 +188,35 @@ std::optional<RollAlignment> RollFeature::Align(const Image8& image,
       near_ink.push_back(&pixel);
     }
   }
-  // The printed luma at a pixel, with the design turned by `turn` and its centre moved to
-  // `center` in the paper frame, and its gradient in the marker point: each layer over the
-  // ones below it with the product of the blurred steps Φ(-d/σ) of the circles and lines
-  // that bound it (d in pixels across each; exact for one straight edge, and it keeps a thin
-  // crescent's tips thin). Smooth in the pose, unlike sampled colours.
+  // The printed luma at a pixel with the design turned by `turn` and its centre moved to
+  // `center` in the paper frame (blurred_design.h), and its gradient in the marker point.
   const double sigma_px = std::max(blur_sigma_px, 0.3);
-  struct Printed {
-    double luma;
-    Eigen::Vector2d gradient;  // d luma / d marker point
-  };
   auto printed =
       [&](const Pixel& pixel, const Eigen::Matrix2d& to_marker, const Eigen::Vector2d& center) {
-        const Eigen::Vector2d p = to_marker * (pixel.q - center) + marker_shift;
-        const Eigen::Matrix2d marker_from_px = to_marker * pixel.plane_from_px;
-        Printed out{background_luma_, Eigen::Vector2d::Zero()};
-        for (const PaintedShape& layer : marker_.layers) {
-          const BoundaryDistances b = DistancesTo(layer.shape, p);
-          double cover = 1.0;
-          Eigen::Vector2d cover_gradient = Eigen::Vector2d::Zero();
-          for (size_t i = 0; i < b.count; ++i) {
-            const EdgeDistance& edge = b.terms[i];
-            const double metres_per_px = 1.0 / (marker_from_px.transpose() * edge.gradient).norm();
-            const double a = edge.metres * metres_per_px / sigma_px;
-            const double step = 0.5 * std::erfc(a / std::sqrt(2.0));
-            const double density = std::exp(-0.5 * a * a) / std::sqrt(2.0 * M_PI);
-            cover_gradient =
-                cover_gradient * step - cover * density * metres_per_px / sigma_px * edge.gradient;
-            cover *= step;
-          }
-          const double contrast = Luma(layer.color) - out.luma;
-          out.gradient = out.gradient * (1.0 - cover) + contrast * cover_gradient;
-          out.luma += cover * contrast;
-        }
-        return out;
+        return BlurredDesignLuma(marker_,
+                                 to_marker * (pixel.q - center) + marker_shift,
+                                 to_marker * pixel.plane_from_px,
+                                 sigma_px);
       };
-  // Gauss-Newton on (offset, gain, turn[, centre]): pixel = offset + gain * printed.
-  Eigen::Matrix<double, 5, 1> x;
+  // Gauss-Newton on (offset, gain, turn, centre): pixel = offset + gain * printed.
+  constexpr int kParameters = 5;
+  using Vector = Eigen::Matrix<double, kParameters, 1>;
+  using Matrix = Eigen::Matrix<double, kParameters, kParameters>;
+  Vector x;
   x << disk_level - gain * disk_luma_, gain, coarse_turn, 0.0, 0.0;
   const Eigen::Matrix2d quarter_turn = Eigen::Rotation2Dd(M_PI / 2).matrix();
   double gain_variance = 0.0;  // per unit noise variance, at the last linearisation
   for (int iteration = 0; iteration < options_.max_iterations; ++iteration) {
     const Eigen::Matrix2d to_marker = marker_rotation * Eigen::Rotation2Dd(-x(2)).matrix();
     const Eigen::Vector2d center = x.tail<2>();
-    Eigen::Matrix<double, 5, 5> JtJ = Eigen::Matrix<double, 5, 5>::Zero();
-    Eigen::Matrix<double, 5, 1> Jtr = Eigen::Matrix<double, 5, 1>::Zero();
+    Matrix JtJ = Matrix::Zero();
+    Vector Jtr = Vector::Zero();
     for (const Pixel* pixel : near_ink) {
-      const Printed model = printed(*pixel, to_marker, center);
+      const BlurredLuma model = printed(*pixel, to_marker, center);
       // p = R_m Rz(-turn) (q - centre) + t_m.
       const double d_turn = -model.gradient.dot(to_marker * quarter_turn * (pixel->q - center));
       const Eigen::Vector2d d_center = -to_marker.transpose() * model.gradient;
-      Eigen::Matrix<double, 5, 1> J;
+      Vector J;
       J << 1.0, model.luma, x(1) * d_turn, x(1) * d_center;
       JtJ += J * J.transpose();
       Jtr += J * (x(0) + x(1) * model.luma - pixel->value);
@@ -249,9 +227,9 @@ std::optional<RollAlignment> RollFeature::Align(const Image8& image,
       JtJ.bottomRightCorner<2, 2>().setIdentity();
       Jtr.tail<2>().setZero();
     }
-    const Eigen::LDLT<Eigen::Matrix<double, 5, 5>> normal_equations(JtJ);
-    gain_variance = normal_equations.solve(Eigen::Matrix<double, 5, 1>::Unit(1))(1);
-    Eigen::Matrix<double, 5, 1> step = -normal_equations.solve(Jtr);
+    const Eigen::LDLT<Matrix> normal_equations(JtJ);
+    gain_variance = normal_equations.solve(Vector::Unit(1))(1);
+    Vector step = -normal_equations.solve(Jtr);
     if (!step.allFinite()) break;
     step(2) = std::clamp(step(2), -0.05, 0.05);
     const double center_step = step.tail<2>().norm();

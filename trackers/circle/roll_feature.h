@@ -30,18 +30,18 @@ struct RollFeatureOptions {
   // The image's moment must reach this fraction of the design's (at the image's contrast):
   // else the design is not there to be read (too small, too blurred, not the marker).
   double min_moment_fraction = 0.5;
-  int max_iterations = 5;  // Gauss-Newton on the roll, from the moment's
+  int max_iterations = 10;  // Gauss-Newton on the roll, from the moment's
   // The design shows where it fits the pixels near its ink (RollAlignment): its misfit not
   // above max_misfit and its contrast ratio not off 1 by more than max_contrast_error, each
   // by more than min_significance standard errors of the noise; and the contrast ratio
   // measured to max_contrast_ratio_error at least (a design too small or too noisy to see
-  // cannot be told from clutter). Measured on rendered frames: the markers misfit by at most
-  // 0.02 at contrast ratios within 0.06 of 1; the negative set's clutter that passes the
-  // appearance check misfits by 0.15-0.36, or shows ratios of 0.5-0.6 or 1.3-1.5, or has
-  // them only to ±0.15-0.4. One standard error: clutter comes in low contrast and noise.
+  // cannot be told from clutter). Measured over the paper sweeps (2450 frames of e and f,
+  // 40 per value): misfits up to 0.11, contrast ratios 0.64-1.25, known to 0.04 or better;
+  // the negative set's clutter that passes the other tests misfits by more, or shows other
+  // ratios, or has them only to 0.08 or worse.
   double max_misfit = 0.15;
-  double max_contrast_error = 0.15;
-  double max_contrast_ratio_error = 0.1;
+  double max_contrast_error = 0.4;
+  double max_contrast_ratio_error = 0.06;
   double min_significance = 1.0;
 };
 
