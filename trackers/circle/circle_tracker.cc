@@ -282,11 +282,13 @@ TrackResult CircleTracker::TrackIn(const Observation& observation,
   // The refinement starts from whichever start explains the image best: in tracking mode the
   // analytic pose or the previous one; otherwise every analytic candidate, since with small
   // or blurred ellipses the chosen l_inf can land in the wrong basin.
-  std::vector<Rigid3> candidates;
-  if (!previous_cam_from_paper) {
+  std::vector<Rigid3> starts;
+  if (previous_cam_from_paper) {
+    starts.push_back(*previous_cam_from_paper);
+  } else {
     for (const AnalyticSolution& candidate :
          AnalyticCandidates(geometry, K, measurements, options_.analytic.depth)) {
-      candidates.push_back(candidate.pose.cam_from_paper);
+      starts.push_back(candidate.pose.cam_from_paper);
     }
   }
   auto refined_from_best = [&](Rigid3 start, const std::vector<Rigid3>& others) {
@@ -304,8 +306,6 @@ TrackResult CircleTracker::TrackIn(const Observation& observation,
     diagnostics_.final_cost = refined.final_cost;
     return refined.cam_from_paper;
   };
-  std::vector<Rigid3> starts = candidates;
-  if (previous_cam_from_paper) starts.push_back(*previous_cam_from_paper);
   Rigid3 cam_from_paper = refined_from_best(analytic->pose.cam_from_paper, starts);
 
   if (geometry.roll_from_design) {

@@ -60,6 +60,188 @@ double LumaAt(const Image8& image, int x, int y) {
   return image.channels == 3 ? 0.299 * p[0] + 0.587 * p[1] + 0.114 * p[2] : p[0];
 }
 
+// A pixel of the window: its luma, its point q in the paper frame, the plane area it covers
+// (times the window's weight) and d(q)/d(pixel).
+struct WindowPixel {
+  int x, y;
+  double value;
+  Eigen::Vector2d q;
+  double area;
+  Eigen::Matrix2d plane_from_px;
+};
+
+// The pixels whose plane points fall in the window, and their box in the image.
+struct WindowPixels {
+  std::vector<WindowPixel> pixels;
+  int x_begin = 0, y_begin = 0, columns = 0, rows = 0;
+};
+
+// nullopt when the window is not wholly in front of the camera and in the image.
+std::optional<WindowPixels> ReadWindow(const Image8& image,
+                                       const Camera& camera,
+                                       const Rigid3& cam_from_paper,
+                                       const Window& window) {
+  // The window's image: its bounding box from points on its rim.
+  const Eigen::Matrix3d ray_from_plane = RayFromPlane(cam_from_paper);
+  double x0 = image.width, y0 = image.height, x1 = -1.0, y1 = -1.0;
+  for (int k = 0; k < 32; ++k) {
+    const double a = 2.0 * M_PI * k / 32;
+    const double r = window.outer_m;
+    const Eigen::Vector3d ray =
+        ray_from_plane * Eigen::Vector3d(r * std::cos(a), r * std::sin(a), 1.0);
+    if (!(ray.z() > 0.0)) return std::nullopt;
+    const Eigen::Vector2d px = camera.ImgFromCam(ray);
+    x0 = std::min(x0, px.x()), y0 = std::min(y0, px.y());
+    x1 = std::max(x1, px.x()), y1 = std::max(y1, px.y());
+  }
+  if (!(x0 >= 0.0 && y0 >= 0.0 && x1 <= image.width - 1 && y1 <= image.height - 1)) {
+    return std::nullopt;
+  }
+  WindowPixels out;
+  out.x_begin = static_cast<int>(std::floor(x0));
+  out.y_begin = static_cast<int>(std::floor(y0));
+  out.columns = static_cast<int>(std::ceil(x1)) - out.x_begin + 1;
+  out.rows = static_cast<int>(std::ceil(y1)) - out.y_begin + 1;
+  // Each pixel, at its plane point q, covers |det H⁻¹| / q̃_z³ of the normalized image's area
+  // per unit of it (H = [r1 r2 t], q̃ = H⁻¹ ray).
+  const Eigen::Matrix3d plane_from_ray = ray_from_plane.inverse();
+  const Eigen::Matrix3d plane_from_px_h = plane_from_ray * camera.K().inverse();
+  const double pixel_area = std::abs(plane_from_ray.determinant()) / (camera.fx * camera.fy);
+  for (int y = out.y_begin; y < out.y_begin + out.rows; ++y) {
+    for (int x = out.x_begin; x < out.x_begin + out.columns; ++x) {
+      const Eigen::Vector3d q = plane_from_ray * camera.CamFromImg(Eigen::Vector2d(x, y));
+      const Eigen::Vector2d on_plane = q.head<2>() / q.z();
+      const double weight = window.At(on_plane.norm());
+      if (!(weight > 0.0)) continue;
+      const double area = weight * pixel_area / std::abs(q.z() * q.z() * q.z());
+      // d(plane point)/d(pixel) through the pinhole (the lens's distortion is smooth).
+      Eigen::Matrix2d plane_from_px;
+      for (int j = 0; j < 2; ++j) {
+        plane_from_px.col(j) =
+            (plane_from_px_h.block<2, 1>(0, j) - on_plane * plane_from_px_h(2, j)) / q.z();
+      }
+      out.pixels.push_back({x, y, LumaAt(image, x, y), on_plane, area, plane_from_px});
+    }
+  }
+  return out;
+}
+
+// The printed design seen through a pixel, with the design turned by `turn` and its centre
+// moved to `center` in the paper frame (blurred_design.h); its gradient in the marker point.
+struct DesignModel {
+  const MarkerSpec& marker;
+  Eigen::Matrix2d marker_rotation;  // marker_from_paper's
+  Eigen::Vector2d marker_shift;
+  double sigma_px;
+
+  Eigen::Matrix2d ToMarker(double turn) const {
+    return marker_rotation * Eigen::Rotation2Dd(-turn).matrix();
+  }
+  BlurredLuma At(const WindowPixel& pixel,
+                 const Eigen::Matrix2d& to_marker,
+                 const Eigen::Vector2d& center) const {
+    return BlurredDesignLuma(marker,
+                             to_marker * (pixel.q - center) + marker_shift,
+                             to_marker * pixel.plane_from_px,
+                             sigma_px);
+  }
+};
+
+// pixel = offset + gain * printed, with the design turned and moved.
+struct DesignFit {
+  double offset = 0.0;
+  double gain = 0.0;
+  double turn = 0.0;
+  Eigen::Vector2d center = Eigen::Vector2d::Zero();
+  double gain_variance = 0.0;  // per unit noise variance, at the last linearisation
+
+  double Residual(const DesignModel& model, const WindowPixel& pixel) const {
+    return offset + gain * model.At(pixel, model.ToMarker(turn), center).luma - pixel.value;
+  }
+};
+
+// Gauss-Newton on (offset, gain, turn, centre), or without the centre; steps of the turn and
+// centre are bounded (0.05 rad, 0.05 of the window), and it stops once they move the design
+// by less than 1e-4 px.
+DesignFit FitDesign(const DesignModel& model,
+                    const std::vector<const WindowPixel*>& pixels,
+                    DesignFit fit,
+                    bool fit_center,
+                    int max_iterations,
+                    double window_m,
+                    double metres_per_px) {
+  constexpr int kParameters = 5;
+  using Vector = Eigen::Matrix<double, kParameters, 1>;
+  using Matrix = Eigen::Matrix<double, kParameters, kParameters>;
+  const Eigen::Matrix2d quarter_turn = Eigen::Rotation2Dd(M_PI / 2).matrix();
+  for (int iteration = 0; iteration < max_iterations; ++iteration) {
+    const Eigen::Matrix2d to_marker = model.ToMarker(fit.turn);
+    Matrix JtJ = Matrix::Zero();
+    Vector Jtr = Vector::Zero();
+    for (const WindowPixel* pixel : pixels) {
+      const BlurredLuma printed = model.At(*pixel, to_marker, fit.center);
+      // p = R_m Rz(-turn) (q - centre) + t_m.
+      const double d_turn =
+          -printed.gradient.dot(to_marker * quarter_turn * (pixel->q - fit.center));
+      const Eigen::Vector2d d_center = -to_marker.transpose() * printed.gradient;
+      Vector J;
+      J << 1.0, printed.luma, fit.gain * d_turn, fit.gain * d_center;
+      JtJ += J * J.transpose();
+      Jtr += J * (fit.offset + fit.gain * printed.luma - pixel->value);
+    }
+    if (!fit_center) {
+      JtJ.bottomRows<2>().setZero();
+      JtJ.rightCols<2>().setZero();
+      JtJ.bottomRightCorner<2, 2>().setIdentity();
+      Jtr.tail<2>().setZero();
+    }
+    const Eigen::LDLT<Matrix> normal_equations(JtJ);
+    fit.gain_variance = normal_equations.solve(Vector::Unit(1))(1);
+    Vector step = -normal_equations.solve(Jtr);
+    if (!step.allFinite()) break;
+    step(2) = std::clamp(step(2), -0.05, 0.05);
+    const double center_step = step.tail<2>().norm();
+    if (center_step > 0.05 * window_m) step.tail<2>() *= 0.05 * window_m / center_step;
+    fit.offset += step(0);
+    fit.gain += step(1);
+    fit.turn += step(2);
+    fit.center += step.tail<2>();
+    if (std::abs(step(2)) * window_m + center_step < 1e-4 * metres_per_px) break;
+  }
+  return fit;
+}
+
+// How far the design misses the pixels, without an estimate of the noise: residuals of
+// pixels two apart in u share the misfit and not the noise, so their mean product estimates
+// the squared misfit (as printed_appearance.h does over the marker).
+struct SharedResidual {
+  double mean_product = 0.0;
+  int pairs = 0;
+};
+SharedResidual SharedResidualOf(const DesignModel& model,
+                                const DesignFit& fit,
+                                const WindowPixels& window,
+                                const std::vector<const WindowPixel*>& pixels) {
+  std::vector<double> residual(static_cast<size_t>(window.columns) * window.rows,
+                               std::numeric_limits<double>::quiet_NaN());
+  auto at = [&](int x, int y) -> double& {
+    return residual[static_cast<size_t>(y - window.y_begin) * window.columns +
+                    (x - window.x_begin)];
+  };
+  for (const WindowPixel* pixel : pixels) at(pixel->x, pixel->y) = fit.Residual(model, *pixel);
+  SharedResidual out;
+  double sum = 0.0;
+  for (const WindowPixel* pixel : pixels) {
+    if (pixel->x + 2 >= window.x_begin + window.columns) continue;
+    const double product = at(pixel->x, pixel->y) * at(pixel->x + 2, pixel->y);
+    if (std::isnan(product)) continue;
+    sum += product;
+    ++out.pairs;
+  }
+  out.mean_product = out.pairs > 0 ? sum / out.pairs : 0.0;
+  return out;
+}
+
 }  // namespace
 
 RollFeature::RollFeature(const MarkerSpec& marker,
@@ -91,202 +273,83 @@ std::optional<RollAlignment> RollFeature::Align(const Image8& image,
                                                 double blur_sigma_px,
                                                 double noise_sigma,
                                                 bool fit_center) const {
-  // The window's image: its bounding box from points on its rim.
-  const Eigen::Matrix3d ray_from_plane = RayFromPlane(cam_from_paper);
-  double x0 = image.width, y0 = image.height, x1 = -1.0, y1 = -1.0;
-  for (int k = 0; k < 32; ++k) {
-    const double a = 2.0 * M_PI * k / 32;
-    const double r = window_m_;
-    const Eigen::Vector3d ray =
-        ray_from_plane * Eigen::Vector3d(r * std::cos(a), r * std::sin(a), 1.0);
-    if (!(ray.z() > 0.0)) return std::nullopt;
-    const Eigen::Vector2d px = camera.ImgFromCam(ray);
-    x0 = std::min(x0, px.x()), y0 = std::min(y0, px.y());
-    x1 = std::max(x1, px.x()), y1 = std::max(y1, px.y());
-  }
-  if (!(x0 >= 0.0 && y0 >= 0.0 && x1 <= image.width - 1 && y1 <= image.height - 1)) {
-    return std::nullopt;
-  }
-
-  // Each pixel inside the window, at its plane point q, covers |det H⁻¹| / q̃_z³ of the
-  // normalized image's area per unit of it (H = [r1 r2 t], q̃ = H⁻¹ ray).
-  const Window window{window_m_, taper_m_};
-  const Eigen::Matrix3d plane_from_ray = ray_from_plane.inverse();
-  const Eigen::Matrix3d plane_from_px_h = plane_from_ray * camera.K().inverse();
-  const double pixel_area = std::abs(plane_from_ray.determinant()) / (camera.fx * camera.fy);
-  struct Pixel {
-    int x, y;
-    double value;
-    Eigen::Vector2d q;  // plane point
-    double area;        // times the window's weight
-    Eigen::Matrix2d plane_from_px;
-  };
-  std::vector<Pixel> pixels;
-  for (int y = static_cast<int>(std::floor(y0)); y <= static_cast<int>(std::ceil(y1)); ++y) {
-    for (int x = static_cast<int>(std::floor(x0)); x <= static_cast<int>(std::ceil(x1)); ++x) {
-      const Eigen::Vector3d q = plane_from_ray * camera.CamFromImg(Eigen::Vector2d(x, y));
-      const Eigen::Vector2d on_plane = q.head<2>() / q.z();
-      const double weight = window.At(on_plane.norm());
-      if (!(weight > 0.0)) continue;
-      const double area = weight * pixel_area / std::abs(q.z() * q.z() * q.z());
-      // d(plane point)/d(pixel) through the pinhole (the lens's distortion is smooth).
-      Eigen::Matrix2d plane_from_px;
-      for (int j = 0; j < 2; ++j) {
-        plane_from_px.col(j) =
-            (plane_from_px_h.block<2, 1>(0, j) - on_plane * plane_from_px_h(2, j)) / q.z();
-      }
-      pixels.push_back({x, y, LumaAt(image, x, y), on_plane, area, plane_from_px});
-    }
-  }
-  if (pixels.size() < 16) return std::nullopt;
+  const std::optional<WindowPixels> window =
+      ReadWindow(image, camera, cam_from_paper, {window_m_, taper_m_});
+  if (!window || window->pixels.size() < 16) return std::nullopt;
+  const std::vector<WindowPixel>& pixels = window->pixels;
   // The disk's level: most of the window is bare disk (the median ignores the weights).
   std::vector<double> sorted;
-  for (const Pixel& p : pixels) sorted.push_back(p.value);
+  for (const WindowPixel& p : pixels) sorted.push_back(p.value);
   std::nth_element(sorted.begin(), sorted.begin() + sorted.size() / 2, sorted.end());
   const double disk_level = sorted[sorted.size() / 2];
   const double gain = (paper_level - disk_level) / (background_luma_ - disk_luma_);
+
+  // First the moment over the whole window, which finds the design at any roll: the
+  // design's direction, turned by the pose's roll error, is where the image's points
+  // (cam_from_paper_true = cam_from_paper * Rz(turn)).
   const Eigen::Vector2d design = gain * design_moment_;
-  auto moment_over = [&](const std::vector<bool>* mask) {
-    Eigen::Vector2d moment = Eigen::Vector2d::Zero();
-    for (size_t i = 0; i < pixels.size(); ++i) {
-      if (!mask || (*mask)[i])
-        moment += (pixels[i].value - disk_level) * pixels[i].area * pixels[i].q;
-    }
-    return moment;
-  };
-  // The design's direction, turned by the pose's roll error, is where the image's points:
-  // cam_from_paper_true = cam_from_paper * Rz(turn).
-  auto turn_to = [&](const Eigen::Vector2d& moment) {
-    return std::atan2(design.x() * moment.y() - design.y() * moment.x(), design.dot(moment));
-  };
-
-  // First over the whole window, which finds the design at any roll.
-  const Eigen::Vector2d moment = moment_over(nullptr);
+  Eigen::Vector2d moment = Eigen::Vector2d::Zero();
+  for (const WindowPixel& p : pixels) moment += (p.value - disk_level) * p.area * p.q;
   RollAlignment alignment;
-  const double expected = design.norm();
-  alignment.moment_ratio = expected > 0.0 ? moment.norm() / expected : 0.0;
+  alignment.moment_ratio = design.norm() > 0.0 ? moment.norm() / design.norm() : 0.0;
   if (!(alignment.moment_ratio >= options_.min_moment_fraction)) return std::nullopt;
-  const double coarse_turn = turn_to(moment);
+  const double coarse_turn =
+      std::atan2(design.x() * moment.y() - design.y() * moment.x(), design.dot(moment));
 
-  // Then the roll that fits the printed design best, by Gauss-Newton on the pixels within
-  // reach of its ink (the bare disk's carry noise and nothing of the roll): the maximum-
-  // likelihood estimate under Gaussian noise, pixel = level + gain * printed luma blurred as
-  // the image is. The reach covers the blur, two pixels and a tenth of a radian of roll at
-  // the window's edge, so no ink the fit may turn to falls outside it.
+  // Then the roll (and centre) that fit the printed design best, by Gauss-Newton on the
+  // pixels within reach of its ink (the bare disk's carry noise and nothing of the roll):
+  // the maximum-likelihood estimate under Gaussian noise. The reach covers the blur, two
+  // pixels and a tenth of a radian of roll at the window's edge, so no ink the fit may turn
+  // to falls outside it.
   const double depth = cam_from_paper.translation.norm();
   const double facing =
       std::abs(cam_from_paper.rotation.col(2).dot(cam_from_paper.translation)) / depth;
   const double metres_per_px = depth / (camera.fx * std::max(facing, 0.1));
   const double reach_m = (3.0 * blur_sigma_px + 2.0) * metres_per_px + 0.1 * window_m_;
-  const Eigen::Matrix2d marker_rotation = marker_from_paper_.rotation.topLeftCorner<2, 2>();
-  const Eigen::Vector2d marker_shift = marker_from_paper_.translation.head<2>();
-  std::vector<const Pixel*> near_ink;
-  for (const Pixel& pixel : pixels) {
-    const Eigen::Vector2d q = Eigen::Rotation2Dd(-coarse_turn) * pixel.q;
-    const PaintSample sample = marker_.ColorAt(marker_rotation * q + marker_shift);
+  const DesignModel model{marker_,
+                          marker_from_paper_.rotation.topLeftCorner<2, 2>(),
+                          marker_from_paper_.translation.head<2>(),
+                          std::max(blur_sigma_px, 0.3)};
+  std::vector<const WindowPixel*> near_ink;
+  for (const WindowPixel& pixel : pixels) {
+    const PaintSample sample =
+        marker_.ColorAt(model.ToMarker(coarse_turn) * pixel.q + model.marker_shift);
     if (Luma(*sample.color) != disk_luma_ || sample.clearance_m < reach_m) {
       near_ink.push_back(&pixel);
     }
   }
-  // The printed luma at a pixel with the design turned by `turn` and its centre moved to
-  // `center` in the paper frame (blurred_design.h), and its gradient in the marker point.
-  const double sigma_px = std::max(blur_sigma_px, 0.3);
-  auto printed =
-      [&](const Pixel& pixel, const Eigen::Matrix2d& to_marker, const Eigen::Vector2d& center) {
-        return BlurredDesignLuma(marker_,
-                                 to_marker * (pixel.q - center) + marker_shift,
-                                 to_marker * pixel.plane_from_px,
-                                 sigma_px);
-      };
-  // Gauss-Newton on (offset, gain, turn, centre): pixel = offset + gain * printed.
-  constexpr int kParameters = 5;
-  using Vector = Eigen::Matrix<double, kParameters, 1>;
-  using Matrix = Eigen::Matrix<double, kParameters, kParameters>;
-  Vector x;
-  x << disk_level - gain * disk_luma_, gain, coarse_turn, 0.0, 0.0;
-  const Eigen::Matrix2d quarter_turn = Eigen::Rotation2Dd(M_PI / 2).matrix();
-  double gain_variance = 0.0;  // per unit noise variance, at the last linearisation
-  for (int iteration = 0; iteration < options_.max_iterations; ++iteration) {
-    const Eigen::Matrix2d to_marker = marker_rotation * Eigen::Rotation2Dd(-x(2)).matrix();
-    const Eigen::Vector2d center = x.tail<2>();
-    Matrix JtJ = Matrix::Zero();
-    Vector Jtr = Vector::Zero();
-    for (const Pixel* pixel : near_ink) {
-      const BlurredLuma model = printed(*pixel, to_marker, center);
-      // p = R_m Rz(-turn) (q - centre) + t_m.
-      const double d_turn = -model.gradient.dot(to_marker * quarter_turn * (pixel->q - center));
-      const Eigen::Vector2d d_center = -to_marker.transpose() * model.gradient;
-      Vector J;
-      J << 1.0, model.luma, x(1) * d_turn, x(1) * d_center;
-      JtJ += J * J.transpose();
-      Jtr += J * (x(0) + x(1) * model.luma - pixel->value);
-    }
-    if (!fit_center) {
-      JtJ.bottomRows<2>().setZero();
-      JtJ.rightCols<2>().setZero();
-      JtJ.bottomRightCorner<2, 2>().setIdentity();
-      Jtr.tail<2>().setZero();
-    }
-    const Eigen::LDLT<Matrix> normal_equations(JtJ);
-    gain_variance = normal_equations.solve(Vector::Unit(1))(1);
-    Vector step = -normal_equations.solve(Jtr);
-    if (!step.allFinite()) break;
-    step(2) = std::clamp(step(2), -0.05, 0.05);
-    const double center_step = step.tail<2>().norm();
-    if (center_step > 0.05 * window_m_) step.tail<2>() *= 0.05 * window_m_ / center_step;
-    x += step;
-    if (std::abs(step(2)) * window_m_ + center_step < 1e-4 * metres_per_px) break;
-  }
-  alignment.turn_rad = x(2);
-  // How far the design misses the pixels near its ink, without an estimate of the noise:
-  // residuals of pixels two apart in u share the misfit and not the noise, so their mean
-  // product estimates the squared misfit (as printed_appearance.h does over the marker).
-  {
-    const Eigen::Matrix2d to_marker = marker_rotation * Eigen::Rotation2Dd(-x(2)).matrix();
-    const int x_begin = static_cast<int>(std::floor(x0));
-    const int y_begin = static_cast<int>(std::floor(y0));
-    const int columns = static_cast<int>(std::ceil(x1)) - x_begin + 1;
-    const int rows = static_cast<int>(std::ceil(y1)) - y_begin + 1;
-    std::vector<double> residual(static_cast<size_t>(columns) * rows,
-                                 std::numeric_limits<double>::quiet_NaN());
-    auto at = [&](int x_px, int y_px) -> double& {
-      return residual[static_cast<size_t>(y_px - y_begin) * columns + (x_px - x_begin)];
-    };
-    for (const Pixel* pixel : near_ink) {
-      at(pixel->x, pixel->y) =
-          x(0) + x(1) * printed(*pixel, to_marker, x.tail<2>()).luma - pixel->value;
-    }
-    double sum = 0.0;
-    int pairs = 0;
-    for (const Pixel* pixel : near_ink) {
-      if (pixel->x + 2 >= x_begin + columns) continue;
-      const double product = at(pixel->x, pixel->y) * at(pixel->x + 2, pixel->y);
-      if (std::isnan(product)) continue;
-      sum += product;
-      ++pairs;
-    }
-    const double contrast2 = (paper_level - disk_level) * (paper_level - disk_level);
-    if (pairs < 16 || !(contrast2 > 0.0)) return std::nullopt;
-    const double mean = sum / pairs;
-    // Under the noise alone a product has standard deviation σ² (σ at least the 8-bit
-    // quantisation's): the misfit must stand out of that.
-    const double noise2 = std::max(noise_sigma * noise_sigma, 1.0 / 12.0);
-    const double standard_error = noise2 / std::sqrt(static_cast<double>(pairs));
-    alignment.misfit = std::sqrt(std::max(0.0, mean) / contrast2);
-    const double allowed = options_.max_misfit * options_.max_misfit * contrast2;
-    alignment.contrast_ratio = x(1) / gain;
-    const double ratio_error = std::sqrt(std::max(0.0, noise2 * gain_variance)) / std::abs(gain);
-    alignment.contrast_ratio_error = ratio_error;
-    alignment.shows_design =
-        mean - allowed <= options_.min_significance * standard_error &&
-        std::abs(alignment.contrast_ratio - 1.0) <=
-            options_.max_contrast_error + options_.min_significance * ratio_error &&
-        ratio_error <= options_.max_contrast_ratio_error;
-  }
-  const Rigid3 turned(Eigen::AngleAxisd(x(2), Eigen::Vector3d::UnitZ()).matrix(),
+  DesignFit start;
+  start.offset = disk_level - gain * disk_luma_;
+  start.gain = gain;
+  start.turn = coarse_turn;
+  const DesignFit fit = FitDesign(
+      model, near_ink, start, fit_center, options_.max_iterations, window_m_, metres_per_px);
+
+  // Does the design show? Its misfit against the noise (a product of two residuals has
+  // standard deviation σ² under the noise alone, σ at least the 8-bit quantisation's), and
+  // its gain against the image's contrast.
+  const SharedResidual shared = SharedResidualOf(model, fit, *window, near_ink);
+  const double contrast2 = (paper_level - disk_level) * (paper_level - disk_level);
+  if (shared.pairs < 16 || !(contrast2 > 0.0)) return std::nullopt;
+  const double noise2 = std::max(noise_sigma * noise_sigma, 1.0 / 12.0);
+  const double standard_error = noise2 / std::sqrt(static_cast<double>(shared.pairs));
+  const double allowed = options_.max_misfit * options_.max_misfit * contrast2;
+  alignment.misfit = std::sqrt(std::max(0.0, shared.mean_product) / contrast2);
+  alignment.contrast_ratio = fit.gain / gain;
+  alignment.contrast_ratio_error =
+      std::sqrt(std::max(0.0, noise2 * fit.gain_variance)) / std::abs(gain);
+  alignment.shows_design =
+      shared.mean_product - allowed <= options_.min_significance * standard_error &&
+      std::abs(alignment.contrast_ratio - 1.0) <=
+          options_.max_contrast_error +
+              options_.min_significance * alignment.contrast_ratio_error &&
+      alignment.contrast_ratio_error <= options_.max_contrast_ratio_error;
+
+  alignment.turn_rad = fit.turn;
+  const Rigid3 turned(Eigen::AngleAxisd(fit.turn, Eigen::Vector3d::UnitZ()).matrix(),
                       Eigen::Vector3d::Zero());
   alignment.cam_from_paper = cam_from_paper * turned;
-  alignment.center_m = Eigen::Rotation2Dd(-x(2)) * x.tail<2>();
+  alignment.center_m = Eigen::Rotation2Dd(-fit.turn) * fit.center;
   return alignment;
 }
 

@@ -1,13 +1,16 @@
 // The rotation about the circle's axis for markers (e) and (f) of the paper's Fig. 3, whose
 // circle (and centre) fix every other degree of freedom: without m1 the refinement's Jacobian
-// has rank 5 (circle-method.md, erratum 7).
-//
-// The design painted inside the circle (the mouth, the wedge) has a first moment about the
-// circle's centre, M = ∫ w(|q|) (I(q) - I_disk) q dq over a disk window w of radius 0.8 R.
-// Blur preserves first moments (§11) and noise has zero mean, so M measured from the image's
-// pixels, mapped into the plane by the pose, points where the design's M points once the
-// pose's roll is right; no threshold and no tip location is needed. The design is symmetric
-// about M for both markers, so a mirrored print is the same print turned: it is read as that.
+// has rank 5 (circle-method.md, erratum 7). The design painted inside the circle (the mouth,
+// the wedge) gives it, and its centre m0 too, in two steps:
+// - its first moment about the circle's centre, M = ∫ w(|q|) (I(q) - I_disk) q dq over a disk
+//   window w of radius 0.8 R: blur preserves first moments (§11) and noise has zero mean, so
+//   M measured from the pixels, mapped into the plane by the pose, points where the design's
+//   M points once the pose's roll is right, whatever the start;
+// - then Gauss-Newton fits the roll and centre (and a gain and offset) to the pixels near
+//   the design's ink, each modelled as the design blurred as the image is (blurred_design.h):
+//   the maximum-likelihood estimate under Gaussian noise.
+// Both designs are symmetric about M, so a mirrored print is the same print turned: it is
+// read as that.
 #pragma once
 
 #include <Eigen/Core>
