@@ -39,6 +39,16 @@ def significant(value, digits=3):
     return f"{value:#.{digits}g}".rstrip(".")
 
 
+# The markers of the paper's comparison (Fig. 6-8); the paper runs also sweep circle_d, e and
+# f, which the circle_markers table compares.
+COMPARISON_MARKERS = {"circles_a", "apriltag", "artkplus", "runetag", "aruco"}
+
+
+def read_paper_summary():
+    return [r for r in read_summary("results/paper/summary.csv")
+            if r["marker"] in COMPARISON_MARKERS]
+
+
 def cell(rows, scenario, value, tracker=None):
     return [r for r in rows if r["scenario"] == scenario and number(r["sweep_value"]) == value
             and r.get("grid", "") == "" and (tracker is None or r["tracker"] == tracker)]
@@ -94,7 +104,7 @@ TRACKERS = ["circle", "apriltag", "apriltag-ippe", "artkplus", "artkplus-improve
 
 
 def efficiency():
-    rows = read_summary("results/paper/summary.csv")
+    rows = read_paper_summary()
     lines = ["| cell | " + " | ".join(f"`{t}`" for t in TRACKERS) + " | median bound |",
              "|---|" + "---|" * (len(TRACKERS) + 1)]
     for scenario, value, name in EFFICIENCY_CELLS:
@@ -121,7 +131,7 @@ BREAKDOWN_SWEEPS = [("fig6_noise", "noise σ²"), ("fig7_blur", "blur σ (px)"),
 def breakdowns():
     """Per tracker of the paper runs: the first sweep value with success below 50 % (the
     report's breakdown), or the last value reached; and the median time per call."""
-    rows = read_summary("results/paper/summary.csv")
+    rows = read_paper_summary()
     lines = ["| tracker | " + " | ".join(f"breakdown: {label}" for _, label in BREAKDOWN_SWEEPS) +
              " | median ms per call |",
              "|---|" + "---|" * (len(BREAKDOWN_SWEEPS) + 1)]
@@ -154,7 +164,7 @@ def breakdown_texts(rows, tracker):
 
 def baselines():
     """The faithful baselines beside the originals they re-implement, and the improved ones."""
-    rows = read_summary("results/paper/summary.csv")
+    rows = read_paper_summary()
     lines = ["| system | " + " | ".join(f"breakdown: {label}" for _, label in BREAKDOWN_SWEEPS) +
              " | clean 0.6 m: success | clean 0.6 m: median error, mm |",
              "|---|" + "---|" * (len(BREAKDOWN_SWEEPS) + 2)]
@@ -171,7 +181,7 @@ def baselines():
 
 def clean_accuracy():
     """Every tracker on the clean frames of Fig. 6 (0.6 m, σ² = 0, tilt 0-40°)."""
-    rows = read_summary("results/paper/summary.csv")
+    rows = read_paper_summary()
     lines = ["| tracker | success (95 % interval) | median camera-centre error, mm (95 % interval) "
              "| p90, mm | median rotation error, ° |",
              "|---|---|---|---|---|"]
@@ -233,7 +243,7 @@ def paper_sweep_times():
             raise SystemExit(f"readme_figures: results/paper/report.md: no run line for {scenario}")
         frames, wall, rate = found[0]
         lines.append(f"| `{scenario}` | {int(frames):,} | {wall} | {rate} |")
-    rows = read_summary("results/paper/summary.csv")
+    rows = read_paper_summary()
     lines += ["", "| tracker (median ms per call) | " + " | ".join(PAPER_SCENARIOS) + " |",
               "|---" * (len(PAPER_SCENARIOS) + 1) + "|"]
     trackers = list(dict.fromkeys(r["tracker"] for r in rows))
@@ -248,7 +258,55 @@ def paper_sweep_times():
     return lines
 
 
-TABLES = {"circle_accuracy": circle_accuracy, "efficiency": efficiency,
+CIRCLE_MARKERS = ["circles_a", "circle_d", "circle_e", "circle_f"]
+CIRCLE_MARKER_CELLS = [
+    ("fig6_noise", 0.02, "0.6 m, σ² = 0.02"),
+    ("fig6_noise", 0.2, "0.6 m, σ² = 0.2"),
+    ("fig7_blur", 0.0, "1 m, no blur"),
+    ("fig7_blur", 2.0, "1 m, blur σ = 2"),
+    ("fig8_distance", 1.5, "1.5 m, σ² = 0.02"),
+    ("fig8_distance", 2.5, "2.5 m, σ² = 0.02"),
+]
+
+
+def circle_markers():
+    """The circle tracker on markers a, d, e and f of the paper runs (issue 22): breakdowns,
+    the cells where d is found in 95 % of frames and how e and f do there, and some cells."""
+    rows = [r for r in read_summary("results/paper/summary.csv") if r["tracker"] == "circle"]
+    def series(marker):
+        return {(r["scenario"], number(r["sweep_value"])): r for r in rows
+                if r["marker"] == marker}
+    d = series("circle_d")
+    good = [k for k, r in d.items() if number(r["success_rate"]) >= 0.95]
+    lines = ["| marker | " + " | ".join(f"breakdown: {label}" for _, label in BREAKDOWN_SWEEPS) +
+             f" | success ≥ 95 % where `circle_d`'s is ({len(good)} cells) "
+             "| median error over `circle_d`'s there: median, largest |",
+             "|---|" + "---|" * (len(BREAKDOWN_SWEEPS) + 2)]
+    for marker in CIRCLE_MARKERS:
+        mine = series(marker)
+        texts = breakdown_texts([r for r in rows if r["marker"] == marker], "circle")
+        kept = sum(number(mine[k]["success_rate"]) >= 0.95 for k in good)
+        ratios = sorted(number(mine[k]["position_error_median_m"]) /
+                        number(d[k]["position_error_median_m"]) for k in good)
+        middle = ratios[len(ratios) // 2] if len(ratios) % 2 else \
+            0.5 * (ratios[len(ratios) // 2 - 1] + ratios[len(ratios) // 2])
+        lines.append(f"| `{marker}` | " + " | ".join(texts) + f" | {kept} | "
+                     f"{significant(middle)}, {significant(ratios[-1])} |")
+    lines += ["", "| cell | " + " | ".join(f"`{m}`: success, median mm, ours / bound"
+                                           for m in CIRCLE_MARKERS) + " |",
+              "|---|" + "---|" * len(CIRCLE_MARKERS)]
+    for scenario, value, name in CIRCLE_MARKER_CELLS:
+        texts = []
+        for marker in CIRCLE_MARKERS:
+            r = series(marker)[(scenario, value)]
+            texts.append(f"{100 * number(r['success_rate']):.0f} %, "
+                         f"{significant(1e3 * number(r['position_error_median_m']))}, "
+                         f"{significant(number(r['efficiency']))}")
+        lines.append(f"| {name} | " + " | ".join(texts) + " |")
+    return lines
+
+
+TABLES = {"circle_accuracy": circle_accuracy, "circle_markers": circle_markers, "efficiency": efficiency,
           "breakdowns": breakdowns, "baselines": baselines, "clean_accuracy": clean_accuracy,
           "speed": speed, "paper_sweep_times": paper_sweep_times}
 # The documents and the tables each holds.
