@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <utility>
 
 namespace markerbench {
 namespace {
@@ -65,10 +66,13 @@ BlurredLuma BlurredDesignLuma(const MarkerSpec& marker,
         edges[i] = {
             b.terms[i].metres * per_metre, per_metre * b.terms[i].gradient, across.normalized()};
       }
-      // The two nearest edges as a corner, the others as straight edges.
-      std::sort(edges.begin(), edges.begin() + b.count, [](const Edge& l, const Edge& r) {
-        return std::abs(l.a) < std::abs(r.a);
-      });
+      // The two nearest edges as a corner, the others as straight edges (an insertion sort of
+      // at most three that no NaN can lead astray).
+      for (size_t i = 1; i < b.count; ++i) {
+        for (size_t j = i; j > 0 && std::abs(edges[j].a) < std::abs(edges[j - 1].a); --j) {
+          std::swap(edges[j], edges[j - 1]);
+        }
+      }
       // A factor of the cover, with its derivatives in the distances of the edges it uses.
       auto multiply = [&](double factor, double d_a1, const Edge& e1, double d_a2, const Edge& e2) {
         cover_gradient = cover_gradient * factor + cover * (d_a1 * e1.da_dp + d_a2 * e2.da_dp);
