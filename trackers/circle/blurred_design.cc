@@ -23,6 +23,9 @@ constexpr std::array<double, 5> kWeights = {0.2955242247147529,
                                             0.1494513491505806,
                                             0.0666713443086881};
 
+// Edges nearer than this (in σ) to a point make a corner with its nearest edge.
+constexpr double kCornerSigmas = 5.0;
+
 // One edge of a layer at a point: its distance in σ (positive outside) and d(that)/dp.
 struct Edge {
   double a = 0.0;
@@ -81,8 +84,10 @@ BlurredLuma BlurredDesignLuma(const MarkerSpec& marker,
       auto multiply_edge = [&](const Edge& e) {
         multiply(NormalCdf(-e.a), -NormalDensity(e.a), e, 0.0, e);
       };
-      size_t first_straight = 1;
-      if (b.count >= 2) {
+      // Beyond kCornerSigmas of the second edge its step is 0 or 1 within 3e-7, and so is
+      // the corner's difference from the product of the two steps.
+      size_t first_straight = 0;
+      if (b.count >= 2 && std::abs(edges[1].a) < kCornerSigmas) {
         const Edge& e1 = edges[0];
         const Edge& e2 = edges[1];
         const double rho = std::clamp(e1.normal_px.dot(e2.normal_px), -0.999, 0.999);
@@ -92,8 +97,6 @@ BlurredLuma BlurredDesignLuma(const MarkerSpec& marker,
         const double d_a2 = -NormalDensity(e2.a) * NormalCdf((-e1.a + rho * e2.a) / root);
         multiply(BivariateNormalCdf(-e1.a, -e2.a, rho), d_a1, e1, d_a2, e2);
         first_straight = 2;
-      } else {
-        multiply_edge(edges[0]);
       }
       for (size_t i = first_straight; i < b.count; ++i) multiply_edge(edges[i]);
     }

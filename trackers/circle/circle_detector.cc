@@ -269,7 +269,6 @@ CircleDetector::CircleDetector(const MarkerSpec& marker,
     inward_clear_m_.push_back(std::max(inward, 0.3 * circle.radius_m));
     outward_clear_m_.push_back(std::max(outward, 0.3 * circle.radius_m));
   }
-  // The dots: every painted disk that is not one of the circles.
   // Ink lighter than the circles (the grey wedge of f) must fall on the ink side of the
   // threshold: halfway between it and the paper.
   for (const PaintedShape& layer : marker.layers) {
@@ -279,6 +278,7 @@ CircleDetector::CircleDetector(const MarkerSpec& marker,
       threshold_fraction_ = std::min(threshold_fraction_, 0.5 * ink / circle_ink);
     }
   }
+  // The dots: every painted disk that is not one of the circles.
   for (const PaintedShape& layer : marker.layers) {
     const auto* disk = std::get_if<DiskShape>(&layer.shape);
     if (!disk) continue;

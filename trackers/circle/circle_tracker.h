@@ -1,6 +1,8 @@
 // `circle`: the method of Tang and Wu, "Efficient Circle-Based Camera Pose Tracking Free of
 // PnP", as corrected in circle-method.md. Per frame: detect and fit the marker's ellipses
-// (CircleDetector), l_inf and the analytic pose (SolveAnalytic), then Ceres LM (RefinePose).
+// (CircleDetector), l_inf and the analytic pose (SolveAnalytic), then Ceres LM (RefinePose);
+// for markers e and f the roll (and f's centre) from the design inside the circle
+// (RollFeature).
 // In tracking mode (the paper's step 5) the previous pose predicts the ellipses and only a
 // region around them is searched; a miss there, or ellipses that are not the predicted ones,
 // fall back to full detection of the whole image.
