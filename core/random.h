@@ -9,7 +9,7 @@
 
 namespace markerbench {
 
-enum class SeedPurpose : uint64_t { kPose = 1, kNoise = 2, kTracker = 3 };
+enum class SeedPurpose : uint64_t { kPose = 1, kNoise = 2, kTracker = 3, kMotion = 4 };
 
 // Mixes the four coordinates with SplitMix64 (Steele, Lea and Flood 2014).
 uint64_t SeedFor(uint64_t scenario_seed, uint64_t cell, uint64_t trial, SeedPurpose purpose);

@@ -533,7 +533,8 @@ RasterResult Rasterize(const Scene& scene, int channels) {
     base_uniform = coverage != 0;
     layers.push_back(plane);
   }
-  for (const PaintedShape& painted : marker.layers) {
+  const std::vector<PaintedShape> no_ink;
+  for (const PaintedShape& painted : scene.marker_hidden ? no_ink : marker.layers) {
     Layer layer;
     layer.color = ToColor(painted.color, channels);
     if (const auto* grid = std::get_if<GridShape>(&painted.shape)) {

@@ -1,5 +1,6 @@
 #include "renderer/render_frame.h"
 
+#include <algorithm>
 #include <cmath>
 #include <stdexcept>
 
@@ -26,6 +27,55 @@ void CropInPlace(int margin, int width, int height, ImageF* canvas) {
   canvas->width = width;
   canvas->height = height;
   canvas->data.resize(static_cast<size_t>(width) * height * canvas->channels);
+}
+
+// dst += weight × src over every pixel.
+void AddScaled(const ImageF& src, float weight, ImageF* dst) {
+  for (size_t i = 0; i < dst->data.size(); ++i) dst->data[i] += weight * src.data[i];
+}
+
+PixelRect Union(const PixelRect& a, const PixelRect& b) {
+  if (a.Empty()) return b;
+  if (b.Empty()) return a;
+  return {std::min(a.x0, b.x0), std::min(a.y0, b.y0), std::max(a.x1, b.x1), std::max(a.y1, b.y1)};
+}
+
+// The scene integrated over the exposure by the trapezoidal rule: n intervals, then 2n
+// (reusing the n + 1 sub-frames already rendered) until no pixel changes by half an 8-bit
+// level or kMaxExposureSubframes is reached.
+RasterResult RasterizeExposure(const Scene& scene,
+                               int channels,
+                               const std::function<Rigid3(double)>& pose_at) {
+  Scene sub = scene;
+  const auto render_at = [&](double u) {
+    sub.cam_from_marker = pose_at(u);
+    return Rasterize(sub, channels);
+  };
+  RasterResult first = render_at(0.0);
+  const RasterResult last = render_at(1.0);
+  ImageF sum = first.image;  // Σ f(u_i), the ends weighted 1/2
+  for (float& v : sum.data) v *= 0.5f;
+  AddScaled(last.image, 0.5f, &sum);
+  PixelRect nonuniform = Union(first.nonuniform, last.nonuniform);
+  int n = 1;
+  ImageF previous;
+  constexpr float kHalfLevel = 0.5f / 255.0f;
+  while (true) {
+    for (int i = 1; i < 2 * n; i += 2) {
+      const RasterResult r = render_at(static_cast<double>(i) / (2 * n));
+      AddScaled(r.image, 1.0f, &sum);
+      nonuniform = Union(nonuniform, r.nonuniform);
+    }
+    n *= 2;
+    ImageF mean = sum;
+    for (float& v : mean.data) v /= static_cast<float>(n);
+    bool settled = n >= kMinExposureSubframes && !previous.data.empty();
+    for (size_t i = 0; settled && i < mean.data.size(); ++i) {
+      settled = std::abs(mean.data[i] - previous.data[i]) < kHalfLevel;
+    }
+    if (settled || n >= kMaxExposureSubframes) return {std::move(mean), nonuniform};
+    previous = std::move(mean);
+  }
 }
 
 }  // namespace
@@ -65,7 +115,10 @@ RenderedFrame RenderFrame(const FrameRequest& request) {
   canvas_scene.camera.cx += margin;
   canvas_scene.camera.cy += margin;
 
-  RasterResult raster = Rasterize(canvas_scene, request.channels);
+  RasterResult raster =
+      request.exposure_cam_from_marker
+          ? RasterizeExposure(canvas_scene, request.channels, request.exposure_cam_from_marker)
+          : Rasterize(canvas_scene, request.channels);
   const Degradations& d = request.degradations;
   PixelRect changed = GaussianBlur(d.blur_sigma_px, raster.nonuniform, &raster.image);
   MotionBlur(d.motion_blur_px, d.motion_blur_angle_deg, changed, &raster.image);

@@ -3,6 +3,7 @@
 #pragma once
 
 #include <cstdint>
+#include <functional>
 
 #include "core/ground_truth.h"
 #include "core/image.h"
@@ -17,7 +18,16 @@ struct FrameRequest {
   int channels = 1;          // 1: grey (Rec. 601 luma of the colours), 3: RGB
   uint64_t noise_seed = 0;   // SeedFor(scenario seed, cell, trial, SeedPurpose::kNoise)
   bool keep_linear = false;  // also return the float image (after noise and clipping)
+  // Motion blur that matches the motion: the pose over the exposure, u in [0, 1]. The image
+  // integrates the scene over it (trapezoidal, the sub-frames doubled until the result
+  // changes by less than half an 8-bit level); scene.cam_from_marker stays the ground truth.
+  // Empty: a still camera.
+  std::function<Rigid3(double u)> exposure_cam_from_marker;
 };
+
+// Sub-frames the exposure integral starts with and may double to.
+inline constexpr int kMinExposureSubframes = 8;
+inline constexpr int kMaxExposureSubframes = 512;
 
 struct RenderedFrame {
   Image8 image;

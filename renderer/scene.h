@@ -20,6 +20,8 @@ struct Scene {
   // infinite plane; what lies beyond it is the backdrop.
   std::optional<Eigen::Vector2d> sheet_size_m;
   Rgb backdrop = Rgb::Constant(0.5);
+  // Something covers the ink (a sequence's occlusions): only the paper is drawn.
+  bool marker_hidden = false;
 };
 
 }  // namespace markerbench

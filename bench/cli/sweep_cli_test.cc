@@ -75,6 +75,52 @@ std::vector<std::map<std::string, std::string>> FramesTable(const std::string& t
   return rows;
 }
 
+// A sequence scenario (issue 22): one job per (trial, marker) video, its frames in order; the
+// same bytes for any thread count and for shards merged; the marker's hidden frames are not
+// found and have no bound; with exposure_s the frames are motion-blurred renders.
+TEST_F(SweepCliTest, SequencesAreReproducibleAndTheirOcclusionsHideTheMarker) {
+  const std::string scenario = WriteTestFile(
+      "seq.yaml",
+      "name: seq\ncamera: " + kRoot + "/scenarios/cameras/default.yaml\nmarkers:\n  - " + kRoot +
+          "/scenarios/markers/circles_a.yaml\n  - " + kRoot +
+          "/scenarios/markers/apriltag.yaml\nequal_ink_area_m2: 0.01\ntrackers:\n"
+          "  - {name: circle}\n  - {name: apriltag}\n"
+          "poses: {sampler: look_at, distance_m: 0.7, tilt_deg: [20, 30], max_offset_px: 30}\n"
+          "trajectory: {kind: handheld, fps: 10, duration_s: 1.5, static_s: 0.3, exposure_s: 0.02,"
+          " linear_speed_m_s: 0.1, angular_speed_deg_s: 10, occlusions: [[6, 8]]}\n"
+          "sweep: {parameter: noise_var, values: [0.01]}\ntrials: 3\nseed: 4\n");
+  const std::string one = (work_ / "one").string(), two = (work_ / "two").string();
+  ASSERT_EQ(Run({"sweep", scenario, "--out", one, "--threads", "1"}).status, 0);
+  ASSERT_EQ(Run({"sweep", scenario, "--out", two, "--threads", "2"}).status, 0);
+  const std::string frames = Read(one + "/seq/frames.csv");
+  EXPECT_EQ(Read(two + "/seq/frames.csv"), frames);
+  std::vector<std::string> shards;
+  for (const std::string shard : {"0/2", "1/2"}) {
+    shards.push_back((work_ / ("shard" + shard.substr(0, 1))).string());
+    ASSERT_EQ(Run({"sweep", scenario, "--out", shards.back(), "--shard", shard}).status, 0);
+  }
+  const std::string merged = (work_ / "merged").string();
+  ASSERT_EQ(Run({"merge", shards[0], shards[1], "--out", merged}).status, 0);
+  EXPECT_EQ(Read(merged + "/seq/frames.csv"), frames);
+  // 3 trials x 2 markers x 15 frames, in (trial, marker, frame) order.
+  const auto rows = FramesTable(frames);
+  ASSERT_EQ(rows.size(), 3u * 2 * 15);
+  int found = 0;
+  for (size_t i = 0; i < rows.size(); ++i) {
+    EXPECT_EQ(rows[i].at("frame"), std::to_string(i));
+    const int in_sequence = static_cast<int>(i % 15);
+    if (in_sequence >= 6 && in_sequence <= 8) {
+      EXPECT_EQ(rows[i].at("status"), "not_detected") << "frame " << i;
+      EXPECT_EQ(rows[i].at("crlb_position_m"), "inf");
+    } else {
+      found += rows[i].at("status") == "ok";
+    }
+  }
+  EXPECT_GE(found, 3 * 2 * 12 - 2);
+  const nlohmann::json manifest = ReadManifest(one + "/manifest.json");
+  EXPECT_EQ(manifest["scenarios"]["seq"]["trajectory"]["frames"], 15);
+}
+
 TEST_F(SweepCliTest, EveryFrameCarriesItsBoundUnlessTurnedOff) {
   const std::string with = Scenario("bound", 2);
   ASSERT_EQ(Run({"sweep", with, "--out", (work_ / "on").string()}).status, 0);
@@ -528,6 +574,15 @@ TEST_F(SweepCliTest, BadInputIsRejectedBeforeAnythingIsWritten) {
        "nosuch.yaml: cannot open the file"},
       {replaced("distance_m: 0.8", "distance_m: 0.05"),
        "bad.yaml:11: key 'poses.distance_m': expected markers in view"},
+      {good + "trajectory: {kind: spiral, fps: 30, duration_s: 2}\n",
+       "bad.yaml:16: key 'trajectory.kind': expected orbit, approach or handheld"},
+      {good + "trajectory: {kind: orbit, fps: 30, duration_s: 2, from_m: 3}\n",
+       "bad.yaml:16: key 'trajectory.from_m': expected no such key for kind orbit"},
+      {good + "trajectory: {kind: orbit, fps: 30, duration_s: 2, occlusions: [[5, 60]]}\n",
+       "bad.yaml:16: key 'trajectory.occlusions': expected a list of [first, last] frame ranges "
+       "with 0 <= first <= last < 60"},
+      {good + "trajectory: {kind: handheld, fps: 30, duration_s: 2, linear_speed_m_s: 9}\n",
+       "bad.yaml:16: key 'trajectory': expected markers in view: no start in 1000 draws"},
   };
   for (const auto& c : cases) {
     const std::string path = WriteTestFile("bad.yaml", c.text);

@@ -1,10 +1,12 @@
 #include "bench/plan/frame_plan.h"
 
 #include <cmath>
+#include <memory>
 #include <sstream>
 #include <stdexcept>
 
 #include "bench/plan/pose_sampler.h"
+#include "bench/plan/trajectory.h"
 #include "core/number_text.h"
 #include "core/random.h"
 #include "core/yaml_reader.h"
@@ -58,6 +60,83 @@ std::string GridText(const std::vector<SweepAxis>& axes, const std::vector<size_
   return text;
 }
 
+namespace {
+
+// What a sequence's frames share: the trajectory and the trial's draw of it.
+struct SequenceMotion {
+  TrajectoryOptions options;
+  TrialTrajectory trial;
+  Camera camera;
+};
+
+// Appends the frames of one (cell, trial): a sequence per marker when the scenario has a
+// trajectory, else one frame per marker; false once `limit` frames are planned.
+bool PlanTrial(const Scenario& s,
+               size_t cell,
+               int trial,
+               const PoseSamplerOptions& poses,
+               PlannedFrame common,
+               int limit,
+               std::vector<PlannedFrame>* frames) {
+  const uint64_t pose_seed = SeedFor(s.seed, cell, trial, SeedPurpose::kPose);
+  // Common random numbers: every marker at a (cell, trial) gets the same noise stream.
+  const uint64_t noise_seed = SeedFor(s.seed, cell, trial, SeedPurpose::kNoise);
+  std::shared_ptr<const SequenceMotion> motion;
+  Rigid3 cam_from_center;
+  if (s.trajectory) {
+    motion = std::make_shared<SequenceMotion>(
+        SequenceMotion{*s.trajectory,
+                       SampleTrialTrajectory(*s.trajectory,
+                                             poses,
+                                             s.camera,
+                                             s.markers,
+                                             pose_seed,
+                                             SeedFor(s.seed, cell, trial, SeedPurpose::kMotion)),
+                       s.camera});
+  } else {
+    cam_from_center = SamplePairedPose(poses, s.camera, s.markers, pose_seed);
+  }
+  const int frames_per_marker = s.trajectory ? s.trajectory->Frames() : 1;
+  for (size_t m = 0; m < s.markers.size(); ++m) {
+    for (int k = 0; k < frames_per_marker; ++k) {
+      if (limit > 0 && static_cast<int>(frames->size()) >= limit) return false;
+      PlannedFrame f = common;
+      f.index = static_cast<int>(frames->size());
+      f.trial = trial;
+      f.marker_index = static_cast<int>(m);
+      f.example = f.example && k == 0;
+      f.channels = ChannelsFor(s.render.channels, s.markers[m]);
+      f.noise_seed = noise_seed;
+      if (motion) {
+        const MarkerSpec& marker = s.markers[m];
+        const TrajectoryOptions& o = motion->options;
+        f.sequence_frame = k;
+        f.time_s = o.TruthTime(k);
+        f.occluded = o.Occluded(k);
+        f.cam_from_marker =
+            CamFromMarker(TrajectoryPose(o, motion->trial, motion->camera, f.time_s), marker);
+        // Each frame its own noise, the same for every marker at this (cell, trial, frame).
+        f.noise_seed = SeedFor(noise_seed, static_cast<uint64_t>(k), 0, SeedPurpose::kNoise);
+        if (o.exposure_s > 0.0) {
+          const Rigid3 center_from_marker = CamFromMarker(Rigid3(), marker);
+          f.exposure_cam_from_marker = [motion, k, center_from_marker](double u) {
+            const TrajectoryOptions& o = motion->options;
+            return TrajectoryPose(
+                       o, motion->trial, motion->camera, o.FrameTime(k) + u * o.exposure_s) *
+                   center_from_marker;
+          };
+        }
+      } else {
+        f.cam_from_marker = CamFromMarker(cam_from_center, s.markers[m]);
+      }
+      frames->push_back(std::move(f));
+    }
+  }
+  return true;
+}
+
+}  // namespace
+
 std::vector<PlannedFrame> PlanFrames(const Scenario& s, int limit) {
   std::vector<PlannedFrame> frames;
   size_t combinations = 1;
@@ -77,26 +156,14 @@ std::vector<PlannedFrame> PlanFrames(const Scenario& s, int limit) {
     }
     ApplySweepValue(s.sweep_parameter, s.sweep_values[value_index], &poses, &degradations);
     const std::string grid = GridText(s.grid_axes, indices);
+    PlannedFrame common;
+    common.cell = static_cast<int>(cell);
+    common.sweep_value = s.sweep_values[value_index];
+    common.grid = grid;
+    common.degradations = degradations;
     for (int trial = 0; trial < s.trials; ++trial) {
-      const Rigid3 cam_from_center = SamplePairedPose(
-          poses, s.camera, s.markers, SeedFor(s.seed, cell, trial, SeedPurpose::kPose));
-      for (size_t m = 0; m < s.markers.size(); ++m) {
-        if (limit > 0 && static_cast<int>(frames.size()) >= limit) return frames;
-        PlannedFrame f;
-        f.index = static_cast<int>(frames.size());
-        f.cell = static_cast<int>(cell);
-        f.trial = trial;
-        f.marker_index = static_cast<int>(m);
-        f.sweep_value = s.sweep_values[value_index];
-        f.grid = grid;
-        f.example = trial == 0 && f.sweep_value == s.example_value && cell < values;
-        f.cam_from_marker = CamFromMarker(cam_from_center, s.markers[m]);
-        f.degradations = degradations;
-        f.channels = ChannelsFor(s.render.channels, s.markers[m]);
-        // Common random numbers: every marker at a (cell, trial) gets the same noise stream.
-        f.noise_seed = SeedFor(s.seed, cell, trial, SeedPurpose::kNoise);
-        frames.push_back(f);
-      }
+      common.example = trial == 0 && common.sweep_value == s.example_value && cell < values;
+      if (!PlanTrial(s, cell, trial, poses, common, limit, &frames)) return frames;
     }
   }
   return frames;
@@ -112,6 +179,8 @@ FrameRequest RequestFor(const Scenario& s, const PlannedFrame& f) {
   request.degradations = f.degradations;
   request.channels = f.channels;
   request.noise_seed = f.noise_seed;
+  request.scene.marker_hidden = f.occluded;
+  request.exposure_cam_from_marker = f.exposure_cam_from_marker;
   return request;
 }
 

@@ -3,6 +3,7 @@
 // cam_from_center for every marker), degradations and seeds.
 #pragma once
 
+#include <functional>
 #include <vector>
 
 #include "bench/plan/scenario.h"
@@ -26,6 +27,13 @@ struct PlannedFrame {
   Degradations degradations;
   int channels = 1;
   uint64_t noise_seed = 0;
+  // Sequences (Scenario::trajectory): the frame's place in its sequence (-1: not a
+  // sequence), its time in seconds, whether the marker is hidden, and the pose over its
+  // exposure (FrameRequest::exposure_cam_from_marker; empty without exposure_s).
+  int sequence_frame = -1;
+  double time_s = 0.0;
+  bool occluded = false;
+  std::function<Rigid3(double)> exposure_cam_from_marker;
 };
 
 // The closed range of a sweep parameter's values, the same as its render or poses key's.
@@ -44,7 +52,8 @@ void ApplySweepValue(const std::string& parameter,
 // "p1=v1;p2=v2" for the grid axes' values at `indices`.
 std::string GridText(const std::vector<SweepAxis>& axes, const std::vector<size_t>& indices);
 
-// Frames in (cell, trial, marker) order, cells with the first axis fastest and the grid's
+// Frames in (cell, trial, marker) order (and for sequences, the sequence's frames in order
+// within each), cells with the first axis fastest and the grid's
 // axes after it in file order; at most `limit` frames (0: all).
 std::vector<PlannedFrame> PlanFrames(const Scenario& scenario, int limit = 0);
 

@@ -1,6 +1,7 @@
 #include "bench/plan/pose_sampler.h"
 
 #include <Eigen/Geometry>
+#include <algorithm>
 #include <cmath>
 #include <stdexcept>
 
@@ -11,24 +12,29 @@ constexpr double kDeg = 3.14159265358979323846 / 180.0;
 
 }  // namespace
 
-Rigid3 SampleCamFromCenter(const PoseSamplerOptions& o, const Camera& camera, Rng* rng) {
-  const double tilt = rng->Uniform(o.tilt_min_deg, o.tilt_max_deg) * kDeg;
-  const double azimuth = rng->Uniform(o.azimuth_min_deg, o.azimuth_max_deg) * kDeg;
-  const double roll = rng->Uniform(o.roll_min_deg, o.roll_max_deg) * kDeg;
-  const double offset_r = o.max_offset_px * std::sqrt(rng->Uniform());
-  const double offset_a = rng->Uniform(0.0, 360.0) * kDeg;
+LookAt DrawLookAt(const PoseSamplerOptions& o, Rng* rng) {
+  LookAt a;
+  a.distance_m = o.distance_m;
+  a.tilt = rng->Uniform(o.tilt_min_deg, o.tilt_max_deg) * kDeg;
+  a.azimuth = rng->Uniform(o.azimuth_min_deg, o.azimuth_max_deg) * kDeg;
+  a.roll = rng->Uniform(o.roll_min_deg, o.roll_max_deg) * kDeg;
+  a.offset_px = o.max_offset_px * std::sqrt(rng->Uniform());
+  a.offset_angle = rng->Uniform(0.0, 360.0) * kDeg;
+  return a;
+}
 
+Rigid3 LookAtPose(const LookAt& a, const Camera& camera) {
   const Eigen::Vector3d center_cam_pos =
-      o.distance_m * Eigen::Vector3d(std::sin(tilt) * std::cos(azimuth),
-                                     std::sin(tilt) * std::sin(azimuth),
-                                     std::cos(tilt));
+      a.distance_m * Eigen::Vector3d(std::sin(a.tilt) * std::cos(a.azimuth),
+                                     std::sin(a.tilt) * std::sin(a.azimuth),
+                                     std::cos(a.tilt));
   // Camera axes in the marker frame: z towards the centre, x from a reference, then roll.
   const Eigen::Vector3d z = -center_cam_pos.normalized();
   const Eigen::Vector3d ref =
       std::abs(z.x()) < 0.9 ? Eigen::Vector3d::UnitX() : Eigen::Vector3d::UnitY();
   const Eigen::Vector3d x0 = (ref - ref.dot(z) * z).normalized();
   const Eigen::Vector3d y0 = z.cross(x0);
-  const Eigen::Vector3d x = std::cos(roll) * x0 + std::sin(roll) * y0;
+  const Eigen::Vector3d x = std::cos(a.roll) * x0 + std::sin(a.roll) * y0;
   const Eigen::Vector3d y = z.cross(x);
   Eigen::Matrix3d center_from_cam;
   center_from_cam << x, y, z;
@@ -36,8 +42,8 @@ Rigid3 SampleCamFromCenter(const PoseSamplerOptions& o, const Camera& camera, Rn
                          -center_from_cam.transpose() * center_cam_pos);
 
   // Turn the camera so the centre's ray passes through the offset image point.
-  const Eigen::Vector2d target(0.5 * (camera.width - 1) + offset_r * std::cos(offset_a),
-                               0.5 * (camera.height - 1) + offset_r * std::sin(offset_a));
+  const Eigen::Vector2d target(0.5 * (camera.width - 1) + a.offset_px * std::cos(a.offset_angle),
+                               0.5 * (camera.height - 1) + a.offset_px * std::sin(a.offset_angle));
   const Eigen::Vector3d ray = camera.CamFromImg(target).normalized();
   const Eigen::Matrix3d turn =
       Eigen::Quaterniond::FromTwoVectors(Eigen::Vector3d::UnitZ(), ray).toRotationMatrix();
@@ -66,20 +72,25 @@ bool MarkerFitsInImage(const MarkerSpec& marker,
   return true;
 }
 
+bool MarkersFitInImage(const std::vector<MarkerSpec>& markers,
+                       const Camera& camera,
+                       const Rigid3& cam_from_center,
+                       double border_px) {
+  return std::all_of(markers.begin(), markers.end(), [&](const MarkerSpec& marker) {
+    return MarkerFitsInImage(marker, camera, CamFromMarker(cam_from_center, marker), border_px);
+  });
+}
+
 Rigid3 SamplePairedPose(const PoseSamplerOptions& options,
                         const Camera& camera,
                         const std::vector<MarkerSpec>& markers,
                         uint64_t seed) {
   Rng rng(seed);
-  constexpr int kMaxDraws = 1000;
-  for (int draw = 0; draw < kMaxDraws; ++draw) {
+  for (int draw = 0; draw < kMaxPoseDraws; ++draw) {
     const Rigid3 cam_from_center = SampleCamFromCenter(options, camera, &rng);
-    bool fits = true;
-    for (const MarkerSpec& marker : markers) {
-      fits = fits && MarkerFitsInImage(
-                         marker, camera, CamFromMarker(cam_from_center, marker), options.border_px);
+    if (MarkersFitInImage(markers, camera, cam_from_center, options.border_px)) {
+      return cam_from_center;
     }
-    if (fits) return cam_from_center;
   }
   throw std::runtime_error("no pose in 1000 draws puts every marker inside the image at " +
                            std::to_string(options.distance_m) +

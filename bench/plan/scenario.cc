@@ -6,6 +6,7 @@
 #include <filesystem>
 
 #include "bench/plan/frame_plan.h"
+#include "bench/plan/trajectory.h"
 #include "core/camera_yaml.h"
 #include "core/joined.h"
 #include "core/marker_scaling.h"
@@ -44,6 +45,65 @@ PoseSamplerOptions ReadPoses(const YamlMap& map) {
   if (map.Has("border_px")) poses.border_px = map.GetDouble("border_px", 0.0, 1e4);
   map.RejectUnknownKeys();
   return poses;
+}
+
+// `trajectory: {kind, fps, duration_s, ...}` (bench/plan/trajectory.h).
+TrajectoryOptions ReadTrajectory(const YamlMap& map) {
+  TrajectoryOptions t;
+  const std::string kind = map.Get<std::string>("kind");
+  if (kind == "orbit") {
+    t.kind = TrajectoryKind::kOrbit;
+  } else if (kind == "approach") {
+    t.kind = TrajectoryKind::kApproach;
+  } else if (kind == "handheld") {
+    t.kind = TrajectoryKind::kHandheld;
+  } else {
+    map.Fail("kind", "orbit, approach or handheld");
+  }
+  t.fps = map.GetDouble("fps", 0.1, 1000.0);
+  t.duration_s = map.GetDouble("duration_s", 1e-3, 3600.0);
+  constexpr int kMaxFrames = 100000;
+  if (t.Frames() > kMaxFrames) map.Fail("duration_s", "at most 100000 frames (fps × duration_s)");
+  if (map.Has("static_s")) t.static_s = map.GetDouble("static_s", 0.0, t.duration_s);
+  if (map.Has("exposure_s")) t.exposure_s = map.GetDouble("exposure_s", 0.0, 1.0 / t.fps);
+  const auto only_for = [&](const std::string& key, TrajectoryKind k) {
+    if (map.Has(key) && t.kind != k) {
+      map.Fail(key, std::string("no such key for kind ") + TrajectoryKindName(t.kind));
+    }
+    return map.Has(key);
+  };
+  if (only_for("degrees_per_s", TrajectoryKind::kOrbit)) {
+    t.degrees_per_s = map.GetDouble("degrees_per_s", -3600.0, 3600.0);
+  }
+  if (only_for("from_m", TrajectoryKind::kApproach)) t.from_m = map.GetLength("from_m");
+  if (only_for("to_m", TrajectoryKind::kApproach)) t.to_m = map.GetLength("to_m");
+  if (only_for("linear_speed_m_s", TrajectoryKind::kHandheld)) {
+    t.linear_speed_m_s = map.GetDouble("linear_speed_m_s", 0.0, 10.0);
+  }
+  if (only_for("angular_speed_deg_s", TrajectoryKind::kHandheld)) {
+    t.angular_speed_deg_s = map.GetDouble("angular_speed_deg_s", 0.0, 3600.0);
+  }
+  if (map.Has("occlusions")) {
+    const std::string expected = "a list of [first, last] frame ranges with 0 <= first <= last < " +
+                                 std::to_string(t.Frames()) + " (the frames of a sequence)";
+    const YAML::Node ranges = map.GetNode("occlusions");
+    if (!ranges.IsSequence()) map.Fail("occlusions", expected);
+    for (const YAML::Node& range : ranges) {
+      FrameRange r;
+      try {
+        if (!range.IsSequence() || range.size() != 2) map.Fail("occlusions", expected);
+        r = {range[0].as<int>(), range[1].as<int>()};
+      } catch (const YAML::Exception&) {
+        map.Fail("occlusions", expected);
+      }
+      if (!(r.first >= 0 && r.first <= r.last && r.last < t.Frames())) {
+        map.Fail("occlusions", expected);
+      }
+      t.occlusions.push_back(r);
+    }
+  }
+  map.RejectUnknownKeys();
+  return t;
 }
 
 // A render key that may also be swept: the sweep's range.
@@ -334,6 +394,7 @@ Scenario LoadScenario(const std::string& path, const ScenarioOverrides& override
   KeepTrackers(overrides.trackers, &s);
   const YamlMap poses = root.GetMap("poses");
   s.poses = ReadPoses(poses);
+  if (root.Has("trajectory")) s.trajectory = ReadTrajectory(root.GetMap("trajectory"));
   s.render = root.Has("render") ? ReadRender(root.GetMap("render")) : RenderDefaults{};
   const YamlMap sweep = root.GetMap("sweep");
   if (sweep.Has("grid")) {
@@ -369,6 +430,7 @@ Scenario LoadScenario(const std::string& path, const ScenarioOverrides& override
     bool swept = pose_axis(s.sweep_parameter);
     for (const SweepAxis& axis : s.grid_axes) swept = swept || pose_axis(axis.parameter);
     const std::string key = s.grid_axes.empty() ? "values" : "grid";
+    if (s.trajectory) root.Fail("trajectory", std::string("markers in view: ") + e.what());
     (swept ? sweep : poses)
         .Fail(swept ? key : "distance_m", std::string("markers in view: ") + e.what());
   }

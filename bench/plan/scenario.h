@@ -11,6 +11,7 @@
 #include <utility>
 #include <vector>
 
+#include "bench/plan/trajectory_options.h"
 #include "core/camera.h"
 #include "core/marker_spec.h"
 #include "renderer/degradations.h"
@@ -96,6 +97,9 @@ struct Scenario {
   std::optional<double> equal_ink_area_m2;
   std::vector<TrackerEntry> trackers;
   PoseSamplerOptions poses;
+  // A sequence scenario (bench/plan/trajectory.h): every trial is a video along it, run by
+  // each tracker with its state kept from frame to frame.
+  std::optional<TrajectoryOptions> trajectory;
   RenderDefaults render;
   // The first (or only) axis: frames.csv's sweep_parameter and sweep_value.
   std::string sweep_parameter;

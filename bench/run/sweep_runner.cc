@@ -33,11 +33,18 @@ namespace fs = std::filesystem;
 namespace markerbench {
 namespace {
 
-// A planned frame and the scenario trackers that can track its marker.
+// A planned frame, or a sequence's frames in order (run with the trackers' state kept), and
+// the scenario trackers that can track its marker.
 struct Job {
-  PlannedFrame frame;
+  std::vector<PlannedFrame> frames;
   std::vector<size_t> trackers;
 };
+
+size_t FrameCount(const std::vector<Job>& jobs, size_t first = 0) {
+  size_t n = 0;
+  for (size_t j = first; j < jobs.size(); ++j) n += jobs[j].frames.size();
+  return n;
+}
 
 struct PreparedSweep {
   Scenario scenario;
@@ -86,19 +93,21 @@ WrittenJobs ScanWrittenJobs(const std::string& path,
   written.offsets.push_back(pos);
   for (size_t j = 0; j < jobs.size(); ++j) {
     const Job& job = jobs[j];
-    for (const size_t t : job.trackers) {
-      // A last line without its '\n' is a torn row of a killed run.
-      if (!reader.Next(&line) || pos + line.size() + 1 > size) return written;
-      const std::vector<std::string> f = SplitCsvLine(line);
-      if (f.size() <= std::max(column_of_frame, column_of_tracker) ||
-          f[column_of_frame] != std::to_string(job.frame.index) ||
-          f[column_of_tracker] != tracker_names[t]) {
-        throw ConfigError(path + ":" + std::to_string(reader.line_number()) +
-                          ": expected the row of frame " + std::to_string(job.frame.index) +
-                          " and tracker " + tracker_names[t] +
-                          "; the file does not follow this scenario's plan");
+    for (const PlannedFrame& frame : job.frames) {
+      for (const size_t t : job.trackers) {
+        // A last line without its '\n' is a torn row of a killed run.
+        if (!reader.Next(&line) || pos + line.size() + 1 > size) return written;
+        const std::vector<std::string> f = SplitCsvLine(line);
+        if (f.size() <= std::max(column_of_frame, column_of_tracker) ||
+            f[column_of_frame] != std::to_string(frame.index) ||
+            f[column_of_tracker] != tracker_names[t]) {
+          throw ConfigError(path + ":" + std::to_string(reader.line_number()) +
+                            ": expected the row of frame " + std::to_string(frame.index) +
+                            " and tracker " + tracker_names[t] +
+                            "; the file does not follow this scenario's plan");
+        }
+        pos += line.size() + 1;
       }
-      pos += line.size() + 1;
     }
     written.offsets.push_back(pos);
     // A job without rows (an example image only) counts once a later job's rows are in.
@@ -127,11 +136,17 @@ PreparedSweep Prepare(const std::string& path, const SweepOptions& options) {
     if (trackers_of_marker[m].empty()) p.idle_markers.push_back(s.markers[m].name);
   }
   p.shard = options.shard;
-  for (const PlannedFrame& f : PlanFrames(s)) {
+  bool extending = false;  // the last job is a sequence to be tracked: it takes its frames
+  for (PlannedFrame& f : PlanFrames(s)) {
     if (!InShard(f, s.trials, p.shard)) continue;
+    if (f.sequence_frame > 0) {
+      if (extending) p.jobs.back().frames.push_back(std::move(f));
+      continue;
+    }
     const auto& trackers = trackers_of_marker[static_cast<size_t>(f.marker_index)];
+    extending = f.sequence_frame == 0 && !trackers.empty();
     // Markers without a tracker are still rendered for the example-image figure.
-    if (!trackers.empty() || f.example) p.jobs.push_back({f, trackers});
+    if (!trackers.empty() || f.example) p.jobs.push_back({{std::move(f)}, trackers});
   }
 
   return p;
@@ -254,19 +269,22 @@ class OrderedWriter {
   Progress* progress_;
 };
 
-// Renders one job and runs its trackers; returns the frames.csv and timing.csv rows.
-std::pair<std::string, std::string> RunJob(const PreparedSweep& p,
-                                           const Job& job,
-                                           std::vector<std::unique_ptr<Tracker>>* trackers) {
+// Renders one frame and runs `trackers`; appends its frames.csv and timing.csv rows. A
+// sequence's first frame resets them; its later frames find them as the last one left them.
+void RunFrame(const PreparedSweep& p,
+              const PlannedFrame& f,
+              const std::vector<size_t>& tracker_indices,
+              std::vector<std::unique_ptr<Tracker>>* trackers,
+              std::string* frame_rows,
+              std::string* timing_rows) {
   const Scenario& s = p.scenario;
-  const PlannedFrame& f = job.frame;
   const MarkerSpec& marker = s.markers[static_cast<size_t>(f.marker_index)];
   const FrameRequest request = RequestFor(s, f);
   const RenderedFrame frame = RenderFrame(request);
   if (f.example) {
     WriteImage(p.dir + "/examples/" + marker.name + ".png", frame.image);
   }
-  if (job.trackers.empty()) return {};
+  if (tracker_indices.empty()) return;
   FrameRow row;
   row.scenario = s.name;
   row.sweep_parameter = s.sweep_parameter;
@@ -279,17 +297,20 @@ std::pair<std::string, std::string> RunJob(const PreparedSweep& p,
   row.apparent_size_px = frame.truth.apparent_size_px;
   row.distance_m = DistanceToMarker(f.cam_from_marker, marker);
   row.truth = f.cam_from_marker;
-  if (s.crlb) {
+  if (f.occluded) {
+    row.crlb_position_m = row.crlb_position_med_m = INFINITY;  // nothing to see
+    row.crlb_rotation_deg = row.crlb_rotation_med_deg = INFINITY;
+  } else if (s.crlb) {
     const PoseBound bound = PoseCrlb(request);
     row.crlb_position_m = bound.position_rms_m;
     row.crlb_position_med_m = bound.position_median_m;
     row.crlb_rotation_deg = bound.rotation_rms_deg;
     row.crlb_rotation_med_deg = bound.rotation_median_deg;
   }
-  std::string frame_rows, timing_rows;
-  for (const size_t t : job.trackers) {
+  for (const size_t t : tracker_indices) {
     Tracker* tracker = (*trackers)[t].get();
-    tracker->Reset();  // frames are independent: no state may leak between them
+    // Frames are independent, and sequences too: no state may leak between them.
+    if (f.sequence_frame <= 0) tracker->Reset();
     const auto start = std::chrono::steady_clock::now();
     const TrackResult result =
         TrackCatchingExceptions(tracker, {&frame.image, &s.camera, &marker, f.index});
@@ -305,8 +326,18 @@ std::pair<std::string, std::string> RunJob(const PreparedSweep& p,
         ComputePoseErrors(has_pose ? result.hypotheses : std::vector<Rigid3>{}, f.cam_from_marker);
     row.estimate = has_pose ? std::optional<Rigid3>(result.hypotheses.front()) : std::nullopt;
     row.message = result.message;
-    frame_rows += FormatFrameRow(row);
-    timing_rows += FormatTimingRow(row, time_ms, round_trip_ms);
+    *frame_rows += FormatFrameRow(row);
+    *timing_rows += FormatTimingRow(row, time_ms, round_trip_ms);
+  }
+}
+
+// Runs one job's frames in order; returns their frames.csv and timing.csv rows.
+std::pair<std::string, std::string> RunJob(const PreparedSweep& p,
+                                           const Job& job,
+                                           std::vector<std::unique_ptr<Tracker>>* trackers) {
+  std::string frame_rows, timing_rows;
+  for (const PlannedFrame& f : job.frames) {
+    RunFrame(p, f, job.trackers, trackers, &frame_rows, &timing_rows);
   }
   return {frame_rows, timing_rows};
 }
@@ -342,7 +373,17 @@ nlohmann::json ScenarioManifest(const PreparedSweep& p, int threads) {
     for (const auto& [key, value] : t.parameters) tracker["parameters"][key] = value;
     entry["trackers"].push_back(tracker);
   }
-  entry["frames"] = p.jobs.size();
+  if (const std::optional<TrajectoryOptions>& t = s.trajectory) {
+    nlohmann::json occlusions = nlohmann::json::array();
+    for (const FrameRange& r : t->occlusions) occlusions.push_back({r.first, r.last});
+    entry["trajectory"] = {{"kind", TrajectoryKindName(t->kind)},
+                           {"fps", t->fps},
+                           {"frames", t->Frames()},
+                           {"static_s", t->static_s},
+                           {"exposure_s", t->exposure_s},
+                           {"occlusions", occlusions}};
+  }
+  entry["frames"] = FrameCount(p.jobs);
   entry["shard"] = {{"index", p.shard.index}, {"count", p.shard.count}};
   entry["resumed_at_frame"] = p.done;
   entry["threads"] = threads;
@@ -352,7 +393,7 @@ nlohmann::json ScenarioManifest(const PreparedSweep& p, int threads) {
 // run.json: what `--resume` and `merge` check the folder against.
 nlohmann::json RunJson(const PreparedSweep& p, bool complete) {
   size_t rows = 0;
-  for (const Job& job : p.jobs) rows += job.trackers.size();
+  for (const Job& job : p.jobs) rows += job.frames.size() * job.trackers.size();
   return {{"scenario", p.scenario.path},
           {"fingerprint", p.fingerprint},
           {"shard", {{"index", p.shard.index}, {"count", p.shard.count}}},
@@ -423,7 +464,7 @@ void Run(PreparedSweep& p, int threads, bool compress, const std::string& manife
     CompressCsv(p.dir + "/timing.csv");
   }
   nlohmann::json entry = ScenarioManifest(p, threads);
-  const double frames_run = static_cast<double>(p.jobs.size() - p.done);
+  const double frames_run = static_cast<double>(FrameCount(p.jobs, p.done));
   entry["wall_s"] = wall_s;
   entry["frames_per_s"] = wall_s > 0.0 ? frames_run / wall_s : 0.0;
   entry["frames_per_core_s"] = wall_s > 0.0 ? frames_run / (wall_s * threads) : 0.0;
