@@ -3,8 +3,9 @@
 core and renderer; trackers only core and trackers (trackers never see the renderer);
 testing (the test support library) core, renderer, trackers and testing. bench's rooms follow
 the data flow: io and metrics include only core (and themselves); plan io and the lower
-layers; run plan, metrics and io; report run, metrics and io; cli anything. Test, benchmark
-and fuzz programs are exempt: they render frames to test trackers on, through testing/.
+layers; run plan, metrics and io; report run, plan (a scenario's trajectory), metrics and io;
+cli anything. Test, benchmark and fuzz programs are exempt: they render frames to test
+trackers on, through testing/.
 Exit 1 listing every include across a layer.
 
     check_layers.py [SOURCE_ROOT]
@@ -23,7 +24,7 @@ ALLOWED = {
     "bench/metrics": {"core", "bench/metrics"},
     "bench/plan": LOWER | {"bench/io", "bench/plan"},
     "bench/run": LOWER | {"bench/io", "bench/metrics", "bench/plan", "bench/run"},
-    "bench/report": LOWER | {"bench/io", "bench/metrics", "bench/run", "bench/report"},
+    "bench/report": LOWER | {"bench/io", "bench/metrics", "bench/plan", "bench/run", "bench/report"},
 }
 TOP = {"core", "renderer", "trackers", "testing", "bench"}
 EXEMPT = re.compile(r"(_test\.cc|_benchmark\.cc|_fuzz\.cc)$")

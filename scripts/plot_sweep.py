@@ -17,6 +17,10 @@ writes, for every scenario:
   DIR/<scenario>_heatmap.png   for a grid sweep: success rate and median position error over
                                the grid (the first axis across, the other axes down), one row
                                of two heat maps per tracker and marker.
+  DIR/<scenario>_error_time.png  for a sequence scenario (a `trajectory`): each tracker's
+                               camera-position error against time in the first sequence of
+                               every marker, over the frame's Cramér-Rao bound (dotted), the
+                               occlusions shaded and lost frames marked on the axis.
 A grid's series (tracker, marker, combination of the other axes) are separate lines.
 Needs Debian's python3-matplotlib (run with /usr/bin/python3).
 """
@@ -238,6 +242,55 @@ def plot_examples(directory, scenario, entry):
     plt.close(fig)
 
 
+def plot_error_time(directory, scenario, entry):
+    """Error against time in trial 0 at the first sweep value, one panel per marker."""
+    trajectory = entry["trajectory"]
+    path = os.path.join(directory, scenario, "frames.csv")
+    if not os.path.exists(path):
+        return  # compressed (sweep --zstd): no plot
+    fps, exposure = trajectory["fps"], trajectory["exposure_s"]
+    sequences = {}  # marker -> tracker -> [(time, error or None)], and the bound per frame
+    with open(path, newline="") as f:
+        first_value = None
+        for row in csv.DictReader(f):
+            if first_value is None:
+                first_value = (row["sweep_value"], row["grid"])
+            if row["trial"] != "0" or (row["sweep_value"], row["grid"]) != first_value:
+                continue
+            marker = sequences.setdefault(row["marker"], {"frames": [], "trackers": {}})
+            if not marker["frames"] or marker["frames"][-1][0] != row["frame"]:
+                marker["frames"].append((row["frame"], number(row["crlb_position_med_m"])))
+            k = len(marker["frames"]) - 1
+            error = number(row["position_error_m"]) if row["status"] == "ok" else None
+            marker["trackers"].setdefault(row["tracker"], []).append((k / fps + exposure / 2, error))
+    if not sequences:
+        return
+    fig, axes = plt.subplots(len(sequences), 1, figsize=(9, 2.8 * len(sequences)), squeeze=False)
+    for ax, (marker, data) in zip(axes[:, 0], sequences.items()):
+        times = [k / fps + exposure / 2 for k in range(len(data["frames"]))]
+        bound = [1e3 * b if math.isfinite(b) else float("nan") for _, b in data["frames"]]
+        ax.plot(times, bound, ":", color="black", label="bound (median)")
+        for first, last in trajectory["occlusions"]:
+            ax.axvspan(first / fps, (last + 1) / fps, color="0.85", zorder=0)
+        for tracker, points in data["trackers"].items():
+            line = ax.plot(
+                [t for t, e in points],
+                [1e3 * e if e is not None else float("nan") for t, e in points],
+                label=tracker,
+            )[0]
+            lost = [t for t, e in points if e is None]
+            ax.plot(lost, [0] * len(lost), "|", color=line.get_color(), transform=ax.get_xaxis_transform(), markersize=8)
+        ax.set_yscale("log")
+        ax.set_ylabel("position error (mm)")
+        ax.set_title(f"{marker} (trial 0; grey: marker hidden; ticks: no pose)", fontsize=10)
+        ax.legend(fontsize=8, loc="upper right")
+    axes[-1, 0].set_xlabel("time (s)")
+    fig.suptitle(f"{scenario}: {trajectory['kind']} at {fps:g} fps")
+    fig.tight_layout()
+    fig.savefig(os.path.join(directory, f"{scenario}_error_time.png"), dpi=90)
+    plt.close(fig)
+
+
 def main():
     if len(sys.argv) != 2:
         sys.exit(__doc__)
@@ -255,8 +308,11 @@ def main():
             plot_heatmap(directory, scenario, series)
         elif os.path.exists(heatmap):
             os.remove(heatmap)  # an earlier run of the same name was a grid
+        entry = manifest.get("scenarios", {}).get(scenario, {})
         if os.path.isdir(os.path.join(directory, scenario, "examples")):
-            plot_examples(directory, scenario, manifest.get("scenarios", {}).get(scenario, {}))
+            plot_examples(directory, scenario, entry)
+        if "trajectory" in entry:
+            plot_error_time(directory, scenario, entry)
 
 
 if __name__ == "__main__":

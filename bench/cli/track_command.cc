@@ -15,6 +15,7 @@
 
 #include "bench/cli/pose_overlay.h"
 #include "bench/io/atomic_file.h"
+#include "bench/io/tum_trajectory.h"
 #include "bench/run/frames_csv.h"
 #include "bench/run/pose_columns.h"
 #include "core/camera_yaml.h"
@@ -126,23 +127,6 @@ std::unique_ptr<Tracker> MakeCommandTracker(const TrackCommandOptions& o,
                       "markers each tracker reads");
   }
   return tracker;
-}
-
-// TUM trajectory lines: the camera's pose in the marker frame.
-std::string TumLine(double time_s, const Rigid3& cam_from_marker) {
-  const Rigid3 marker_from_cam = cam_from_marker.Inverse();
-  const Eigen::Quaterniond q(marker_from_cam.rotation);
-  std::string line = NumberText(time_s);
-  for (const double v : {marker_from_cam.translation.x(),
-                         marker_from_cam.translation.y(),
-                         marker_from_cam.translation.z(),
-                         q.x(),
-                         q.y(),
-                         q.z(),
-                         q.w()}) {
-    line += ' ' + NumberText(v);
-  }
-  return line + '\n';
 }
 
 }  // namespace

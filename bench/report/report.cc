@@ -15,6 +15,7 @@
 #include "bench/io/progress.h"
 #include "bench/report/report_html.h"
 #include "bench/report/reproduction_table.h"
+#include "bench/report/sequence_report.h"
 #include "bench/run/manifest.h"
 #include "bench/run/run_results.h"
 #include "core/number_text.h"
@@ -162,6 +163,46 @@ std::string EnvironmentSection(const nlohmann::json& manifest) {
   return md + ". Details: `manifest.json`.\n\n";
 }
 
+// A sequence scenario's figures over its videos (bench/report/sequence_report.h).
+std::string SequencesSection(const std::vector<SequenceSummaryRow>& rows, const std::string& dir) {
+  if (rows.empty()) return "";
+  const std::string& scenario = rows.front().scenario;
+  std::string md =
+      "### " + scenario +
+      ": tracking over time\n\n"
+      "Per marker and tracker over the sequences (the trials), each run with the tracker's state "
+      "kept from frame to frame. `lost`: visible frames without a pose (95 % Wilson interval); "
+      "`hidden found`: poses returned while the marker was hidden; ATE: RMS camera-position "
+      "error over a sequence (median over the sequences, 95 % interval); RPE: RMS error of the "
+      "camera's motion over 1 s; jitter: RMS spread of the position over the still start; "
+      "re-acquire: seconds from the marker's reappearance to the next pose (median over the "
+      "occlusions; `never` counts those not followed by any pose); ms: median time per frame "
+      "over the visible frames, right after a frame with a pose (tracking) and otherwise (full "
+      "detection: the first frame, after a loss or an occlusion). TUM files for evo: "
+      "`" +
+      scenario + "/tum/`; per sequence: `" + scenario + "/sequences.csv`.\n\n";
+  if (fs::exists(dir + "/" + scenario + "_error_time.png")) {
+    md += "![" + scenario + ": error against time](" + scenario + "_error_time.png)\n\n";
+  }
+  md +=
+      "| value | marker | tracker | sequences | lost | hidden found | ATE (mm) | RPE (mm) | "
+      "RPE (°) | jitter (mm) | re-acquire (s) | never | ms tracking | ms detection |\n"
+      "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n";
+  for (const SequenceSummaryRow& r : rows) {
+    const double lost = r.visible > 0 ? static_cast<double>(r.lost) / r.visible : NAN;
+    md += "| " + FormattedOrDash(r.sweep_value, "%g") + (r.grid.empty() ? "" : " " + r.grid) +
+          " | " + r.marker + " | " + r.tracker + " | " + std::to_string(r.sequences) + " | " +
+          Percent(lost) + " (" + PercentRange(r.lost_rate_ci) + ") | " +
+          std::to_string(r.found_hidden) + " | " + Significant(1e3 * r.ate_m) +
+          MillimetreRange(r.ate_ci_m) + " | " + Significant(1e3 * r.rpe_m) + " | " +
+          Significant(r.rpe_deg) + " | " + Significant(1e3 * r.jitter_m) + " | " +
+          Significant(r.reacquire_median_s) + " | " +
+          (r.occlusions > 0 ? std::to_string(r.never_reacquired) : "-") + " | " +
+          Significant(r.tracking_ms) + " | " + Significant(r.detection_ms) + " |\n";
+  }
+  return md + "\n";
+}
+
 void RunPlots(const std::string& dir) {
   const std::string script = DataFile("scripts/plot_sweep.py");
   // Debian's interpreter has python3-matplotlib; another python3 on PATH may not.
@@ -205,6 +246,23 @@ void WriteReport(const std::string& dir, const ReportOptions& options) {
   const std::vector<SummaryRow> summary = builder.Finish();
   WriteFileAtomically(dir + "/summary.csv", SummaryCsv(summary));
   nlohmann::json manifest = ReadManifest(dir + "/manifest.json");
+  const auto entry_of = [&](const std::string& folder) {
+    const std::string name = fs::path(folder).filename().string();
+    return manifest.contains("scenarios") && manifest["scenarios"].contains(name)
+               ? manifest["scenarios"][name]
+               : nlohmann::json::object();
+  };
+  std::map<std::string, std::vector<SequenceSummaryRow>> sequences;  // per scenario folder
+  std::vector<SequenceSummaryRow> all_sequences;
+  for (const std::string& folder : folders) {
+    const nlohmann::json entry = entry_of(folder);
+    if (!entry.contains("trajectory")) continue;
+    sequences[folder] = WriteSequenceResults(folder, entry);
+    all_sequences.insert(all_sequences.end(), sequences[folder].begin(), sequences[folder].end());
+  }
+  if (!all_sequences.empty()) {
+    WriteFileAtomically(dir + "/sequence_summary.csv", SequenceSummaryCsv(all_sequences));
+  }
   manifest["report"] = {{"success_position_fraction_of_distance", options.summary.success_fraction},
                         {"breakdown_success_rate", options.summary.breakdown_rate}};
   WriteManifest(dir + "/manifest.json", manifest);
@@ -230,11 +288,8 @@ void WriteReport(const std::string& dir, const ReportOptions& options) {
   }
   for (const std::string& folder : folders) {
     const std::string name = fs::path(folder).filename().string();
-    const nlohmann::json entry =
-        manifest.contains("scenarios") && manifest["scenarios"].contains(name)
-            ? manifest["scenarios"][name]
-            : nlohmann::json::object();
-    md += ScenarioSection(name, summary, entry, options.summary, dir);
+    md += ScenarioSection(name, summary, entry_of(folder), options.summary, dir);
+    md += SequencesSection(sequences[folder], dir);
   }
   WriteFileAtomically(dir + "/report.md", md);
   WriteFileAtomically(dir + "/report.html", ReportHtml(md, dir));
