@@ -10,6 +10,7 @@
 #include <filesystem>
 #include <fstream>
 #include <map>
+#include <opencv2/videoio.hpp>
 #include <sstream>
 #include <thread>
 
@@ -84,7 +85,9 @@ TEST_F(SweepCliTest, SequencesAreReproducibleAndTheirOcclusionsHideTheMarker) {
       "name: seq\ncamera: " + kRoot + "/scenarios/cameras/default.yaml\nmarkers:\n  - " + kRoot +
           "/scenarios/markers/circles_a.yaml\n  - " + kRoot +
           "/scenarios/markers/apriltag.yaml\nequal_ink_area_m2: 0.01\ntrackers:\n"
-          "  - {name: circle}\n  - {name: apriltag}\n"
+          "  - {name: circle}\n  - {name: apriltag}\n  - {name: counting, exec: [python3, " +
+          kRoot +
+          "/trackers/external/testdata/counting_tracker.py, counting], markers: [apriltag]}\n"
           "poses: {sampler: look_at, distance_m: 0.7, tilt_deg: [20, 30], max_offset_px: 30}\n"
           "trajectory: {kind: handheld, fps: 10, duration_s: 1.5, static_s: 0.3, exposure_s: 0.02,"
           " linear_speed_m_s: 0.1, angular_speed_deg_s: 10, occlusions: [[6, 8]]}\n"
@@ -102,21 +105,52 @@ TEST_F(SweepCliTest, SequencesAreReproducibleAndTheirOcclusionsHideTheMarker) {
   const std::string merged = (work_ / "merged").string();
   ASSERT_EQ(Run({"merge", shards[0], shards[1], "--out", merged}).status, 0);
   EXPECT_EQ(Read(merged + "/seq/frames.csv"), frames);
-  // 3 trials x 2 markers x 15 frames, in (trial, marker, frame) order.
+  // 3 trials x 15 frames of circles_a (1 tracker) and of apriltag (2), in (trial, marker,
+  // frame) order. The counting tracker is reset at each sequence's start only.
   const auto rows = FramesTable(frames);
-  ASSERT_EQ(rows.size(), 3u * 2 * 15);
+  ASSERT_EQ(rows.size(), 3u * 15 * 3);
   int found = 0;
-  for (size_t i = 0; i < rows.size(); ++i) {
-    EXPECT_EQ(rows[i].at("frame"), std::to_string(i));
-    const int in_sequence = static_cast<int>(i % 15);
-    if (in_sequence >= 6 && in_sequence <= 8) {
-      EXPECT_EQ(rows[i].at("status"), "not_detected") << "frame " << i;
-      EXPECT_EQ(rows[i].at("crlb_position_m"), "inf");
+  for (const auto& row : rows) {
+    const int frame = std::stoi(row.at("frame"));
+    const int in_sequence = frame % 15;
+    if (row.at("tracker") == "counting") {
+      EXPECT_EQ(row.at("message"), "frames " + std::to_string(in_sequence + 1)) << frame;
+    } else if (in_sequence >= 6 && in_sequence <= 8) {
+      EXPECT_EQ(row.at("status"), "not_detected") << "frame " << frame;
+      EXPECT_EQ(row.at("crlb_position_m"), "inf");
     } else {
-      found += rows[i].at("status") == "ok";
+      found += row.at("status") == "ok";
     }
   }
   EXPECT_GE(found, 3 * 2 * 12 - 2);
+  // The report: per sequence and tracker a row, TUM files of the truth (every frame) and of
+  // each tracker (its frames with a pose).
+  ASSERT_EQ(Run({"report", one, "--no-plots"}).status, 0);
+  EXPECT_EQ(Lines(one + "/seq/sequences.csv"), 1u + 3 * 3);
+  EXPECT_EQ(Lines(one + "/seq/tum/truth/apriltag_noise_var=0.01_t1.tum"), 15u);
+  const auto posed = [&](const std::string& marker, const std::string& tracker, int trial) {
+    size_t n = 0;
+    for (const auto& row : rows) {
+      const int frame = std::stoi(row.at("frame"));
+      n += row.at("marker") == marker && row.at("tracker") == tracker && frame / 30 == trial &&
+           row.at("status") == "ok";
+    }
+    return n;
+  };
+  EXPECT_EQ(Lines(one + "/seq/tum/circle/circles_a_noise_var=0.01_t2.tum"),
+            posed("circles_a", "circle", 2));
+  EXPECT_EQ(Lines(one + "/seq/tum/counting/apriltag_noise_var=0.01_t0.tum"), 0u);
+  EXPECT_THAT(Read(one + "/report.md"), HasSubstr("### seq: tracking over time"));
+  // Trial 0 of each marker is also a video with the trackers' poses drawn.
+  cv::VideoCapture video(one + "/seq/examples/apriltag.mp4");
+  ASSERT_TRUE(video.isOpened());
+  int video_frames = 0;
+  for (cv::Mat image; video.read(image); ++video_frames) {
+    EXPECT_EQ(image.cols, 640);
+    EXPECT_EQ(image.rows, 480);
+  }
+  EXPECT_EQ(video_frames, 15);
+  EXPECT_FALSE(fs::exists(one + "/seq/examples/apriltag.mp4.part.mp4"));
   const nlohmann::json manifest = ReadManifest(one + "/manifest.json");
   EXPECT_EQ(manifest["scenarios"]["seq"]["trajectory"]["frames"], 15);
 }

@@ -13,11 +13,11 @@
 #include <opencv2/imgproc.hpp>
 #include <opencv2/videoio.hpp>
 
-#include "bench/cli/pose_overlay.h"
 #include "bench/io/atomic_file.h"
 #include "bench/io/tum_trajectory.h"
 #include "bench/run/frames_csv.h"
 #include "bench/run/pose_columns.h"
+#include "bench/run/pose_overlay.h"
 #include "core/camera_yaml.h"
 #include "core/marker_yaml.h"
 #include "core/number_text.h"

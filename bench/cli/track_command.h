@@ -23,7 +23,7 @@ struct TrackCommandOptions {
   // frames with a pose; a video frame's time is its index over the video's frame rate, an
   // image's its index in the inputs, in seconds. Empty: none.
   std::string tum_path;
-  // A video of every frame of the camera's size with the pose drawn (bench/cli/pose_overlay.h),
+  // A video of every frame of the camera's size with the pose drawn (bench/run/pose_overlay.h),
   // at the video's frame rate, or 1 frame/s for images. Empty: none.
   std::string overlay_path;
 };

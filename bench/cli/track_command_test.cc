@@ -13,8 +13,8 @@
 #include <string>
 #include <vector>
 
-#include "bench/cli/pose_overlay.h"
 #include "bench/run/frames_csv.h"
+#include "bench/run/pose_overlay.h"
 #include "core/camera_yaml.h"
 #include "core/config_error.h"
 #include "core/file_bytes.h"

@@ -23,6 +23,7 @@
 #include "bench/plan/scenario.h"
 #include "bench/run/frames_csv.h"
 #include "bench/run/manifest.h"
+#include "bench/run/pose_overlay.h"
 #include "bench/run/sweep_trackers.h"
 #include "core/yaml_reader.h"
 #include "renderer/image_io.h"
@@ -275,6 +276,7 @@ void RunFrame(const PreparedSweep& p,
               const PlannedFrame& f,
               const std::vector<size_t>& tracker_indices,
               std::vector<std::unique_ptr<Tracker>>* trackers,
+              PoseOverlay* video,
               std::string* frame_rows,
               std::string* timing_rows) {
   const Scenario& s = p.scenario;
@@ -285,6 +287,7 @@ void RunFrame(const PreparedSweep& p,
     WriteImage(p.dir + "/examples/" + marker.name + ".png", frame.image);
   }
   if (tracker_indices.empty()) return;
+  std::vector<std::pair<std::string, TrackResult>> results;  // for the video
   FrameRow row;
   row.scenario = s.name;
   row.sweep_parameter = s.sweep_parameter;
@@ -328,7 +331,9 @@ void RunFrame(const PreparedSweep& p,
     row.message = result.message;
     *frame_rows += FormatFrameRow(row);
     *timing_rows += FormatTimingRow(row, time_ms, round_trip_ms);
+    if (video) results.emplace_back(row.tracker, result);
   }
+  if (video) video->Add(frame.image, results, s.trajectory->fps);
 }
 
 // Runs one job's frames in order; returns their frames.csv and timing.csv rows.
@@ -336,8 +341,22 @@ std::pair<std::string, std::string> RunJob(const PreparedSweep& p,
                                            const Job& job,
                                            std::vector<std::unique_ptr<Tracker>>* trackers) {
   std::string frame_rows, timing_rows;
+  // The example sequence is also a video with every tracker's pose drawn
+  // (examples/<marker>.mp4), written beside and renamed once whole.
+  std::unique_ptr<PoseOverlay> video;
+  std::string video_path;
+  const PlannedFrame& first = job.frames.front();
+  if (first.example && first.sequence_frame == 0 && !job.trackers.empty()) {
+    const MarkerSpec& marker = p.scenario.markers[static_cast<size_t>(first.marker_index)];
+    video_path = p.dir + "/examples/" + marker.name + ".mp4";
+    video = std::make_unique<PoseOverlay>(video_path + ".part.mp4", p.scenario.camera, marker);
+  }
   for (const PlannedFrame& f : job.frames) {
-    RunFrame(p, f, job.trackers, trackers, &frame_rows, &timing_rows);
+    RunFrame(p, f, job.trackers, trackers, video.get(), &frame_rows, &timing_rows);
+  }
+  if (video) {
+    video.reset();  // closes the file
+    fs::rename(video_path + ".part.mp4", video_path);
   }
   return {frame_rows, timing_rows};
 }

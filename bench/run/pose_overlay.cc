@@ -1,6 +1,7 @@
-#include "bench/cli/pose_overlay.h"
+#include "bench/run/pose_overlay.h"
 
 #include <cmath>
+#include <iterator>
 #include <opencv2/imgproc.hpp>
 #include <opencv2/videoio.hpp>
 #include <stdexcept>
@@ -29,6 +30,12 @@ PoseOverlay::PoseOverlay(std::string path, const Camera& camera, const MarkerSpe
 PoseOverlay::~PoseOverlay() = default;
 
 void PoseOverlay::Add(const Image8& frame, const TrackResult& result, double fps) {
+  Add(frame, {{std::string(), result}}, fps);
+}
+
+void PoseOverlay::Add(const Image8& frame,
+                      const std::vector<std::pair<std::string, TrackResult>>& results,
+                      double fps) {
   if (!writer_) {
     writer_ = std::make_unique<cv::VideoWriter>(path_,
                                                 cv::CAP_FFMPEG,
@@ -43,7 +50,23 @@ void PoseOverlay::Add(const Image8& frame, const TrackResult& result, double fps
                        frame.channels == 3 ? CV_8UC3 : CV_8UC1,
                        const_cast<uint8_t*>(frame.pixels.data()));
   cv::cvtColor(pixels, bgr, frame.channels == 3 ? cv::COLOR_RGB2BGR : cv::COLOR_GRAY2BGR);
-  if (result.status == TrackStatus::kOk && !result.hypotheses.empty()) {
+  // Cube colours (BGR), the first yellow; the axes keep red, green and blue.
+  const cv::Scalar kCubeColors[] = {
+      {0, 220, 255}, {255, 0, 255}, {255, 255, 0}, {0, 140, 255}, {255, 255, 255}, {128, 0, 128}};
+  for (size_t t = 0; t < results.size(); ++t) {
+    const cv::Scalar cube_color = kCubeColors[t % std::size(kCubeColors)];
+    if (results.size() > 1) {
+      cv::putText(bgr,
+                  results[t].first,
+                  cv::Point(8, 18 + 16 * static_cast<int>(t)),
+                  cv::FONT_HERSHEY_SIMPLEX,
+                  0.45,
+                  cube_color,
+                  1,
+                  cv::LINE_AA);
+    }
+    const TrackResult& result = results[t].second;
+    if (result.status != TrackStatus::kOk || result.hypotheses.empty()) continue;
     const Rigid3& cam_from_marker = result.hypotheses.front();
     const auto segment = [&](const Eigen::Vector3d& a,
                              const Eigen::Vector3d& b,
@@ -63,15 +86,14 @@ void PoseOverlay::Add(const Image8& frame, const TrackResult& result, double fps
     const Eigen::Vector3d o(center_.x(), center_.y(), 0.0);
     // The cube: its bottom square on the marker around the ink centre, its top towards +z.
     const double h = 0.5 * s;
-    const cv::Scalar yellow(0, 220, 255);
     for (const double z : {0.0, s}) {
       const Eigen::Vector3d c[4] = {o + Eigen::Vector3d(-h, -h, z),
                                     o + Eigen::Vector3d(h, -h, z),
                                     o + Eigen::Vector3d(h, h, z),
                                     o + Eigen::Vector3d(-h, h, z)};
       for (int k = 0; k < 4; ++k) {
-        segment(c[k], c[(k + 1) % 4], yellow, 1);
-        if (z == 0.0) segment(c[k], c[k] + Eigen::Vector3d(0.0, 0.0, s), yellow, 1);
+        segment(c[k], c[(k + 1) % 4], cube_color, 1);
+        if (z == 0.0) segment(c[k], c[k] + Eigen::Vector3d(0.0, 0.0, s), cube_color, 1);
       }
     }
     // The axes from the marker frame's origin (BGR: x red, y green, z blue).
