@@ -5,7 +5,7 @@ Each table sits in README.md (the circle accuracy table also in results/circle_a
 the paper sweeps' times in results/speed.md) between
     <!-- readme_figures.py: NAME -->   and   <!-- end NAME -->
 and is computed from results/ (summary.csv of results/circle_accuracy and results/paper,
-results/paper/report.md, results/speed.md).
+results/paper/report.md, results/speed.md, results/sequences/sequence_summary.csv).
 
     readme_figures.py --check   exit 1 naming each table that differs from results/ (ctest)
     readme_figures.py --write   rewrite the tables in the documents (DOCUMENTS)
@@ -306,9 +306,35 @@ def circle_markers():
     return lines
 
 
+def sequences():
+    """Tracking over time (issue 22): per sequence scenario, sweep value, marker and tracker of
+    results/sequences/sequence_summary.csv."""
+    lines = ["| video | marker: tracker | lost (95 % interval) | ATE, mm: median (95 % interval) "
+             "| RPE over 1 s, mm | jitter, mm | re-acquire, s (never) | ms tracking / detection |",
+             "|---|---|---|---|---|---|---|---|"]
+    for r in read_summary("results/sequences/sequence_summary.csv"):
+        visible = int(r["visible"])
+        lost = 100 * int(r["lost"]) / visible if visible else math.nan
+        interval = (f" ({significant(1e3 * number(r['ate_median_lo_m']))}–"
+                    f"{significant(1e3 * number(r['ate_median_hi_m']))})"
+                    if r["ate_median_lo_m"] else "")
+        reacquire = (f"{significant(number(r['reacquire_median_s']))} ({r['never_reacquired']})"
+                     if int(r["occlusions"]) else "-")
+        video = f"{r['scenario']}, {r['sweep_parameter']} {r['sweep_value']}"
+        lines.append(
+            f"| {video} | `{r['marker']}`: `{r['tracker']}` | {lost:.1f} % "
+            f"({100 * number(r['lost_rate_lo']):.1f}–{100 * number(r['lost_rate_hi']):.1f}) | "
+            f"{significant(1e3 * number(r['ate_median_m']))}{interval} | "
+            f"{significant(1e3 * number(r['rpe_median_m']))} | "
+            f"{significant(1e3 * number(r['jitter_median_m']))} | {reacquire} | "
+            f"{significant(number(r['tracking_median_ms']))} / "
+            f"{significant(number(r['detection_median_ms']))} |")
+    return lines
+
+
 TABLES = {"circle_accuracy": circle_accuracy, "circle_markers": circle_markers, "efficiency": efficiency,
           "breakdowns": breakdowns, "baselines": baselines, "clean_accuracy": clean_accuracy,
-          "speed": speed, "paper_sweep_times": paper_sweep_times}
+          "speed": speed, "paper_sweep_times": paper_sweep_times, "sequences": sequences}
 # The documents and the tables each holds.
 DOCUMENTS = {"README.md": [t for t in TABLES if t != "paper_sweep_times"],
              "results/circle_accuracy.md": ["circle_accuracy"],

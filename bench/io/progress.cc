@@ -40,8 +40,8 @@ Progress::Progress(std::string label, size_t total, size_t done, double line_int
       start_(std::chrono::steady_clock::now()),
       last_print_(start_) {}
 
-void Progress::Advance() {
-  ++done_;
+void Progress::Advance(size_t items) {
+  done_ += items;
   const auto now = std::chrono::steady_clock::now();
   const double since = SecondsBetween(last_print_, now);
   if (since >= (terminal_ ? kRedrawInterval_s : line_interval_s_)) Print(false);

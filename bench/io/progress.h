@@ -12,8 +12,8 @@ class Progress {
  public:
   // `done` items of `total` were finished before this run (a resumed sweep).
   Progress(std::string label, size_t total, size_t done, double line_interval_s = 10.0);
-  // One more item finished. Called by one thread at a time.
-  void Advance();
+  // More items finished. Called by one thread at a time.
+  void Advance(size_t items = 1);
   // The final line.
   void Finish();
 

@@ -23,12 +23,18 @@ double NormalQuantile(double p) {
 
 Interval WilsonInterval(int successes, int n, double confidence) {
   if (n <= 0) return {};
+  return WilsonIntervalOfRate(static_cast<double>(successes) / n, n, confidence);
+}
+
+Interval WilsonIntervalOfRate(double p, double n, double confidence) {
+  if (!(n > 0.0)) return {};
   const double z = NormalQuantile(0.5 + 0.5 * confidence);
-  const double p = static_cast<double>(successes) / n;
   const double z2n = z * z / n;
   const double centre = (p + 0.5 * z2n) / (1.0 + z2n);
   const double half = z * std::sqrt(p * (1.0 - p) / n + 0.25 * z2n / n) / (1.0 + z2n);
-  return {std::max(0.0, centre - half), std::min(1.0, centre + half)};
+  // At p = 0 or 1 the bound is the end itself (the two terms cancel but for rounding).
+  return {p <= 0.0 ? 0.0 : std::max(0.0, centre - half),
+          p >= 1.0 ? 1.0 : std::min(1.0, centre + half)};
 }
 
 Interval MedianInterval(std::vector<double> values, double confidence) {

@@ -18,6 +18,9 @@ inline constexpr double kConfidence = 0.95;
 // normal interval it stays inside [0, 1] and keeps its coverage near 0 % and 100 %. NaN when
 // n is 0.
 Interval WilsonInterval(int successes, int n, double confidence = kConfidence);
+// The same for a rate p observed with an effective sample size n: for clustered samples
+// (a video's frames, which are lost in runs), the number of clusters, which is conservative.
+Interval WilsonIntervalOfRate(double p, double n, double confidence = kConfidence);
 
 // Interval for the median of the distribution `values` (NaN values dropped) come from: the
 // order statistics x_(j) and x_(n+1-j), with j the largest rank such that

@@ -23,6 +23,23 @@ TEST(IntervalsTest, WilsonMatchesNewcombesTable) {
   EXPECT_NEAR(all.lo, 0.8830, 5e-5);
   EXPECT_EQ(all.hi, 1.0);
   EXPECT_TRUE(std::isnan(WilsonInterval(0, 0).lo));
+  for (const int n : {7, 1650, 2400}) {
+    EXPECT_EQ(WilsonInterval(0, n).lo, 0.0) << n;
+    EXPECT_EQ(WilsonInterval(n, n).hi, 1.0) << n;
+  }
+}
+
+// A rate with an effective sample size (a video's frames counted as one sample per video):
+// the integer form's interval at the same rate and size, wider than the frames' own.
+TEST(IntervalsTest, WilsonOfARateWithAnEffectiveSize) {
+  const Interval as_count = WilsonInterval(3, 10);
+  const Interval as_rate = WilsonIntervalOfRate(0.3, 10);
+  EXPECT_DOUBLE_EQ(as_rate.lo, as_count.lo);
+  EXPECT_DOUBLE_EQ(as_rate.hi, as_count.hi);
+  const Interval frames = WilsonInterval(495, 1650);
+  EXPECT_LT(as_rate.lo, frames.lo);
+  EXPECT_GT(as_rate.hi, frames.hi);
+  EXPECT_TRUE(std::isnan(WilsonIntervalOfRate(0.5, 0.0).lo));
 }
 
 // For n = 100 the ranks are 40 and 61 (the textbook values: P(B <= 39) = 0.0176 and

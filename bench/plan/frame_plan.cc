@@ -111,10 +111,9 @@ bool PlanTrial(const Scenario& s,
         const MarkerSpec& marker = s.markers[m];
         const TrajectoryOptions& o = motion->options;
         f.sequence_frame = k;
-        f.time_s = o.TruthTime(k);
         f.occluded = o.Occluded(k);
         f.cam_from_marker =
-            CamFromMarker(TrajectoryPose(o, motion->trial, motion->camera, f.time_s), marker);
+            CamFromMarker(TrajectoryPose(o, motion->trial, motion->camera, o.TruthTime(k)), marker);
         // Each frame its own noise, the same for every marker at this (cell, trial, frame).
         f.noise_seed = SeedFor(noise_seed, static_cast<uint64_t>(k), 0, SeedPurpose::kNoise);
         if (o.exposure_s > 0.0) {

@@ -28,10 +28,10 @@ struct PlannedFrame {
   int channels = 1;
   uint64_t noise_seed = 0;
   // Sequences (Scenario::trajectory): the frame's place in its sequence (-1: not a
-  // sequence), its time in seconds, whether the marker is hidden, and the pose over its
-  // exposure (FrameRequest::exposure_cam_from_marker; empty without exposure_s).
+  // sequence; its truth is at the trajectory's TruthTime), whether the marker is hidden, and
+  // the pose over its exposure (FrameRequest::exposure_cam_from_marker; empty without
+  // exposure_s).
   int sequence_frame = -1;
-  double time_s = 0.0;
   bool occluded = false;
   std::function<Rigid3(double)> exposure_cam_from_marker;
 };

@@ -171,7 +171,9 @@ std::string SequencesSection(const std::vector<SequenceSummaryRow>& rows, const 
       "### " + scenario +
       ": tracking over time\n\n"
       "Per marker and tracker over the sequences (the trials), each run with the tracker's state "
-      "kept from frame to frame. `lost`: visible frames without a pose (95 % Wilson interval); "
+      "kept from frame to frame. `lost`: visible frames without a pose (95 % Wilson interval "
+      "with the videos as the sample size: a video's frames are lost in runs, not "
+      "independently); "
       "`hidden found`: poses returned while the marker was hidden; ATE: RMS camera-position "
       "error over a sequence (median over the sequences, 95 % interval); RPE: RMS error of the "
       "camera's motion over 1 s; jitter: RMS spread of the position over the still start; "

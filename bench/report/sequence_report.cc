@@ -202,7 +202,11 @@ std::vector<SequenceSummaryRow> WriteSequenceResults(const std::string& folder,
   }
   for (size_t i = 0; i < rows.size(); ++i) {
     SequenceSummaryRow& s = rows[i];
-    s.lost_rate_ci = WilsonInterval(s.lost, s.visible);
+    // Frames of a video are not independent samples (a tracker loses runs of them): the
+    // videos are.
+    if (s.visible > 0) {
+      s.lost_rate_ci = WilsonIntervalOfRate(static_cast<double>(s.lost) / s.visible, s.sequences);
+    }
     s.ate_m = Median(ate[i]);
     s.ate_ci_m = MedianInterval(ate[i]);
     s.rpe_m = Median(rpe[i]);

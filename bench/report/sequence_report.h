@@ -26,7 +26,7 @@ struct SequenceSummaryRow {
   int visible = 0;  // frames where the marker shows, over the sequences
   int lost = 0;     // of those, frames without a pose
   int found_hidden = 0;
-  Interval lost_rate_ci;
+  Interval lost_rate_ci;  // Wilson, with the videos as the sample size (frames are clustered)
   // Medians over the sequences (metres, degrees, seconds, milliseconds); NaN when none.
   double ate_m = NAN;
   Interval ate_ci_m;

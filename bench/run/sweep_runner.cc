@@ -247,8 +247,12 @@ class AppendFile {
 // Puts the rows of finished jobs into the files in plan order.
 class OrderedWriter {
  public:
-  OrderedWriter(AppendFile* frames, AppendFile* timing, size_t next, Progress* progress)
-      : frames_(frames), timing_(timing), next_(next), progress_(progress) {}
+  OrderedWriter(AppendFile* frames,
+                AppendFile* timing,
+                const std::vector<Job>& jobs,
+                size_t next,
+                Progress* progress)
+      : frames_(frames), timing_(timing), jobs_(jobs), next_(next), progress_(progress) {}
 
   void Submit(size_t job, std::string frame_rows, std::string timing_rows) {
     std::lock_guard<std::mutex> lock(mutex_);
@@ -257,7 +261,7 @@ class OrderedWriter {
          it = pending_.erase(it), ++next_) {
       frames_->Append(it->second.first);
       timing_->Append(it->second.second);
-      progress_->Advance();
+      progress_->Advance(jobs_[next_].frames.size());
     }
   }
 
@@ -266,6 +270,7 @@ class OrderedWriter {
   std::map<size_t, std::pair<std::string, std::string>> pending_;
   AppendFile* frames_;
   AppendFile* timing_;
+  const std::vector<Job>& jobs_;
   size_t next_;
   Progress* progress_;
 };
@@ -446,8 +451,9 @@ void Run(PreparedSweep& p, int threads, bool compress, const std::string& manife
                  p.scenario.name.c_str(),
                  m.c_str());
   }
-  Progress progress(p.scenario.name, p.jobs.size(), p.done);
-  OrderedWriter writer(&frames, &timing, p.done, &progress);
+  const size_t frames_total = FrameCount(p.jobs);
+  Progress progress(p.scenario.name, frames_total, frames_total - FrameCount(p.jobs, p.done));
+  OrderedWriter writer(&frames, &timing, p.jobs, p.done, &progress);
   std::atomic<size_t> next{p.done};
   std::atomic<bool> failed{false};
   std::exception_ptr failure;
