@@ -7,7 +7,9 @@
 #include <limits>
 #include <vector>
 
+#include "core/shapes.h"
 #include "trackers/circle/blurred_design.h"
+#include "trackers/upper_median.h"
 
 namespace markerbench {
 namespace {
@@ -57,7 +59,7 @@ struct DesignIntegral {
 
 double LumaAt(const Image8& image, int x, int y) {
   const uint8_t* p = &image.pixels[(static_cast<size_t>(y) * image.width + x) * image.channels];
-  return image.channels == 3 ? 0.299 * p[0] + 0.587 * p[1] + 0.114 * p[2] : p[0];
+  return image.channels == 3 ? Luma(Rgb(p[0], p[1], p[2])) : p[0];
 }
 
 // A pixel of the window: its luma, its point q in the paper frame, the plane area it covers
@@ -280,8 +282,7 @@ std::optional<RollAlignment> RollFeature::Align(const Image8& image,
   // The disk's level: most of the window is bare disk (the median ignores the weights).
   std::vector<double> sorted;
   for (const WindowPixel& p : pixels) sorted.push_back(p.value);
-  std::nth_element(sorted.begin(), sorted.begin() + sorted.size() / 2, sorted.end());
-  const double disk_level = sorted[sorted.size() / 2];
+  const double disk_level = UpperMedian(sorted);
   const double gain = (paper_level - disk_level) / (background_luma_ - disk_luma_);
 
   // First the moment over the whole window, which finds the design at any roll: the

@@ -6,6 +6,7 @@
 
 #include "trackers/circle/blurred_disk_profile.h"
 #include "trackers/circle/conic.h"
+#include "trackers/upper_median.h"
 
 namespace markerbench {
 namespace {
@@ -35,11 +36,7 @@ struct Ray {
   double edge = 0.0;  // fitted e
 };
 
-double Median(std::vector<double> v) {
-  if (v.empty()) return 0.0;
-  std::nth_element(v.begin(), v.begin() + v.size() / 2, v.end());
-  return v[v.size() / 2];
-}
+double Median(const std::vector<double>& v) { return v.empty() ? 0.0 : UpperMedian(v); }
 
 struct LevelState {
   double inside, outside, sigma;

@@ -7,6 +7,7 @@
 #include <opencv2/imgproc.hpp>
 
 #include "trackers/noise_estimate.h"
+#include "trackers/upper_median.h"
 
 namespace markerbench {
 namespace {
@@ -27,8 +28,7 @@ double RimLevel(const cv::Mat& image, const cv::Rect& box) {
     rim.push_back(image.at<uint8_t>(y, box.x));
     rim.push_back(image.at<uint8_t>(y, box.br().x - 1));
   }
-  std::nth_element(rim.begin(), rim.begin() + rim.size() / 2, rim.end());
-  return rim[rim.size() / 2];
+  return UpperMedian(rim);
 }
 
 // Per-image acceptance limits of a dot.

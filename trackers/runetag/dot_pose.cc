@@ -8,6 +8,7 @@
 
 #include "core/random.h"
 #include "trackers/circle/conic.h"
+#include "trackers/upper_median.h"
 
 namespace markerbench {
 namespace {
@@ -122,8 +123,7 @@ std::optional<PnpFit> RansacIppePose(const std::vector<cv::Point3d>& object,
   std::vector<double> e = residuals(rvec, tvec);
   std::vector<double> sorted;
   for (int i : inlier_index) sorted.push_back(e[i]);
-  std::nth_element(sorted.begin(), sorted.begin() + sorted.size() / 2, sorted.end());
-  const double sigma = 1.4826 * sorted[sorted.size() / 2];
+  const double sigma = 1.4826 * UpperMedian(sorted);
   inlier_index = inliers_below(
       e, std::min(options.ransac_reprojection_px, std::max(kMinInlierPx, 3.0 * sigma)));
   if (inlier_index.size() < 4) return std::nullopt;

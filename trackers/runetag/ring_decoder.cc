@@ -13,6 +13,7 @@
 #include "trackers/circle/conic.h"
 #include "trackers/circle/conic_fit.h"
 #include "trackers/circle/line_at_infinity.h"
+#include "trackers/upper_median.h"
 
 namespace markerbench {
 namespace {
@@ -238,8 +239,7 @@ RuneWord ReadSlots(const DotImage& image,
   }
   RuneWord read{};
   if (paper.empty()) return read;
-  std::nth_element(paper.begin(), paper.begin() + paper.size() / 2, paper.end());
-  const double paper_level = paper[paper.size() / 2];
+  const double paper_level = UpperMedian(paper);
   std::array<uint8_t, kRuneSectors> known{};  // bit r: ring r's slot was read
   for (int r = 0; r < 3; ++r) {
     std::array<std::optional<double>, kRuneSectors> level;
