@@ -169,7 +169,7 @@ TEST(Degradations, InvalidValuesAreRejected) {
 namespace markerbench {
 namespace {
 
-// The motion-blurred frame (FrameRequest::exposure_cam_from_marker) against its definition,
+// The motion-blurred frame (FrameRequest::cam_from_marker_at, exposure_s) against its definition,
 // the mean of many still renders along the exposure (midpoint rule, 400 sub-frames): within
 // half an 8-bit level, for a fast sideways and turning motion. A still "motion" gives the
 // still render, and a hidden marker only the paper.
@@ -189,12 +189,13 @@ TEST(Degradations, ExposureIntegratesTheMotion) {
     return Rigid3(turn, Eigen::Vector3d(0.012 * 0.9 / 0.6 * u, 0.0, 0.0)) * start;
   };
   request.scene.cam_from_marker = pose_at(0.5);
-  request.exposure_cam_from_marker = pose_at;
+  request.cam_from_marker_at = pose_at;  // over an exposure of 1 s
+  request.exposure_s = 1.0;
   const ImageF blurred = RenderFrame(request).linear;
   ImageF mean(blurred.width, blurred.height, blurred.channels);
   constexpr int kSubframes = 400;
   FrameRequest still = request;
-  still.exposure_cam_from_marker = nullptr;
+  still.cam_from_marker_at = nullptr;
   for (int i = 0; i < kSubframes; ++i) {
     still.scene.cam_from_marker = pose_at((i + 0.5) / kSubframes);
     const ImageF sub = RenderFrame(still).linear;
@@ -210,7 +211,7 @@ TEST(Degradations, ExposureIntegratesTheMotion) {
   EXPECT_LT(worst, 0.5 / 255.0);
   EXPECT_GT(moved, 0.2);  // the blur is there
 
-  request.exposure_cam_from_marker = [&](double) { return start; };
+  request.cam_from_marker_at = [&](double) { return start; };
   request.scene.cam_from_marker = start;
   still.scene.cam_from_marker = start;
   const ImageF held = RenderFrame(request).linear;
@@ -220,6 +221,45 @@ TEST(Degradations, ExposureIntegratesTheMotion) {
   still.scene.marker_hidden = true;
   const ImageF paper = RenderFrame(still).linear;
   for (const float v : paper.data) ASSERT_EQ(v, paper.data.front());
+}
+
+}  // namespace
+}  // namespace markerbench
+
+namespace markerbench {
+namespace {
+
+// The u where row v of `image` crosses 0.5 going right (linear between pixel centres: exact
+// for an area-sampled step).
+double EdgeCrossing(const ImageF& image, int v) {
+  for (int u = 0; u + 1 < image.width; ++u) {
+    const double a = image.at(u, v), b = image.at(u + 1, v);
+    if (a >= 0.5 && b < 0.5) return u + (a - 0.5) / (a - b);
+  }
+  return NAN;
+}
+
+// A rolling shutter (FrameRequest::readout_s) skews a vertical edge seen from a camera moving
+// sideways: row v sees it readout_s × v / (height - 1) later, so shifted by the image speed
+// times that; the first row where a still camera would. Without exposure the edge stays a
+// sharp step in every row.
+TEST(Degradations, RollingShutterSkewsAMovingEdge) {
+  const MarkerSpec square = BlackSquareMarker(0.0, -0.6, 1.2);  // taller than the image
+  FrameRequest request = SquareEdgeRequest(square);
+  const Rigid3 start = request.scene.cam_from_marker;
+  constexpr double kSpeedPxPerS = 600.0, kReadoutS = 0.1;  // 1 m/s sideways at 1 m, f = 600
+  request.cam_from_marker_at = [&](double t) {
+    return Rigid3(Eigen::Matrix3d::Identity(), Eigen::Vector3d(t * 1.0, 0.0, 0.0)) * start;
+  };
+  request.readout_s = kReadoutS;
+  const ImageF image = RenderFrame(request).linear;
+  for (const int v : {0, 40, 239, 440, 479}) {
+    const double expected = 319.5 + kSpeedPxPerS * kReadoutS * v / 479.0;
+    EXPECT_NEAR(EdgeCrossing(image, v), expected, 0.08) << "row " << v;
+    const int u = static_cast<int>(std::lround(expected));
+    EXPECT_EQ(image.at(u - 2, v), 1.0f) << "row " << v;  // sharp: paper, then ink
+    EXPECT_EQ(image.at(u + 2, v), 0.0f) << "row " << v;
+  }
 }
 
 }  // namespace

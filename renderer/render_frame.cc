@@ -42,7 +42,7 @@ PixelRect Union(const PixelRect& a, const PixelRect& b) {
 
 // The scene integrated over the exposure by the trapezoidal rule: n intervals, then 2n
 // (reusing the n + 1 sub-frames already rendered) until no pixel changes by half an 8-bit
-// level or kMaxExposureSubframes is reached.
+// level or kMaxExposureSubframes is reached. pose_at(u), u in [0, 1] over the exposure.
 RasterResult RasterizeExposure(const Scene& scene,
                                int channels,
                                const std::function<Rigid3(double)>& pose_at) {
@@ -76,6 +76,76 @@ RasterResult RasterizeExposure(const Scene& scene,
     if (settled || n >= kMaxExposureSubframes) return {std::move(mean), nonuniform};
     previous = std::move(mean);
   }
+}
+
+// The scene seen from a moving camera whose rows start their exposure at `start_of_row(v)`
+// (v a row of the canvas `scene`): the exposure integral of RasterizeExposure, or a still
+// render without exposure.
+RasterResult RasterizeRows(const Scene& scene,
+                           int channels,
+                           const FrameRequest& request,
+                           double start_s) {
+  const auto& pose_at = request.cam_from_marker_at;
+  if (request.exposure_s <= 0.0) {
+    Scene still = scene;
+    still.cam_from_marker = pose_at(start_s);
+    return Rasterize(still, channels);
+  }
+  return RasterizeExposure(
+      scene, channels, [&](double u) { return pose_at(start_s + u * request.exposure_s); });
+}
+
+// The largest image motion (px) of the marker's ink outline between times a and b.
+double ImageMotionPx(const Scene& scene,
+                     const std::function<Rigid3(double)>& pose_at,
+                     double a,
+                     double b) {
+  double largest = 0.0;
+  const Rigid3 pose_a = pose_at(a), pose_b = pose_at(b);
+  for (const Eigen::Vector2d& p : BoxOutline(scene.marker->InkBounds(), 4)) {
+    const Eigen::Vector3d x(p.x(), p.y(), 0.0);
+    const Eigen::Vector3d in_a = pose_a * x, in_b = pose_b * x;
+    if (!(in_a.z() > 0.0 && in_b.z() > 0.0)) continue;
+    largest =
+        std::max(largest, (scene.camera.ImgFromCam(in_a) - scene.camera.ImgFromCam(in_b)).norm());
+  }
+  return largest;
+}
+
+// A moving camera's canvas: one exposure for a global shutter; with a rolling shutter, bands
+// of rows, each rendered through a camera cropped to it at its rows' time.
+RasterResult RasterizeMoving(const Scene& scene,
+                             int channels,
+                             const FrameRequest& request,
+                             int margin) {
+  if (request.readout_s <= 0.0) return RasterizeRows(scene, channels, request, 0.0);
+  const int rows = scene.camera.height;
+  const int image_rows = request.scene.camera.height;
+  const auto row_start_s = [&](double v) {  // canvas row v; margin rows extrapolate
+    return request.readout_s * (v - margin) / std::max(1, image_rows - 1);
+  };
+  // Bands short enough that the motion within one's readout is under 1/8 px.
+  constexpr double kBandMotionPx = 0.125;
+  const double motion =
+      ImageMotionPx(scene, request.cam_from_marker_at, row_start_s(0), row_start_s(rows - 1));
+  const int bands = std::clamp(static_cast<int>(std::ceil(motion / kBandMotionPx)), 1, rows);
+  RasterResult canvas{ImageF(scene.camera.width, rows, channels), PixelRect{}};
+  for (int b = 0; b < bands; ++b) {
+    const int v0 = b * rows / bands, v1 = (b + 1) * rows / bands;
+    Scene band = scene;
+    band.camera.height = v1 - v0;
+    band.camera.cy -= v0;
+    const RasterResult r = RasterizeRows(band, channels, request, row_start_s(0.5 * (v0 + v1 - 1)));
+    for (int c = 0; c < channels; ++c) {
+      std::copy(r.image.plane(c),
+                r.image.plane(c) + r.image.plane_size(),
+                canvas.image.plane(c) + static_cast<size_t>(v0) * scene.camera.width);
+    }
+    // A band is uniform outside its non-uniform box, but not every band in the same colour
+    // (the horizon may cross them): the whole band counts.
+    canvas.nonuniform = Union(canvas.nonuniform, PixelRect{0, v0, scene.camera.width, v1});
+  }
+  return canvas;
 }
 
 }  // namespace
@@ -115,10 +185,9 @@ RenderedFrame RenderFrame(const FrameRequest& request) {
   canvas_scene.camera.cx += margin;
   canvas_scene.camera.cy += margin;
 
-  RasterResult raster =
-      request.exposure_cam_from_marker
-          ? RasterizeExposure(canvas_scene, request.channels, request.exposure_cam_from_marker)
-          : Rasterize(canvas_scene, request.channels);
+  RasterResult raster = request.cam_from_marker_at
+                            ? RasterizeMoving(canvas_scene, request.channels, request, margin)
+                            : Rasterize(canvas_scene, request.channels);
   const Degradations& d = request.degradations;
   PixelRect changed = GaussianBlur(d.blur_sigma_px, raster.nonuniform, &raster.image);
   MotionBlur(d.motion_blur_px, d.motion_blur_angle_deg, changed, &raster.image);

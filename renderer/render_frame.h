@@ -18,11 +18,15 @@ struct FrameRequest {
   int channels = 1;          // 1: grey (Rec. 601 luma of the colours), 3: RGB
   uint64_t noise_seed = 0;   // SeedFor(scenario seed, cell, trial, SeedPurpose::kNoise)
   bool keep_linear = false;  // also return the float image (after noise and clipping)
-  // Motion blur that matches the motion: the pose over the exposure, u in [0, 1]. The image
-  // integrates the scene over it (trapezoidal, the sub-frames doubled until the result
-  // changes by less than half an 8-bit level); scene.cam_from_marker stays the ground truth.
-  // Empty: a still camera.
-  std::function<Rigid3(double u)> exposure_cam_from_marker;
+  // A moving camera: the pose t seconds after the first row's exposure starts (empty: a
+  // still camera at scene.cam_from_marker, which stays the ground truth either way). Each
+  // row integrates the scene over exposure_s (motion blur that matches the motion:
+  // trapezoidal, the sub-frames doubled until the result changes by less than half an 8-bit
+  // level); with a rolling shutter, row v starts readout_s × v / (height - 1) late (bands
+  // of rows share a time, so that the motion within a band stays below 1/8 px).
+  std::function<Rigid3(double t)> cam_from_marker_at;
+  double exposure_s = 0.0;
+  double readout_s = 0.0;
 };
 
 // Sub-frames the exposure integral starts with and may double to.

@@ -1,8 +1,9 @@
 #!/usr/bin/env bash
 # The sequence runs (issue 22): an orbit under three noise levels, an approach and a
-# hand-held shake with motion blur (scenarios/sequences/), swept and reported into
-# results/sequences/ (report.md, sequence_summary.csv, sequences.csv per scenario, plots); the
-# README's "Tracking over time" table is generated from it (scripts/readme_figures.py).
+# hand-held shake with motion blur and a rolling shutter (scenarios/sequences/), swept and
+# reported into results/sequences/ (report.md, sequence_summary.csv, sequences.csv per
+# scenario, plots); the README's "Tracking over time" table is generated from it
+# (scripts/readme_figures.py).
 # Assumes a build (scripts/build.sh).
 set -euo pipefail
 cd "$(dirname "$0")/.."

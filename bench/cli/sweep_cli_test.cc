@@ -90,7 +90,8 @@ TEST_F(SweepCliTest, SequencesAreReproducibleAndTheirOcclusionsHideTheMarker) {
           "/trackers/external/testdata/counting_tracker.py, counting], markers: [apriltag]}\n"
           "poses: {sampler: look_at, distance_m: 0.7, tilt_deg: [20, 30], max_offset_px: 30}\n"
           "trajectory: {kind: handheld, fps: 10, duration_s: 1.5, static_s: 0.3, exposure_s: 0.02,"
-          " linear_speed_m_s: 0.1, angular_speed_deg_s: 10, occlusions: [[6, 8]]}\n"
+          " readout_s: 0.01, linear_speed_m_s: 0.1, angular_speed_deg_s: 10, occlusions: [[6, "
+          "8]]}\n"
           "sweep: {parameter: noise_var, values: [0.01]}\ntrials: 3\nseed: 4\n");
   const std::string one = (work_ / "one").string(), two = (work_ / "two").string();
   ASSERT_EQ(Run({"sweep", scenario, "--out", one, "--threads", "1"}).status, 0);

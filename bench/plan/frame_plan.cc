@@ -116,12 +116,11 @@ bool PlanTrial(const Scenario& s,
             CamFromMarker(TrajectoryPose(o, motion->trial, motion->camera, o.TruthTime(k)), marker);
         // Each frame its own noise, the same for every marker at this (cell, trial, frame).
         f.noise_seed = SeedFor(noise_seed, static_cast<uint64_t>(k), 0, SeedPurpose::kNoise);
-        if (o.exposure_s > 0.0) {
+        if (o.exposure_s > 0.0 || o.readout_s > 0.0) {
           const Rigid3 center_from_marker = CamFromMarker(Rigid3(), marker);
-          f.exposure_cam_from_marker = [motion, k, center_from_marker](double u) {
+          f.cam_from_marker_at = [motion, k, center_from_marker](double t) {
             const TrajectoryOptions& o = motion->options;
-            return TrajectoryPose(
-                       o, motion->trial, motion->camera, o.FrameTime(k) + u * o.exposure_s) *
+            return TrajectoryPose(o, motion->trial, motion->camera, o.FrameTime(k) + t) *
                    center_from_marker;
           };
         }
@@ -179,7 +178,11 @@ FrameRequest RequestFor(const Scenario& s, const PlannedFrame& f) {
   request.channels = f.channels;
   request.noise_seed = f.noise_seed;
   request.scene.marker_hidden = f.occluded;
-  request.exposure_cam_from_marker = f.exposure_cam_from_marker;
+  request.cam_from_marker_at = f.cam_from_marker_at;
+  if (s.trajectory) {
+    request.exposure_s = s.trajectory->exposure_s;
+    request.readout_s = s.trajectory->readout_s;
+  }
   return request;
 }
 

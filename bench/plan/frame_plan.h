@@ -29,11 +29,11 @@ struct PlannedFrame {
   uint64_t noise_seed = 0;
   // Sequences (Scenario::trajectory): the frame's place in its sequence (-1: not a
   // sequence; its truth is at the trajectory's TruthTime), whether the marker is hidden, and
-  // the pose over its exposure (FrameRequest::exposure_cam_from_marker; empty without
-  // exposure_s).
+  // the moving camera's pose from the frame's start (FrameRequest::cam_from_marker_at; empty
+  // without exposure_s or readout_s).
   int sequence_frame = -1;
   bool occluded = false;
-  std::function<Rigid3(double)> exposure_cam_from_marker;
+  std::function<Rigid3(double)> cam_from_marker_at;
 };
 
 // The closed range of a sweep parameter's values, the same as its render or poses key's.

@@ -66,6 +66,7 @@ TrajectoryOptions ReadTrajectory(const YamlMap& map) {
   if (t.Frames() > kMaxFrames) map.Fail("duration_s", "at most 100000 frames (fps × duration_s)");
   if (map.Has("static_s")) t.static_s = map.GetDouble("static_s", 0.0, t.duration_s);
   if (map.Has("exposure_s")) t.exposure_s = map.GetDouble("exposure_s", 0.0, 1.0 / t.fps);
+  if (map.Has("readout_s")) t.readout_s = map.GetDouble("readout_s", 0.0, 1.0 / t.fps);
   const auto only_for = [&](const std::string& key, TrajectoryKind k) {
     if (map.Has(key) && t.kind != k) {
       map.Fail(key, std::string("no such key for kind ") + TrajectoryKindName(t.kind));

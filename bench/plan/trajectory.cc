@@ -117,7 +117,7 @@ TrialTrajectory SampleTrialTrajectory(const TrajectoryOptions& options,
     trial.start = DrawLookAt(poses, &rng);
     bool fits = true;
     for (int k = 0; fits && k < options.Frames(); ++k) {
-      for (const double t : {options.FrameTime(k), options.FrameTime(k) + options.exposure_s}) {
+      for (const double t : {options.FrameTime(k), options.FrameEnd(k)}) {
         fits = fits &&
                MarkersFitInImage(
                    markers, camera, TrajectoryPose(options, trial, camera, t), poses.border_px);

@@ -7,9 +7,10 @@
 // - handheld: a seeded smooth random shake about the start pose, with the given RMS linear
 //   and angular speeds (a sum of sinusoids per axis: band-limited, so the marker stays in
 //   view, and smooth, so a tracker's prediction has something to predict).
-// The camera holds still for the first static_s seconds (the jitter segment). Frame k is at
-// time k / fps; with exposure_s > 0 its image integrates the motion over
-// [k / fps, k / fps + exposure_s] and its ground truth is the pose at mid-exposure.
+// The camera holds still for the first static_s seconds (the jitter segment). Frame k's first
+// row starts its exposure at k / fps; with exposure_s > 0 each row integrates the motion over
+// its exposure, with readout_s > 0 row v starts readout_s × v / (height - 1) late (a rolling
+// shutter), and the ground truth is the pose when the middle row is at mid-exposure.
 #pragma once
 
 #include <array>

@@ -1,6 +1,6 @@
 // `trajectory:` of a sequence scenario (issue 22): the camera's path (bench/plan/trajectory.h
-// draws and evaluates it), the video's frame rate and length, its still start, the exposure
-// and the frames where the marker is hidden.
+// draws and evaluates it), the video's frame rate and length, its still start, the exposure,
+// the rolling shutter's readout and the frames where the marker is hidden.
 #pragma once
 
 #include <vector>
@@ -22,6 +22,7 @@ struct TrajectoryOptions {
   double duration_s = 5.0;
   double static_s = 0.0;
   double exposure_s = 0.0;
+  double readout_s = 0.0;       // rolling shutter: the last row starts this much after the first
   double degrees_per_s = 30.0;  // orbit
   double from_m = 2.0;          // approach
   double to_m = 0.5;
@@ -31,9 +32,11 @@ struct TrajectoryOptions {
 
   int Frames() const;
   bool Occluded(int frame) const;
-  // The start of frame k's exposure, and the time of its ground truth.
+  // The start of frame k's first row's exposure; the time of its ground truth (the middle
+  // row at mid-exposure); the end of its last row's exposure.
   double FrameTime(int frame) const;
-  double TruthTime(int frame) const { return FrameTime(frame) + 0.5 * exposure_s; }
+  double TruthTime(int frame) const { return FrameTime(frame) + 0.5 * (exposure_s + readout_s); }
+  double FrameEnd(int frame) const { return FrameTime(frame) + exposure_s + readout_s; }
 };
 
 const char* TrajectoryKindName(TrajectoryKind kind);

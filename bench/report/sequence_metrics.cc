@@ -59,10 +59,10 @@ SequenceMetrics MeasureSequence(const std::vector<SequenceFrame>& frames,
   m.rpe_m = RootMean(rpe_sq, pairs);
   m.rpe_deg = RootMean(rpe_deg_sq, pairs);
 
-  // Jitter: over the frames whose whole exposure falls in the still start.
+  // Jitter: over the frames whose every row's exposure falls in the still start.
   std::vector<Eigen::Vector3d> still;
   for (int k = 0; k < n; ++k) {
-    if (trajectory.FrameTime(k) + trajectory.exposure_s > trajectory.static_s) break;
+    if (trajectory.FrameEnd(k) > trajectory.static_s) break;
     if (!frames[k].occluded && frames[k].estimate) {
       still.push_back(CameraCenterInMarker(*frames[k].estimate));
     }

@@ -24,6 +24,7 @@ TrajectoryOptions TrajectoryOf(const nlohmann::json& entry) {
   o.duration_s = t.at("frames").get<int>() / o.fps;
   o.static_s = t.at("static_s").get<double>();
   o.exposure_s = t.at("exposure_s").get<double>();
+  o.readout_s = t.at("readout_s").get<double>();
   for (const nlohmann::json& r : t.at("occlusions")) {
     o.occlusions.push_back({r.at(0).get<int>(), r.at(1).get<int>()});
   }

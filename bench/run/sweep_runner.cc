@@ -405,6 +405,7 @@ nlohmann::json ScenarioManifest(const PreparedSweep& p, int threads) {
                            {"frames", t->Frames()},
                            {"static_s", t->static_s},
                            {"exposure_s", t->exposure_s},
+                           {"readout_s", t->readout_s},
                            {"occlusions", occlusions}};
   }
   entry["frames"] = FrameCount(p.jobs);
