@@ -78,9 +78,9 @@ RasterResult RasterizeExposure(const Scene& scene,
   }
 }
 
-// The scene seen from a moving camera whose rows start their exposure at `start_of_row(v)`
-// (v a row of the canvas `scene`): the exposure integral of RasterizeExposure, or a still
-// render without exposure.
+// The scene (or a band of its rows) seen from the moving camera, every row starting its
+// exposure at start_s: the exposure integral of RasterizeExposure, or a still render without
+// exposure.
 RasterResult RasterizeRows(const Scene& scene,
                            int channels,
                            const FrameRequest& request,
@@ -95,14 +95,21 @@ RasterResult RasterizeRows(const Scene& scene,
       scene, channels, [&](double u) { return pose_at(start_s + u * request.exposure_s); });
 }
 
-// The largest image motion (px) of the marker's ink outline between times a and b.
+// The largest image motion (px) between times a and b of the outline of the marker's ink and
+// of its finite sheet, if any (all else is uniform).
 double ImageMotionPx(const Scene& scene,
                      const std::function<Rigid3(double)>& pose_at,
                      double a,
                      double b) {
+  Eigen::AlignedBox2d outline = scene.marker->InkBounds();
+  if (scene.sheet_size_m) {
+    const Eigen::Vector2d center = outline.center(), half = 0.5 * *scene.sheet_size_m;
+    outline.extend(center - half);
+    outline.extend(center + half);
+  }
   double largest = 0.0;
   const Rigid3 pose_a = pose_at(a), pose_b = pose_at(b);
-  for (const Eigen::Vector2d& p : BoxOutline(scene.marker->InkBounds(), 4)) {
+  for (const Eigen::Vector2d& p : BoxOutline(outline, 4)) {
     const Eigen::Vector3d x(p.x(), p.y(), 0.0);
     const Eigen::Vector3d in_a = pose_a * x, in_b = pose_b * x;
     if (!(in_a.z() > 0.0 && in_b.z() > 0.0)) continue;
