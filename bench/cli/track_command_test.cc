@@ -13,6 +13,9 @@
 #include <string>
 #include <vector>
 
+#include "bench/plan/frame_plan.h"
+#include "bench/plan/marker_files.h"
+#include "bench/plan/scenario.h"
 #include "bench/run/frames_csv.h"
 #include "bench/run/pose_overlay.h"
 #include "core/camera_yaml.h"
@@ -353,6 +356,18 @@ TEST(TrackCommand, TumTrajectoryOfAVideo) {
   }
 }
 
+// Whether an overlay frame has the y axis's green within 2 px of `px` (circles_a has no green).
+bool GreenNear(const cv::Mat& bgr, const Eigen::Vector2d& px) {
+  for (int dy = -2; dy <= 2; ++dy) {
+    for (int dx = -2; dx <= 2; ++dx) {
+      const cv::Vec3b c = bgr.at<cv::Vec3b>(static_cast<int>(std::lround(px.y())) + dy,
+                                            static_cast<int>(std::lround(px.x())) + dx);
+      if (c[1] > 150 && c[0] < 110 && c[2] < 110) return true;
+    }
+  }
+  return false;
+}
+
 // --overlay: every frame with the pose drawn; the y axis (green; circles_a has no green)
 // lies where the true pose projects it.
 TEST(TrackCommand, OverlayDrawsTheAxesWhereTheTruthProjectsThem) {
@@ -365,16 +380,6 @@ TEST(TrackCommand, OverlayDrawsTheAxesWhereTheTruthProjectsThem) {
   const double axis_m = PoseOverlay(options.overlay_path, camera, marker).AxisLengthM();
   cv::VideoCapture video(options.overlay_path, cv::CAP_FFMPEG);
   ASSERT_TRUE(video.isOpened());
-  const auto green_near = [](const cv::Mat& bgr, const Eigen::Vector2d& px) {
-    for (int dy = -2; dy <= 2; ++dy) {
-      for (int dx = -2; dx <= 2; ++dx) {
-        const cv::Vec3b c = bgr.at<cv::Vec3b>(static_cast<int>(std::lround(px.y())) + dy,
-                                              static_cast<int>(std::lround(px.x())) + dx);
-        if (c[1] > 150 && c[0] < 110 && c[2] < 110) return true;
-      }
-    }
-    return false;
-  };
   cv::Mat bgr;
   size_t frames = 0;
   for (; video.read(bgr); ++frames) {
@@ -382,14 +387,71 @@ TEST(TrackCommand, OverlayDrawsTheAxesWhereTheTruthProjectsThem) {
     const Rigid3& truth = poses[frames];
     for (const double t : {0.3, 0.6, 0.9}) {
       const Eigen::Vector2d on_axis = camera.ImgFromCam(truth * Eigen::Vector3d(0, t * axis_m, 0));
-      EXPECT_TRUE(green_near(bgr, on_axis)) << "frame " << frames << " at " << t;
+      EXPECT_TRUE(GreenNear(bgr, on_axis)) << "frame " << frames << " at " << t;
     }
     // Beside the axis (a tenth of its length away along x), no green.
     const Eigen::Vector2d beside =
         camera.ImgFromCam(truth * Eigen::Vector3d(0.1 * axis_m, 0.6 * axis_m, 0));
-    EXPECT_FALSE(green_near(bgr, beside)) << "frame " << frames;
+    EXPECT_FALSE(GreenNear(bgr, beside)) << "frame " << frames;
   }
   EXPECT_EQ(frames, poses.size());
+}
+
+// A test video made from a sequence scenario (issue 22): the orbit's first moving second of
+// circles_a (scenarios/sequences/orbit.yaml, no noise), tracked as a video with --overlay;
+// every frame is tracked and the drawn y axis lies where the frame's ground truth projects it.
+TEST(TrackCommand, OverlayOfAVideoFromASequenceScenario) {
+  const Scenario scenario = LoadScenario("scenarios/sequences/orbit.yaml");
+  constexpr int kStillFrames = 30, kFrames = 60;  // the orbit holds still for 1 s at 30 fps
+  const std::vector<PlannedFrame> plan = PlanFrames(scenario, kFrames);
+  const std::string video_path = WriteTestFile("orbit.avi", "");
+  cv::VideoWriter writer(video_path,
+                         cv::CAP_OPENCV_MJPEG,
+                         cv::VideoWriter::fourcc('M', 'J', 'P', 'G'),
+                         scenario.trajectory->fps,
+                         cv::Size(640, 480));
+  ASSERT_TRUE(writer.isOpened());
+  std::vector<Rigid3> truths;
+  for (int k = kStillFrames; k < kFrames; ++k) {
+    ASSERT_EQ(plan[k].sequence_frame, k);
+    Image8 image = RenderFrame(RequestFor(scenario, plan[k])).image;
+    ASSERT_EQ(image.channels, 3);
+    const cv::Mat rgb(480, 640, CV_8UC3, image.pixels.data());
+    cv::Mat bgr;
+    cv::cvtColor(rgb, bgr, cv::COLOR_RGB2BGR);
+    writer.write(bgr);
+    truths.push_back(plan[k].cam_from_marker);
+  }
+  writer.release();
+  // The marker file as the scenario scales it (equal ink area), beside the video.
+  const std::string folder = std::filesystem::path(video_path).parent_path().string();
+  TrackCommandOptions options =
+      OptionsFor("circle", WriteScaledMarkerFiles(scenario, folder).at("circles_a"), "orbit.csv");
+  options.inputs = {video_path};
+  options.overlay_path = WriteTestFile("orbit_overlay.mp4", "");
+  RunTrackCommand(options);
+  const MarkerSpec marker = LoadMarkerYaml(options.marker_path);
+  const Camera camera = LoadCameraYaml(options.camera_path);
+  const double axis_m = PoseOverlay(options.overlay_path, camera, marker).AxisLengthM();
+  cv::VideoCapture video(options.overlay_path, cv::CAP_FFMPEG);
+  ASSERT_TRUE(video.isOpened());
+  cv::Mat bgr;
+  size_t frames = 0;
+  for (; video.read(bgr); ++frames) {
+    ASSERT_LT(frames, truths.size());
+    for (const double t : {0.3, 0.6, 0.9}) {
+      const Eigen::Vector2d on_axis =
+          camera.ImgFromCam(truths[frames] * Eigen::Vector3d(0, t * axis_m, 0));
+      EXPECT_TRUE(GreenNear(bgr, on_axis)) << "frame " << frames << " at " << t;
+    }
+    const Eigen::Vector2d beside =
+        camera.ImgFromCam(truths[frames] * Eigen::Vector3d(0.1 * axis_m, 0.6 * axis_m, 0));
+    EXPECT_FALSE(GreenNear(bgr, beside)) << "frame " << frames;
+  }
+  EXPECT_EQ(frames, truths.size());
+  const std::vector<std::string> rows = ReadLines(options.out_csv);
+  ASSERT_EQ(rows.size(), 1 + truths.size());
+  for (size_t i = 1; i < rows.size(); ++i) EXPECT_THAT(rows[i], HasSubstr(",ok,")) << rows[i];
 }
 
 TEST(TrackCommand, FileNamesAreQuoted) {
