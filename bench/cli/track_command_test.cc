@@ -368,13 +368,10 @@ bool GreenNear(const cv::Mat& bgr, const Eigen::Vector2d& px) {
   return false;
 }
 
-// --overlay: every frame with the pose drawn; the y axis (green; circles_a has no green)
-// lies where the true pose projects it.
-TEST(TrackCommand, OverlayDrawsTheAxesWhereTheTruthProjectsThem) {
-  TrackCommandOptions options = CirclesVideoOptions("overlay_in");
-  options.overlay_path = WriteTestFile("overlay.mp4", "");
-  const std::vector<Rigid3> poses = MovingView(kVideoDistanceM);
-  RunTrackCommand(options);
+// The video at options.overlay_path has a frame per pose of `truths`, each with the y axis
+// drawn where that pose projects it and no green beside it.
+void ExpectAxesWhereTheTruthProjectsThem(const TrackCommandOptions& options,
+                                         const std::vector<Rigid3>& truths) {
   const MarkerSpec marker = LoadMarkerYaml(options.marker_path);
   const Camera camera = LoadCameraYaml(options.camera_path);
   const double axis_m = PoseOverlay(options.overlay_path, camera, marker).AxisLengthM();
@@ -383,8 +380,8 @@ TEST(TrackCommand, OverlayDrawsTheAxesWhereTheTruthProjectsThem) {
   cv::Mat bgr;
   size_t frames = 0;
   for (; video.read(bgr); ++frames) {
-    ASSERT_LT(frames, poses.size());
-    const Rigid3& truth = poses[frames];
+    ASSERT_LT(frames, truths.size());
+    const Rigid3& truth = truths[frames];
     for (const double t : {0.3, 0.6, 0.9}) {
       const Eigen::Vector2d on_axis = camera.ImgFromCam(truth * Eigen::Vector3d(0, t * axis_m, 0));
       EXPECT_TRUE(GreenNear(bgr, on_axis)) << "frame " << frames << " at " << t;
@@ -394,7 +391,16 @@ TEST(TrackCommand, OverlayDrawsTheAxesWhereTheTruthProjectsThem) {
         camera.ImgFromCam(truth * Eigen::Vector3d(0.1 * axis_m, 0.6 * axis_m, 0));
     EXPECT_FALSE(GreenNear(bgr, beside)) << "frame " << frames;
   }
-  EXPECT_EQ(frames, poses.size());
+  EXPECT_EQ(frames, truths.size());
+}
+
+// --overlay: every frame with the pose drawn; the y axis (green; circles_a has no green)
+// lies where the true pose projects it.
+TEST(TrackCommand, OverlayDrawsTheAxesWhereTheTruthProjectsThem) {
+  TrackCommandOptions options = CirclesVideoOptions("overlay_in");
+  options.overlay_path = WriteTestFile("overlay.mp4", "");
+  RunTrackCommand(options);
+  ExpectAxesWhereTheTruthProjectsThem(options, MovingView(kVideoDistanceM));
 }
 
 // A test video made from a sequence scenario (issue 22): the orbit's first moving second of
@@ -430,25 +436,7 @@ TEST(TrackCommand, OverlayOfAVideoFromASequenceScenario) {
   options.inputs = {video_path};
   options.overlay_path = WriteTestFile("orbit_overlay.mp4", "");
   RunTrackCommand(options);
-  const MarkerSpec marker = LoadMarkerYaml(options.marker_path);
-  const Camera camera = LoadCameraYaml(options.camera_path);
-  const double axis_m = PoseOverlay(options.overlay_path, camera, marker).AxisLengthM();
-  cv::VideoCapture video(options.overlay_path, cv::CAP_FFMPEG);
-  ASSERT_TRUE(video.isOpened());
-  cv::Mat bgr;
-  size_t frames = 0;
-  for (; video.read(bgr); ++frames) {
-    ASSERT_LT(frames, truths.size());
-    for (const double t : {0.3, 0.6, 0.9}) {
-      const Eigen::Vector2d on_axis =
-          camera.ImgFromCam(truths[frames] * Eigen::Vector3d(0, t * axis_m, 0));
-      EXPECT_TRUE(GreenNear(bgr, on_axis)) << "frame " << frames << " at " << t;
-    }
-    const Eigen::Vector2d beside =
-        camera.ImgFromCam(truths[frames] * Eigen::Vector3d(0.1 * axis_m, 0.6 * axis_m, 0));
-    EXPECT_FALSE(GreenNear(bgr, beside)) << "frame " << frames;
-  }
-  EXPECT_EQ(frames, truths.size());
+  ExpectAxesWhereTheTruthProjectsThem(options, truths);
   const std::vector<std::string> rows = ReadLines(options.out_csv);
   ASSERT_EQ(rows.size(), 1 + truths.size());
   for (size_t i = 1; i < rows.size(); ++i) EXPECT_THAT(rows[i], HasSubstr(",ok,")) << rows[i];
