@@ -609,6 +609,8 @@ TEST_F(SweepCliTest, BadInputIsRejectedBeforeAnythingIsWritten) {
        "nosuch.yaml: cannot open the file"},
       {replaced("distance_m: 0.8", "distance_m: 0.05"),
        "bad.yaml:11: key 'poses.distance_m': expected markers in view"},
+      {replaced("{name: aruco}", "{name: truth, exec: [python3, tracker.py]}"),
+       "bad.yaml:10: key 'trackers[2].name': expected a name other than 'truth'"},
       {good + "trajectory: {kind: spiral, fps: 30, duration_s: 2}\n",
        "bad.yaml:16: key 'trajectory.kind': expected orbit, approach or handheld"},
       {good + "trajectory: {kind: orbit, fps: 30, duration_s: 2, from_m: 3}\n",

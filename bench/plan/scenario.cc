@@ -262,6 +262,8 @@ TrackerEntry ReadExecTracker(const YamlMap& t, const Scenario& s) {
   if (std::find(names.begin(), names.end(), entry.name) != names.end()) {
     t.Fail("name", "a name that is not a built-in tracker's");
   }
+  if (entry.name == "truth")
+    t.Fail("name", "a name other than 'truth' (the TUM files' ground truth)");
   entry.exec = t.Get<std::vector<std::string>>("exec");
   if (entry.exec.empty() || entry.exec[0].empty()) t.Fail("exec", "a command: [program, args...]");
   entry.working_dir = std::filesystem::absolute(s.path).parent_path().string();
