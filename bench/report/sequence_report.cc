@@ -162,8 +162,11 @@ std::vector<SequenceSummaryRow> WriteSequenceResults(const std::string& folder,
   // Per (cell, marker, tracker), over the trials.
   std::vector<SequenceSummaryRow> rows;
   std::vector<std::vector<double>> ate, rpe, rpe_deg, jitter, reacquire, tracking, detection;
-  for (const auto& [r, measured] : writer.Finish()) {
-    const auto& [tracker, m] = measured;
+  for (const auto& measured : writer.Finish()) {
+    // Not structured bindings: a lambda below uses them (C++17 cannot capture those).
+    const FrameRow& r = measured.first;
+    const std::string& tracker = measured.second.first;
+    const SequenceMetrics& m = measured.second.second;
     const auto same = [&](const SequenceSummaryRow& s) {
       return s.sweep_value == r.sweep_value && s.grid == r.grid && s.marker == r.marker &&
              s.tracker == tracker;
