@@ -135,7 +135,10 @@ RasterResult RasterizeMoving(const Scene& scene,
   constexpr double kBandMotionPx = 0.125;
   const double motion =
       ImageMotionPx(scene, request.cam_from_marker_at, row_start_s(0), row_start_s(rows - 1));
-  const int bands = std::clamp(static_cast<int>(std::ceil(motion / kBandMotionPx)), 1, rows);
+  // Clamped as a double: a point near the camera plane can move by any amount (or NaN).
+  const double wanted = std::ceil(motion / kBandMotionPx);
+  const int bands =
+      std::isnan(wanted) ? rows : static_cast<int>(std::clamp(wanted, 1.0, double(rows)));
   RasterResult canvas{ImageF(scene.camera.width, rows, channels), PixelRect{}};
   for (int b = 0; b < bands; ++b) {
     const int v0 = b * rows / bands, v1 = (b + 1) * rows / bands;
