@@ -396,7 +396,6 @@ PhotometricResult Solve(const PixelModel& model,
   Eigen::VectorXd jtr;
   double cost = model.Evaluate(theta, &jtj, &jtr);
   PhotometricResult result;
-  result.initial_cost = 0.5 * cost;
   double damping = 1e-3;
   for (int iteration = 0; iteration < max_iterations; ++iteration) {
     Eigen::MatrixXd damped = jtj;

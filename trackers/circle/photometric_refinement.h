@@ -46,7 +46,6 @@ struct PhotometricResult {
   double sigma_px = 0.0;
   int pixels = 0;
   int iterations = 0;  // over all rounds
-  double initial_cost = 0.0;
   double final_cost = 0.0;
 };
 
