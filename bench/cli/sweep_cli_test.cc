@@ -613,11 +613,14 @@ TEST_F(SweepCliTest, BadInputIsRejectedBeforeAnythingIsWritten) {
        "bad.yaml:10: key 'trackers[2].name': expected a name other than 'truth'"},
       {good + "trajectory: {kind: spiral, fps: 30, duration_s: 2}\n",
        "bad.yaml:16: key 'trajectory.kind': expected orbit, approach or handheld"},
-      {good + "trajectory: {kind: orbit, fps: 30, duration_s: 2, from_m: 3}\n",
-       "bad.yaml:16: key 'trajectory.from_m': expected no such key for kind orbit"},
+      {good + "trajectory: {kind: orbit, fps: 30, duration_s: 2, to_m: 3}\n",
+       "bad.yaml:16: key 'trajectory.to_m': expected no such key for kind orbit"},
       {good + "trajectory: {kind: orbit, fps: 30, duration_s: 2, occlusions: [[5, 60]]}\n",
        "bad.yaml:16: key 'trajectory.occlusions': expected a list of [first, last] frame ranges "
        "with 0 <= first <= last < 60"},
+      {good + "trajectory: {kind: approach, fps: 30, duration_s: 2, from_m: 3}\n",
+       "bad.yaml:16: key 'trajectory.from_m': expected no such key: a trajectory starts at "
+       "poses.distance_m"},
       {good + "trajectory: {kind: handheld, fps: 30, duration_s: 2, linear_speed_m_s: 9}\n",
        "bad.yaml:16: key 'trajectory': expected markers in view: no start in 1000 draws"},
   };

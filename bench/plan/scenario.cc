@@ -76,7 +76,10 @@ TrajectoryOptions ReadTrajectory(const YamlMap& map) {
   if (only_for("degrees_per_s", TrajectoryKind::kOrbit)) {
     t.degrees_per_s = map.GetDouble("degrees_per_s", -3600.0, 3600.0);
   }
-  if (only_for("from_m", TrajectoryKind::kApproach)) t.from_m = map.GetLength("from_m");
+  if (map.Has("from_m")) {
+    map.Fail("from_m",
+             "no such key: a trajectory starts at poses.distance_m, which a sweep may vary");
+  }
   if (only_for("to_m", TrajectoryKind::kApproach)) t.to_m = map.GetLength("to_m");
   if (only_for("linear_speed_m_s", TrajectoryKind::kHandheld)) {
     t.linear_speed_m_s = map.GetDouble("linear_speed_m_s", 0.0, 10.0);

@@ -104,6 +104,25 @@ TEST(Scenario, GridSweepsEveryCombination) {
   EXPECT_TRUE(frames[0].example);
 }
 
+// An approach starts at poses.distance_m, so a distance sweep varies where each video
+// starts; every video ends at to_m.
+TEST(Scenario, AnApproachStartsAtTheSweptDistance) {
+  const Scenario s = LoadScenario(
+      WriteTestFile("scenario.yaml",
+                    Replace(GoodScenario(),
+                            "sweep:\n  parameter: blur_sigma_px\n  values: [0, 1, 2]\n",
+                            "trajectory: {kind: approach, fps: 10, duration_s: 1, to_m: 0.4}\n"
+                            "sweep:\n  parameter: distance_m\n  values: [0.8, 1.5]\n")));
+  const std::vector<PlannedFrame> frames = PlanFrames(s);
+  ASSERT_EQ(frames.size(), 2u * 3 * 10);  // values x trials x frames
+  for (const PlannedFrame& f : frames) {
+    const double distance = f.cam_from_marker.translation.norm();
+    const double expected = f.sweep_value + (0.4 - f.sweep_value) * f.sequence_frame / 10.0;
+    // Within the look-at's offset of the marker centre from the image centre.
+    EXPECT_NEAR(distance, expected, 0.02 * expected) << f.index;
+  }
+}
+
 TEST(Scenario, GridErrorsNameTheirKey) {
   const std::string one_axis = "sweep:\n  parameter: blur_sigma_px\n  values: [0, 1, 2]\n";
   EXPECT_THAT(ErrorOf(Replace(GoodScenario(), one_axis, "sweep:\n  grid: {tilt_deg: [0, 1]}\n")),

@@ -85,7 +85,8 @@ Rigid3 TrajectoryPose(const TrajectoryOptions& o,
       return LookAtPose(look_at, camera);
     case TrajectoryKind::kApproach: {
       const double span = std::max(o.duration_s - o.static_s, 1e-9);
-      look_at.distance_m = o.from_m + (o.to_m - o.from_m) * std::min(1.0, moving / span);
+      const double from_m = trial.start.distance_m;
+      look_at.distance_m = from_m + (o.to_m - from_m) * std::min(1.0, moving / span);
       return LookAtPose(look_at, camera);
     }
     default: {

@@ -3,7 +3,7 @@
 // (bench/plan/pose_sampler.h) and moves from there:
 // - orbit: the azimuth turns at degrees_per_s about the marker's normal, distance and tilt
 //   kept;
-// - approach: the distance goes linearly from from_m to to_m;
+// - approach: the distance goes linearly from the start's (poses.distance_m) to to_m;
 // - handheld: a seeded smooth random shake about the start pose, with the given RMS linear
 //   and angular speeds (a sum of sinusoids per axis: band-limited, so the marker stays in
 //   view, and smooth, so a tracker's prediction has something to predict).

@@ -22,10 +22,9 @@ struct TrajectoryOptions {
   double duration_s = 5.0;
   double static_s = 0.0;
   double exposure_s = 0.0;
-  double readout_s = 0.0;       // rolling shutter: the last row starts this much after the first
-  double degrees_per_s = 30.0;  // orbit
-  double from_m = 2.0;          // approach
-  double to_m = 0.5;
+  double readout_s = 0.0;         // rolling shutter: the last row starts this much after the first
+  double degrees_per_s = 30.0;    // orbit
+  double to_m = 0.5;              // approach: from poses.distance_m to this
   double linear_speed_m_s = 0.1;  // handheld, RMS
   double angular_speed_deg_s = 20.0;
   std::vector<FrameRange> occlusions;

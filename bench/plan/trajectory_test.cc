@@ -39,10 +39,9 @@ TEST(Trajectory, ApproachGoesLinearlyFromFarToNear) {
   TrajectoryOptions o;
   o.kind = TrajectoryKind::kApproach;
   o.duration_s = 4.0;
-  o.from_m = 2.0;
   o.to_m = 0.4;
   const Camera camera;
-  const TrialTrajectory trial = StartAt(1.0, 20.0, 0.0);
+  const TrialTrajectory trial = StartAt(2.0, 20.0, 0.0);  // poses.distance_m
   const auto distance = [&](double t) {
     return CameraCenterInMarker(TrajectoryPose(o, trial, camera, t)).norm();
   };
