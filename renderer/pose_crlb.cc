@@ -44,17 +44,89 @@ void ForEachPixelPart(const Eigen::Vector2d& a,
   }
 }
 
-// d(pixel)/dθ of a point x_cam of the marker for θ = (ω, t) at the pose's translation t.
+// d(pixel)/dθ of a point x_cam of the marker imaged at a pose T = D·exp(θ)·T0, D the
+// camera's motion since the truth pose T0 (rotation R_D; the identity for a still camera):
+// dx_cam/dθ = R_D·[e_k × y | I] with y = R0·x_marker = R_Dᵀ(x_cam - t), t that of T.
 Eigen::Matrix<double, 2, 6> ImageVelocity(const Camera& camera,
                                           const Eigen::Vector3d& x_cam,
-                                          const Eigen::Vector3d& t) {
-  const Eigen::Vector3d y = x_cam - t;  // R0 · x_marker
+                                          const Rigid3& cam_from_marker,
+                                          const Eigen::Matrix3d& motion_rotation) {
+  const Eigen::Vector3d y = motion_rotation.transpose() * (x_cam - cam_from_marker.translation);
   Eigen::Matrix<double, 3, 6> dx_dtheta;
   for (int k = 0; k < 3; ++k) dx_dtheta.col(k) = Eigen::Vector3d::Unit(k).cross(y);
   dx_dtheta.rightCols<3>().setIdentity();
-  return ImgFromCamJacobian(camera, x_cam) * dx_dtheta;
+  return ImgFromCamJacobian(camera, x_cam) * motion_rotation * dx_dtheta;
 }
 
+// ∫ of the unit tent max(0, 1 - |s|) from -∞ to s.
+double TentIntegral(double s) {
+  if (s <= -1.0) return 0.0;
+  if (s <= 0.0) return 0.5 * (s + 1.0) * (s + 1.0);
+  if (s <= 1.0) return 1.0 - 0.5 * (1.0 - s) * (1.0 - s);
+  return 1.0;
+}
+
+// One instant of a moving camera's exposure: its pose, the rotation of its motion since the
+// truth pose, and each canvas row's weight (rows -margin .. height + margin - 1).
+struct ExposureSample {
+  Rigid3 cam_from_marker;
+  Eigen::Matrix3d motion_rotation = Eigen::Matrix3d::Identity();
+  std::vector<double> row_weight;
+};
+
+// The image is each row's mean over its exposure of the still images along the path, and so
+// is ∇θI. Times τ_j on an even grid over every row's exposure, close enough that the image
+// moves at most max_motion_step_px between two; each row's mean is that of the piecewise
+// linear interpolation between them (for a global shutter, the trapezoidal rule; a row
+// without exposure reads the interpolation at its start).
+std::vector<ExposureSample> ExposureSamples(const FrameRequest& request,
+                                            int margin,
+                                            const CrlbOptions& options) {
+  const Scene& scene = request.scene;
+  const int rows = scene.camera.height + 2 * margin;
+  if (!request.cam_from_marker_at) {
+    return {ExposureSample{scene.cam_from_marker,
+                           Eigen::Matrix3d::Identity(),
+                           std::vector<double>(static_cast<size_t>(rows), 1.0)}};
+  }
+  const double exposure = request.exposure_s;
+  const auto row_start = [&](int y) {  // image row y; margin rows extrapolate
+    return request.readout_s * y / std::max(1, scene.camera.height - 1);
+  };
+  const double first = row_start(-margin), last = row_start(rows - 1 - margin) + exposure;
+  const double motion = ImageMotionPx(scene, request.cam_from_marker_at, first, last);
+  // Clamped as a double: a point near the camera plane can move by any amount (or NaN).
+  const double wanted = std::ceil(motion / options.max_motion_step_px);
+  int intervals = 0;  // none: every row is exposed at the one instant `first`
+  if (last > first) {
+    intervals =
+        std::isnan(wanted)
+            ? kMaxExposureSubframes
+            : static_cast<int>(std::clamp(wanted, 1.0, static_cast<double>(kMaxExposureSubframes)));
+  }
+  const double step = intervals > 0 ? (last - first) / intervals : 0.0;
+  const Eigen::Matrix3d truth_rotation = scene.cam_from_marker.rotation;
+  std::vector<ExposureSample> samples;
+  for (int j = 0; j <= intervals; ++j) {
+    const double tau = first + j * step;
+    ExposureSample sample;
+    sample.cam_from_marker = request.cam_from_marker_at(tau);
+    sample.motion_rotation = sample.cam_from_marker.rotation * truth_rotation.transpose();
+    for (int y = -margin; y < rows - margin; ++y) {
+      const double a = row_start(y);
+      double w = 1.0;
+      if (intervals > 0 && exposure > 0.0) {
+        w = step * (TentIntegral((a + exposure - tau) / step) - TentIntegral((a - tau) / step)) /
+            exposure;
+      } else if (intervals > 0) {
+        w = std::max(0.0, 1.0 - std::abs(a - tau) / step);
+      }
+      sample.row_weight.push_back(w);
+    }
+    samples.push_back(std::move(sample));
+  }
+  return samples;
+}
 // Gauss-Legendre nodes and weights on [0, 1] (Newton on the Legendre polynomial).
 template <int N>
 struct GaussLegendre {
@@ -157,17 +229,29 @@ Matrix6d PoseFisherInformation(const FrameRequest& request, const CrlbOptions& o
   const Eigen::AlignedBox2d window(
       Eigen::Vector2d(-margin - 0.5, -margin - 0.5),
       Eigen::Vector2d(camera.width - 0.5 + margin, camera.height - 0.5 + margin));
-  const std::vector<BoundaryPiece> pieces =
-      ImageBoundaryPieces(request.scene, channels, window, options.max_piece_px);
+  const std::vector<ExposureSample> samples = ExposureSamples(request, margin, options);
+  // The pieces at sample j: kept for a still camera, computed again for each pass otherwise
+  // (a fast motion has hundreds of samples).
+  Scene scene = request.scene;
+  std::vector<BoundaryPiece> pieces;
+  const auto pieces_at = [&](size_t j) -> const std::vector<BoundaryPiece>& {
+    if (samples.size() > 1 || pieces.empty()) {
+      scene.cam_from_marker = samples[j].cam_from_marker;
+      pieces = ImageBoundaryPieces(scene, channels, window, options.max_piece_px);
+    }
+    return pieces;
+  };
 
   // The pixels a piece crosses lie between the pixels of its ends.
   PixelRect deposits{camera.width + margin, camera.height + margin, -margin, -margin};
-  for (const BoundaryPiece& piece : pieces) {
-    for (const Eigen::Vector2d& end : {piece.a_px, piece.b_px}) {
-      deposits.x0 = std::min(deposits.x0, PixelIndex(end.x()));
-      deposits.y0 = std::min(deposits.y0, PixelIndex(end.y()));
-      deposits.x1 = std::max(deposits.x1, PixelIndex(end.x()) + 1);
-      deposits.y1 = std::max(deposits.y1, PixelIndex(end.y()) + 1);
+  for (size_t j = 0; j < samples.size(); ++j) {
+    for (const BoundaryPiece& piece : pieces_at(j)) {
+      for (const Eigen::Vector2d& end : {piece.a_px, piece.b_px}) {
+        deposits.x0 = std::min(deposits.x0, PixelIndex(end.x()));
+        deposits.y0 = std::min(deposits.y0, PixelIndex(end.y()));
+        deposits.x1 = std::max(deposits.x1, PixelIndex(end.x()) + 1);
+        deposits.y1 = std::max(deposits.y1, PixelIndex(end.y()) + 1);
+      }
     }
   }
   // Clip to the canvas, then leave room for the blur around the deposits.
@@ -183,22 +267,28 @@ Matrix6d PoseFisherInformation(const FrameRequest& request, const CrlbOptions& o
                        std::min(deposits.y1 + pad, camera.height + margin)};
   // Planes k · channels + c hold dI_c/dθ_k over `area`.
   ImageF derivative(area.x1 - area.x0, area.y1 - area.y0, 6 * channels);
-  const Eigen::Vector3d& t = request.scene.cam_from_marker.translation;
   std::vector<double> cuts;
-  for (const BoundaryPiece& piece : pieces) {
-    // dI/dθ_k per unit jump: -(image velocity · normal) × length.
-    const Eigen::Matrix<double, 6, 1> rate =
-        -ImageVelocity(camera, piece.mid_cam, t).transpose() * piece.normal_px;
-    ForEachPixelPart(piece.a_px, piece.b_px, &cuts, [&](int x, int y, double fraction) {
-      if (x < area.x0 || y < area.y0 || x >= area.x1 || y >= area.y1) return;
-      const size_t at = static_cast<size_t>(y - area.y0) * derivative.width + (x - area.x0);
-      for (int k = 0; k < 6; ++k) {
-        for (int c = 0; c < channels; ++c) {
-          derivative.plane(k * channels + c)[at] +=
-              static_cast<float>(fraction * rate[k] * piece.jump[static_cast<size_t>(c)]);
+  for (size_t j = 0; j < samples.size(); ++j) {
+    const ExposureSample& sample = samples[j];
+    for (const BoundaryPiece& piece : pieces_at(j)) {
+      // dI/dθ_k per unit jump: -(image velocity · normal) × length.
+      const Eigen::Matrix<double, 6, 1> rate =
+          -ImageVelocity(camera, piece.mid_cam, sample.cam_from_marker, sample.motion_rotation)
+               .transpose() *
+          piece.normal_px;
+      ForEachPixelPart(piece.a_px, piece.b_px, &cuts, [&](int x, int y, double fraction) {
+        if (x < area.x0 || y < area.y0 || x >= area.x1 || y >= area.y1) return;
+        const double weight = fraction * sample.row_weight[static_cast<size_t>(y + margin)];
+        if (weight == 0.0) return;
+        const size_t at = static_cast<size_t>(y - area.y0) * derivative.width + (x - area.x0);
+        for (int k = 0; k < 6; ++k) {
+          for (int c = 0; c < channels; ++c) {
+            derivative.plane(k * channels + c)[at] +=
+                static_cast<float>(weight * rate[k] * piece.jump[static_cast<size_t>(c)]);
+          }
         }
-      }
-    });
+      });
+    }
   }
   const PixelRect local{
       deposits.x0 - area.x0, deposits.y0 - area.y0, deposits.x1 - area.x0, deposits.y1 - area.y0};

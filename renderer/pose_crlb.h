@@ -9,7 +9,15 @@
 //
 // ∇θI is exact, not a finite difference: the colour jump across each printed edge times the
 // edge's normal image velocity, integrated along the edge (boundary_pieces.h) and assigned to
-// the pixels each piece crosses, then blurred like the image. Fisher information
+// the pixels each piece crosses, then blurred like the image.
+//
+// A moving camera (FrameRequest::cam_from_marker_at): θ moves the truth pose T0 and the
+// path with it, T(τ) = D(τ)·exp(θ)·T0 with D(τ) = T(τ)·T0⁻¹ the camera's own motion, taken as
+// known. Each row is the mean over its exposure (its own, with a rolling shutter) of the
+// still images along the path, and so is ∇θI. Knowing D can only lower the bound, so it
+// bounds a tracker that does not know the motion too.
+//
+// Fisher information
 // F = Σ_pixels Σ_channels ∇θI ∇θIᵀ / σ², cov(θ) ≥ F⁻¹, and the camera centre C = -Rᵀt has
 // cov(C) ≥ J F⁻¹ Jᵀ.
 #pragma once
@@ -27,6 +35,9 @@ struct CrlbOptions {
   // Longest edge piece in the image (px). Pieces are split at pixel borders, so the bound
   // changes by less than 0.1 % when this is halved (tested).
   double max_piece_px = 0.25;
+  // A moving camera's exposure is sampled at times this far apart in image motion (px); the
+  // bound changes by less than 1 % when this is halved (tested).
+  double max_motion_step_px = 0.25;
 };
 
 using Matrix6d = Eigen::Matrix<double, 6, 6>;

@@ -95,30 +95,6 @@ RasterResult RasterizeRows(const Scene& scene,
       scene, channels, [&](double u) { return pose_at(start_s + u * request.exposure_s); });
 }
 
-// The largest image motion (px) between times a and b of the outline of the marker's ink and
-// of its finite sheet, if any (all else is uniform).
-double ImageMotionPx(const Scene& scene,
-                     const std::function<Rigid3(double)>& pose_at,
-                     double a,
-                     double b) {
-  Eigen::AlignedBox2d outline = scene.marker->InkBounds();
-  if (scene.sheet_size_m) {
-    const Eigen::Vector2d center = outline.center(), half = 0.5 * *scene.sheet_size_m;
-    outline.extend(center - half);
-    outline.extend(center + half);
-  }
-  double largest = 0.0;
-  const Rigid3 pose_a = pose_at(a), pose_b = pose_at(b);
-  for (const Eigen::Vector2d& p : BoxOutline(outline, 4)) {
-    const Eigen::Vector3d x(p.x(), p.y(), 0.0);
-    const Eigen::Vector3d in_a = pose_a * x, in_b = pose_b * x;
-    if (!(in_a.z() > 0.0 && in_b.z() > 0.0)) continue;
-    largest =
-        std::max(largest, (scene.camera.ImgFromCam(in_a) - scene.camera.ImgFromCam(in_b)).norm());
-  }
-  return largest;
-}
-
 // A moving camera's canvas: one exposure for a global shutter; with a rolling shutter, bands
 // of rows, each rendered through a camera cropped to it at its rows' time.
 RasterResult RasterizeMoving(const Scene& scene,
@@ -159,6 +135,28 @@ RasterResult RasterizeMoving(const Scene& scene,
 }
 
 }  // namespace
+
+double ImageMotionPx(const Scene& scene,
+                     const std::function<Rigid3(double)>& pose_at,
+                     double a,
+                     double b) {
+  Eigen::AlignedBox2d outline = scene.marker->InkBounds();
+  if (scene.sheet_size_m) {
+    const Eigen::Vector2d center = outline.center(), half = 0.5 * *scene.sheet_size_m;
+    outline.extend(center - half);
+    outline.extend(center + half);
+  }
+  double largest = 0.0;
+  const Rigid3 pose_a = pose_at(a), pose_b = pose_at(b);
+  for (const Eigen::Vector2d& p : BoxOutline(outline, 4)) {
+    const Eigen::Vector3d x(p.x(), p.y(), 0.0);
+    const Eigen::Vector3d in_a = pose_a * x, in_b = pose_b * x;
+    if (!(in_a.z() > 0.0 && in_b.z() > 0.0)) continue;
+    largest =
+        std::max(largest, (scene.camera.ImgFromCam(in_a) - scene.camera.ImgFromCam(in_b)).norm());
+  }
+  return largest;
+}
 
 GroundTruth ComputeGroundTruth(const MarkerSpec& marker,
                                const Camera& camera,

@@ -41,6 +41,13 @@ struct RenderedFrame {
 
 RenderedFrame RenderFrame(const FrameRequest& request);
 
+// The largest image motion (px) between times a and b of the outline of the marker's ink and
+// of its finite sheet, if any (all else is uniform), for a camera at pose_at(t).
+double ImageMotionPx(const Scene& scene,
+                     const std::function<Rigid3(double)>& pose_at,
+                     double a,
+                     double b);
+
 // Pose, projected keypoints (true centres, through the distortion) and apparent size.
 GroundTruth ComputeGroundTruth(const MarkerSpec& marker,
                                const Camera& camera,
