@@ -26,6 +26,15 @@
 namespace markerbench {
 namespace {
 
+// Where a groundtruth.csv row's frame comes from: the sweep's cell and trial (empty for
+// explicit poses) and, in a sequence, its place in the video.
+struct FrameOrigin {
+  std::string sweep_parameter, sweep_value, grid, trial;
+  int sequence_frame = -1;  // -1: not a sequence
+  double time_s = NAN;      // the ground truth's time in its sequence
+  bool occluded = false;
+};
+
 // One groundtruth.csv row per rendered frame.
 class GroundTruthCsv {
  public:
@@ -35,24 +44,23 @@ class GroundTruthCsv {
             "height";
     for (const char* c : kPoseColumns) out_ << ',' << c;
     out_ << ",noise_var,blur_sigma_px,motion_blur_px,motion_blur_angle_deg,gain,offset,"
-            "jpeg_quality,channels,apparent_size_px,keypoints_px\n";
+            "jpeg_quality,channels,apparent_size_px,keypoints_px,sequence_frame,time_s,occluded,"
+            "exposure_s,readout_s\n";
   }
 
   void Write(int frame,
              const std::string& image,
              const std::string& marker,
-             const std::string& sweep_parameter,
-             const std::string& sweep_value,
-             const std::string& grid,
-             const std::string& trial,
+             const FrameOrigin& origin,
              uint64_t seed,
              const Camera& camera,
              const FrameRequest& request,
              const GroundTruth& truth) {
-    out_ << frame << ',' << CsvField(image) << ',' << CsvField(marker) << ',' << sweep_parameter
-         << ',' << sweep_value << ',' << CsvField(grid) << ',' << trial << ',' << seed << ','
-         << NumberText(camera.fx) << ',' << NumberText(camera.fy) << ',' << NumberText(camera.cx)
-         << ',' << NumberText(camera.cy) << ',' << camera.width << ',' << camera.height;
+    out_ << frame << ',' << CsvField(image) << ',' << CsvField(marker) << ','
+         << origin.sweep_parameter << ',' << origin.sweep_value << ',' << CsvField(origin.grid)
+         << ',' << origin.trial << ',' << seed << ',' << NumberText(camera.fx) << ','
+         << NumberText(camera.fy) << ',' << NumberText(camera.cx) << ',' << NumberText(camera.cy)
+         << ',' << camera.width << ',' << camera.height;
     out_ << PoseFields(truth.cam_from_marker);
     const Degradations& d = request.degradations;
     out_ << ',' << NumberText(d.noise_var) << ',' << NumberText(d.blur_sigma_px) << ','
@@ -63,7 +71,9 @@ class GroundTruthCsv {
       out_ << (k ? ";" : "") << NumberText(truth.keypoints_px[k].x()) << ' '
            << NumberText(truth.keypoints_px[k].y());
     }
-    out_ << '\n';
+    out_ << ',' << (origin.sequence_frame >= 0 ? std::to_string(origin.sequence_frame) : "") << ','
+         << NumberTextOrEmpty(origin.time_s) << ',' << int{origin.occluded} << ','
+         << NumberText(request.exposure_s) << ',' << NumberText(request.readout_s) << '\n';
     out_.flush();
   }
 
@@ -109,13 +119,17 @@ void RenderScenario(const std::string& scenario_path,
     request.keep_linear = write_float;
     const RenderedFrame frame = RenderFrame(request);
     const std::string image = WriteFrame(out_dir, f.index, frame);
+    FrameOrigin origin{
+        scenario.sweep_parameter, NumberText(f.sweep_value), f.grid, std::to_string(f.trial)};
+    if (f.sequence_frame >= 0) {
+      origin.sequence_frame = f.sequence_frame;
+      origin.time_s = scenario.trajectory->TruthTime(f.sequence_frame);
+      origin.occluded = f.occluded;
+    }
     csv.Write(f.index,
               image,
               request.scene.marker->name,
-              scenario.sweep_parameter,
-              NumberText(f.sweep_value),
-              f.grid,
-              std::to_string(f.trial),
+              origin,
               scenario.seed,
               scenario.camera,
               request,
@@ -204,10 +218,7 @@ void RenderPoses(const ExplicitRenderOptions& o) {
     csv.Write(static_cast<int>(i),
               image,
               frames.marker.name,
-              "",
-              "",
-              "",
-              "",
+              {},
               o.seed,
               frames.camera,
               request,

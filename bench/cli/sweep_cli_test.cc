@@ -154,6 +154,20 @@ TEST_F(SweepCliTest, SequencesAreReproducibleAndTheirOcclusionsHideTheMarker) {
   EXPECT_FALSE(fs::exists(one + "/seq/examples/apriltag.mp4.part.mp4"));
   const nlohmann::json manifest = ReadManifest(one + "/manifest.json");
   EXPECT_EQ(manifest["scenarios"]["seq"]["trajectory"]["frames"], 15);
+  // `render` writes each frame's place in its video: the frame, the truth's time (the middle
+  // row at mid-exposure: k / 10 + (0.02 + 0.01) / 2), the occlusion, exposure and readout.
+  const std::string rendered = (work_ / "rendered").string();
+  ASSERT_EQ(Run({"render", scenario, "--out", rendered, "--limit", "30"}).status, 0);
+  const auto truth = FramesTable(Read(rendered + "/groundtruth.csv"));
+  ASSERT_EQ(truth.size(), 30u);  // trial 0's videos: circles_a, then apriltag
+  for (const auto& row : truth) {
+    const int k = std::stoi(row.at("frame")) % 15;
+    EXPECT_EQ(row.at("sequence_frame"), std::to_string(k));
+    EXPECT_NEAR(std::stod(row.at("time_s")), k / 10.0 + 0.015, 1e-12);
+    EXPECT_EQ(row.at("occluded"), k >= 6 && k <= 8 ? "1" : "0");
+    EXPECT_EQ(row.at("exposure_s"), "0.02");
+    EXPECT_EQ(row.at("readout_s"), "0.01");
+  }
 }
 
 TEST_F(SweepCliTest, EveryFrameCarriesItsBoundUnlessTurnedOff) {

@@ -28,7 +28,11 @@ frame_NNNNNN.png   the frames (8-bit grey or RGB)
 groundtruth.csv    one row per frame: the frame, its image, marker, sweep value and trial,
                    the camera (fx, fy, cx, cy, width, height), the true pose r11..r33, tx,
                    ty, tz, the degradations, apparent_size_px and the marker's keypoints
-                   in pixels (keypoints_px: "u v" pairs separated by ";")
+                   in pixels (keypoints_px: "u v" pairs separated by ";"); for a video
+                   (a sequence scenario) its frame (from 0), the ground truth's time in
+                   seconds (time_s, the middle row at mid-exposure), whether the marker is
+                   hidden (occluded 1) and the exposure and rolling-shutter readout
+                   (exposure_s, readout_s); sequence_frame and time_s are empty otherwise
 camera.yaml        the camera (ROS camera_info; distortion plumb_bob, OpenCV's k1 k2 p1 p2 k3)
 markers/NAME.yaml  each marker as the frames show it: multiply every length by its `scale`
 dataset.json       the scenario's name and these files
