@@ -248,7 +248,8 @@ def plot_error_time(directory, scenario, entry):
     path = os.path.join(directory, scenario, "frames.csv")
     if not os.path.exists(path):
         return  # compressed (sweep --zstd): no plot
-    fps, exposure = trajectory["fps"], trajectory["exposure_s"]
+    fps = trajectory["fps"]
+    truth_delay = 0.5 * (trajectory["exposure_s"] + trajectory["readout_s"])  # TruthTime
     sequences = {}  # marker -> tracker -> [(time, error or None)], and the bound per frame
     with open(path, newline="") as f:
         first_value = None
@@ -262,12 +263,12 @@ def plot_error_time(directory, scenario, entry):
                 marker["frames"].append((row["frame"], number(row["crlb_position_med_m"])))
             k = len(marker["frames"]) - 1
             error = number(row["position_error_m"]) if row["status"] == "ok" else None
-            marker["trackers"].setdefault(row["tracker"], []).append((k / fps + exposure / 2, error))
+            marker["trackers"].setdefault(row["tracker"], []).append((k / fps + truth_delay, error))
     if not sequences:
         return
     fig, axes = plt.subplots(len(sequences), 1, figsize=(9, 2.8 * len(sequences)), squeeze=False)
     for ax, (marker, data) in zip(axes[:, 0], sequences.items()):
-        times = [k / fps + exposure / 2 for k in range(len(data["frames"]))]
+        times = [k / fps + truth_delay for k in range(len(data["frames"]))]
         bound = [1e3 * b if math.isfinite(b) else float("nan") for _, b in data["frames"]]
         ax.plot(times, bound, ":", color="black", label="bound (median)")
         for first, last in trajectory["occlusions"]:

@@ -128,6 +128,8 @@ TEST_F(SweepCliTest, SequencesAreReproducibleAndTheirOcclusionsHideTheMarker) {
   // each tracker (its frames with a pose).
   ASSERT_EQ(Run({"report", one, "--no-plots"}).status, 0);
   EXPECT_EQ(Lines(one + "/seq/sequences.csv"), 1u + 3 * 3);
+  // summary.csv's sample is the frames where the marker shows: 3 videos x (15 - 3 hidden).
+  EXPECT_THAT(Read(one + "/summary.csv"), HasSubstr("seq,noise_var,0.01,,circle,circles_a,36,"));
   EXPECT_EQ(Lines(one + "/seq/tum/truth/apriltag_noise_var=0.01_t1.tum"), 15u);
   const auto posed = [&](const std::string& marker, const std::string& tracker, int trial) {
     size_t n = 0;

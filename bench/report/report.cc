@@ -9,6 +9,7 @@
 #include <cstring>
 #include <filesystem>
 #include <map>
+#include <optional>
 
 #include "bench/io/atomic_file.h"
 #include "bench/io/data_dir.h"
@@ -232,21 +233,6 @@ void RunPlots(const std::string& dir) {
 void WriteReport(const std::string& dir, const ReportOptions& options) {
   // Streamed: memory grows with a sweep cell, not with frames.csv (results/speed.md).
   const std::vector<std::string> folders = ScenarioFolders(dir);
-  SummaryBuilder builder(options.summary);
-  for (const std::string& folder : folders) {
-    ScenarioRowReader reader(folder);
-    FrameRow row;
-    double time_ms = NAN;
-    while (reader.Next(&row, &time_ms)) {
-      try {
-        builder.Add(row, time_ms);
-      } catch (const ConfigError& e) {
-        throw ConfigError(reader.location() + ": " + e.what());
-      }
-    }
-  }
-  const std::vector<SummaryRow> summary = builder.Finish();
-  WriteFileAtomically(dir + "/summary.csv", SummaryCsv(summary));
   nlohmann::json manifest = ReadManifest(dir + "/manifest.json");
   const auto entry_of = [&](const std::string& folder) {
     const std::string name = fs::path(folder).filename().string();
@@ -254,14 +240,30 @@ void WriteReport(const std::string& dir, const ReportOptions& options) {
                ? manifest["scenarios"][name]
                : nlohmann::json::object();
   };
+  SummaryBuilder builder(options.summary);
   std::map<std::string, std::vector<SequenceSummaryRow>> sequences;  // per scenario folder
   std::vector<SequenceSummaryRow> all_sequences;
   for (const std::string& folder : folders) {
     const nlohmann::json entry = entry_of(folder);
-    if (!entry.contains("trajectory")) continue;
-    sequences[folder] = WriteSequenceResults(folder, entry);
+    std::optional<SequenceResults> sequence_results;
+    if (entry.contains("trajectory")) sequence_results.emplace(folder, entry);
+    ScenarioRowReader reader(folder);
+    FrameRow row;
+    double time_ms = NAN;
+    while (reader.Next(&row, &time_ms)) {
+      try {
+        const bool visible = !sequence_results || sequence_results->Add(row, time_ms);
+        if (visible) builder.Add(row, time_ms);
+      } catch (const ConfigError& e) {
+        throw ConfigError(reader.location() + ": " + e.what());
+      }
+    }
+    if (!sequence_results) continue;
+    sequences[folder] = sequence_results->Finish();
     all_sequences.insert(all_sequences.end(), sequences[folder].begin(), sequences[folder].end());
   }
+  const std::vector<SummaryRow> summary = builder.Finish();
+  WriteFileAtomically(dir + "/summary.csv", SummaryCsv(summary));
   if (!all_sequences.empty()) {
     WriteFileAtomically(dir + "/sequence_summary.csv", SequenceSummaryCsv(all_sequences));
   }

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <filesystem>
 #include <map>
+#include <tuple>
 
 #include "bench/io/atomic_file.h"
 #include "bench/io/tum_trajectory.h"
@@ -31,16 +32,6 @@ TrajectoryOptions TrajectoryOf(const nlohmann::json& entry) {
   return o;
 }
 
-// One sequence's rows: its identity and, per tracker in order of appearance, its frames.
-struct OpenSequence {
-  FrameRow first;  // scenario, sweep value, grid, trial, marker
-  int last_frame = -1;
-  int frames = 0;
-  std::vector<Rigid3> truth;
-  std::vector<std::string> trackers;
-  std::map<std::string, std::vector<SequenceFrame>> of_tracker;
-};
-
 bool SameSequence(const FrameRow& a, const FrameRow& b) {
   return a.sweep_value == b.sweep_value && a.grid == b.grid && a.trial == b.trial &&
          a.marker == b.marker;
@@ -59,167 +50,145 @@ std::string SequencesCsvHeader() {
          "found_hidden,ate_m,rpe_m,rpe_deg,jitter_m,reacquire_s,tracking_ms,detection_ms\n";
 }
 
-class SequenceWriter {
- public:
-  SequenceWriter(const std::string& folder, const TrajectoryOptions& trajectory)
-      : folder_(folder), trajectory_(trajectory), csv_(SequencesCsvHeader()) {}
+// One summary row's samples over its sequences.
+struct SummaryCell {
+  SequenceSummaryRow row;
+  std::vector<double> ate, rpe, rpe_deg, jitter, reacquire, tracking, detection;
 
-  void Add(const FrameRow& row, double time_ms) {
-    if (!open_ || !SameSequence(open_->first, row)) {
-      Close();
-      open_.emplace();
-      open_->first = row;
-    }
-    OpenSequence& s = *open_;
-    if (row.frame != s.last_frame) {
-      if (s.frames >= trajectory_.Frames()) {
-        throw ConfigError("a sequence longer than its trajectory's " +
-                          std::to_string(trajectory_.Frames()) + " frames");
-      }
-      s.last_frame = row.frame;
-      s.truth.push_back(row.truth);
-      ++s.frames;
-    }
-    auto [it, added] = s.of_tracker.try_emplace(row.tracker);
-    if (added) s.trackers.push_back(row.tracker);
-    SequenceFrame frame;
-    frame.occluded = trajectory_.Occluded(s.frames - 1);
-    frame.truth = row.truth;
-    if (row.status == TrackStatus::kOk) frame.estimate = row.estimate;
-    frame.time_ms = time_ms;
-    it->second.push_back(frame);
-  }
-
-  // Closes the last sequence; the per-sequence CSV and the metrics of every sequence.
-  std::vector<std::pair<FrameRow, std::pair<std::string, SequenceMetrics>>> Finish() {
-    Close();
-    WriteFileAtomically(folder_ + "/sequences.csv", csv_);
-    return measured_;
-  }
-
- private:
-  void Close() {
-    if (!open_) return;
-    const OpenSequence& s = *open_;
-    const std::string name = SequenceName(s.first);
-    std::string truth;
-    for (int k = 0; k < s.frames; ++k) truth += TumLine(trajectory_.TruthTime(k), s.truth[k]);
-    WriteTum("truth", name, truth);
-    for (const std::string& tracker : s.trackers) {
-      const std::vector<SequenceFrame>& frames = s.of_tracker.at(tracker);
-      std::string tum;
-      for (size_t k = 0; k < frames.size(); ++k) {
-        if (frames[k].estimate)
-          tum += TumLine(trajectory_.TruthTime(static_cast<int>(k)), *frames[k].estimate);
-      }
-      WriteTum(tracker, name, tum);
-      const SequenceMetrics m = MeasureSequence(frames, trajectory_);
-      std::string reacquire;
-      for (const double seconds : m.reacquire_s) {
-        reacquire += (reacquire.empty() ? "" : ";") + NumberTextOrEmpty(seconds);
-      }
-      const FrameRow& r = s.first;
-      csv_ += CsvField(r.scenario) + ',' + r.sweep_parameter + ',' + NumberText(r.sweep_value) +
-              ',' + CsvField(r.grid) + ',' + std::to_string(r.trial) + ',' + CsvField(r.marker) +
-              ',' + CsvField(tracker) + ',' + std::to_string(m.frames) + ',' +
-              std::to_string(m.visible) + ',' + std::to_string(m.lost) + ',' +
-              std::to_string(m.found_hidden) + ',' + NumberTextOrEmpty(m.ate_m) + ',' +
-              NumberTextOrEmpty(m.rpe_m) + ',' + NumberTextOrEmpty(m.rpe_deg) + ',' +
-              NumberTextOrEmpty(m.jitter_m) + ',' + reacquire + ',' +
-              NumberTextOrEmpty(m.tracking_ms) + ',' + NumberTextOrEmpty(m.detection_ms) + '\n';
-      measured_.push_back({r, {tracker, m}});
-    }
-    open_.reset();
-  }
-
-  void WriteTum(const std::string& who, const std::string& name, const std::string& text) {
-    fs::create_directories(folder_ + "/tum/" + who);
-    WriteFileAtomically(folder_ + "/tum/" + who + "/" + name + ".tum", text);
-  }
-
-  std::string folder_;
-  TrajectoryOptions trajectory_;
-  std::string csv_;
-  std::optional<OpenSequence> open_;
-  std::vector<std::pair<FrameRow, std::pair<std::string, SequenceMetrics>>> measured_;
-};
-
-}  // namespace
-
-std::vector<SequenceSummaryRow> WriteSequenceResults(const std::string& folder,
-                                                     const nlohmann::json& entry) {
-  SequenceWriter writer(folder, TrajectoryOf(entry));
-  ScenarioRowReader reader(folder);
-  FrameRow row;
-  double time_ms = NAN;
-  while (reader.Next(&row, &time_ms)) {
-    try {
-      writer.Add(row, time_ms);
-    } catch (const ConfigError& e) {
-      throw ConfigError(reader.location() + ": " + e.what());
-    }
-  }
-  // Per (cell, marker, tracker), over the trials.
-  std::vector<SequenceSummaryRow> rows;
-  std::vector<std::vector<double>> ate, rpe, rpe_deg, jitter, reacquire, tracking, detection;
-  for (const auto& measured : writer.Finish()) {
-    // Not structured bindings: a lambda below uses them (C++17 cannot capture those).
-    const FrameRow& r = measured.first;
-    const std::string& tracker = measured.second.first;
-    const SequenceMetrics& m = measured.second.second;
-    const auto same = [&](const SequenceSummaryRow& s) {
-      return s.sweep_value == r.sweep_value && s.grid == r.grid && s.marker == r.marker &&
-             s.tracker == tracker;
-    };
-    auto it = std::find_if(rows.begin(), rows.end(), same);
-    if (it == rows.end()) {
-      SequenceSummaryRow s;
-      s.scenario = r.scenario;
-      s.sweep_parameter = r.sweep_parameter;
-      s.sweep_value = r.sweep_value;
-      s.grid = r.grid;
-      s.marker = r.marker;
-      s.tracker = tracker;
-      rows.push_back(s);
-      for (auto* v : {&ate, &rpe, &rpe_deg, &jitter, &reacquire, &tracking, &detection}) {
-        v->emplace_back();
-      }
-      it = rows.end() - 1;
-    }
-    const size_t i = static_cast<size_t>(it - rows.begin());
-    ++it->sequences;
-    it->visible += m.visible;
-    it->lost += m.lost;
-    it->found_hidden += m.found_hidden;
-    ate[i].push_back(m.ate_m);
-    rpe[i].push_back(m.rpe_m);
-    rpe_deg[i].push_back(m.rpe_deg);
-    jitter[i].push_back(m.jitter_m);
-    tracking[i].push_back(m.tracking_ms);
-    detection[i].push_back(m.detection_ms);
+  void Add(const SequenceMetrics& m) {
+    ++row.sequences;
+    row.visible += m.visible;
+    row.lost += m.lost;
+    row.found_hidden += m.found_hidden;
+    ate.push_back(m.ate_m);
+    rpe.push_back(m.rpe_m);
+    rpe_deg.push_back(m.rpe_deg);
+    jitter.push_back(m.jitter_m);
+    tracking.push_back(m.tracking_ms);
+    detection.push_back(m.detection_ms);
     for (const double seconds : m.reacquire_s) {
       if (std::isnan(seconds)) continue;
-      ++it->occlusions;
-      it->never_reacquired += std::isinf(seconds);
-      reacquire[i].push_back(seconds);
+      ++row.occlusions;
+      row.never_reacquired += std::isinf(seconds);
+      reacquire.push_back(seconds);
     }
   }
-  for (size_t i = 0; i < rows.size(); ++i) {
-    SequenceSummaryRow& s = rows[i];
+
+  SequenceSummaryRow Finish() const {
+    SequenceSummaryRow s = row;
     // Frames of a video are not independent samples (a tracker loses runs of them): the
     // videos are.
     if (s.visible > 0) {
       s.lost_rate_ci = WilsonIntervalOfRate(static_cast<double>(s.lost) / s.visible, s.sequences);
     }
-    s.ate_m = Median(ate[i]);
-    s.ate_ci_m = MedianInterval(ate[i]);
-    s.rpe_m = Median(rpe[i]);
-    s.rpe_deg = Median(rpe_deg[i]);
-    s.jitter_m = Median(jitter[i]);
-    s.reacquire_median_s = Median(reacquire[i]);
-    s.tracking_ms = Median(tracking[i]);
-    s.detection_ms = Median(detection[i]);
+    s.ate_m = Median(ate);
+    s.ate_ci_m = MedianInterval(ate);
+    s.rpe_m = Median(rpe);
+    s.rpe_deg = Median(rpe_deg);
+    s.jitter_m = Median(jitter);
+    s.reacquire_median_s = Median(reacquire);
+    s.tracking_ms = Median(tracking);
+    s.detection_ms = Median(detection);
+    return s;
   }
+};
+
+}  // namespace
+
+SequenceResults::SequenceResults(const std::string& folder, const nlohmann::json& entry)
+    : folder_(folder), trajectory_(TrajectoryOf(entry)), csv_(SequencesCsvHeader()) {}
+
+bool SequenceResults::Add(const FrameRow& row, double time_ms) {
+  if (!open_ || !SameSequence(open_->first, row)) {
+    Close();
+    open_.emplace();
+    open_->first = row;
+  }
+  OpenSequence& s = *open_;
+  if (row.frame != s.last_frame) {
+    if (s.frames >= trajectory_.Frames()) {
+      throw ConfigError("a sequence longer than its trajectory's " +
+                        std::to_string(trajectory_.Frames()) + " frames");
+    }
+    s.last_frame = row.frame;
+    s.truth.push_back(row.truth);
+    ++s.frames;
+  }
+  auto [it, added] = s.of_tracker.try_emplace(row.tracker);
+  if (added) s.trackers.push_back(row.tracker);
+  SequenceFrame frame;
+  frame.occluded = trajectory_.Occluded(s.frames - 1);
+  frame.truth = row.truth;
+  if (row.status == TrackStatus::kOk) frame.estimate = row.estimate;
+  frame.time_ms = time_ms;
+  it->second.push_back(frame);
+  return !frame.occluded;
+}
+
+void SequenceResults::Close() {
+  if (!open_) return;
+  const OpenSequence& s = *open_;
+  const std::string name = SequenceName(s.first);
+  std::string truth;
+  for (int k = 0; k < s.frames; ++k) truth += TumLine(trajectory_.TruthTime(k), s.truth[k]);
+  WriteTum("truth", name, truth);
+  for (const std::string& tracker : s.trackers) {
+    const std::vector<SequenceFrame>& frames = s.of_tracker.at(tracker);
+    std::string tum;
+    for (size_t k = 0; k < frames.size(); ++k) {
+      if (frames[k].estimate)
+        tum += TumLine(trajectory_.TruthTime(static_cast<int>(k)), *frames[k].estimate);
+    }
+    WriteTum(tracker, name, tum);
+    const SequenceMetrics m = MeasureSequence(frames, trajectory_);
+    std::string reacquire;
+    for (const double seconds : m.reacquire_s) {
+      reacquire += (reacquire.empty() ? "" : ";") + NumberTextOrEmpty(seconds);
+    }
+    const FrameRow& r = s.first;
+    csv_ += CsvField(r.scenario) + ',' + r.sweep_parameter + ',' + NumberText(r.sweep_value) + ',' +
+            CsvField(r.grid) + ',' + std::to_string(r.trial) + ',' + CsvField(r.marker) + ',' +
+            CsvField(tracker) + ',' + std::to_string(m.frames) + ',' + std::to_string(m.visible) +
+            ',' + std::to_string(m.lost) + ',' + std::to_string(m.found_hidden) + ',' +
+            NumberTextOrEmpty(m.ate_m) + ',' + NumberTextOrEmpty(m.rpe_m) + ',' +
+            NumberTextOrEmpty(m.rpe_deg) + ',' + NumberTextOrEmpty(m.jitter_m) + ',' + reacquire +
+            ',' + NumberTextOrEmpty(m.tracking_ms) + ',' + NumberTextOrEmpty(m.detection_ms) + '\n';
+    measured_.push_back({r, tracker, m});
+  }
+  open_.reset();
+}
+
+void SequenceResults::WriteTum(const std::string& who,
+                               const std::string& name,
+                               const std::string& text) const {
+  fs::create_directories(folder_ + "/tum/" + who);
+  WriteFileAtomically(folder_ + "/tum/" + who + "/" + name + ".tum", text);
+}
+
+std::vector<SequenceSummaryRow> SequenceResults::Finish() {
+  Close();
+  WriteFileAtomically(folder_ + "/sequences.csv", csv_);
+  // Per (cell, marker, tracker), over the trials, in order of first appearance.
+  std::vector<SummaryCell> cells;
+  std::map<std::tuple<double, std::string, std::string, std::string>, size_t> index;
+  for (const Measured& m : measured_) {
+    const FrameRow& r = m.sequence;
+    const auto [it, added] =
+        index.try_emplace({r.sweep_value, r.grid, r.marker, m.tracker}, cells.size());
+    if (added) {
+      SummaryCell cell;
+      cell.row.scenario = r.scenario;
+      cell.row.sweep_parameter = r.sweep_parameter;
+      cell.row.sweep_value = r.sweep_value;
+      cell.row.grid = r.grid;
+      cell.row.marker = r.marker;
+      cell.row.tracker = m.tracker;
+      cells.push_back(cell);
+    }
+    cells[it->second].Add(m.metrics);
+  }
+  std::vector<SequenceSummaryRow> rows;
+  for (const SummaryCell& cell : cells) rows.push_back(cell.Finish());
   return rows;
 }
 

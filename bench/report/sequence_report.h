@@ -7,11 +7,16 @@
 //   over the trials, with 95 % intervals (report.md's section is written by report.cc).
 #pragma once
 
+#include <map>
 #include <nlohmann/json.hpp>
+#include <optional>
 #include <string>
 #include <vector>
 
 #include "bench/metrics/intervals.h"
+#include "bench/plan/trajectory_options.h"
+#include "bench/report/sequence_metrics.h"
+#include "bench/run/frames_csv.h"
 
 namespace markerbench {
 
@@ -42,12 +47,46 @@ struct SequenceSummaryRow {
   double detection_ms = NAN;
 };
 
-// Writes the scenario folder's sequences.csv and TUM files from its frames.csv and
-// timing.csv; `entry` is the scenario's manifest entry (its `trajectory`). Returns the
-// summary rows, in order of first appearance. Throws ConfigError naming the file and line of a
-// row out of plan order.
-std::vector<SequenceSummaryRow> WriteSequenceResults(const std::string& folder,
-                                                     const nlohmann::json& entry);
+// Writes a scenario folder's sequences.csv and TUM files from its rows (frames.csv joined
+// with timing.csv, in plan order), fed one at a time as the report streams them; `entry` is
+// the scenario's manifest entry (its `trajectory`).
+class SequenceResults {
+ public:
+  SequenceResults(const std::string& folder, const nlohmann::json& entry);
+  // Whether the marker shows in the row's frame (false: an occlusion, which summary.csv
+  // leaves to these metrics). Throws ConfigError for a row out of plan order (a sequence
+  // longer than its trajectory).
+  bool Add(const FrameRow& row, double time_ms);
+  // Writes sequences.csv; the summary rows, in order of first appearance.
+  std::vector<SequenceSummaryRow> Finish();
+
+ private:
+  // The sequence being read: its identity and, per tracker in order of appearance, its
+  // frames.
+  struct OpenSequence {
+    FrameRow first;  // scenario, sweep value, grid, trial, marker
+    int last_frame = -1;
+    int frames = 0;
+    std::vector<Rigid3> truth;
+    std::vector<std::string> trackers;
+    std::map<std::string, std::vector<SequenceFrame>> of_tracker;
+  };
+  struct Measured {
+    FrameRow sequence;
+    std::string tracker;
+    SequenceMetrics metrics;
+  };
+
+  // Writes the open sequence's TUM files and sequences.csv rows, and keeps its metrics.
+  void Close();
+  void WriteTum(const std::string& who, const std::string& name, const std::string& text) const;
+
+  std::string folder_;
+  TrajectoryOptions trajectory_;
+  std::string csv_;
+  std::optional<OpenSequence> open_;
+  std::vector<Measured> measured_;
+};
 
 std::string SequenceSummaryCsv(const std::vector<SequenceSummaryRow>& rows);
 
