@@ -104,7 +104,7 @@ bool SequenceResults::Add(const FrameRow& row, double time_ms) {
     open_.emplace();
     open_->first = row;
   }
-  OpenSequence& s = *open_;
+  SequenceRows& s = *open_;
   if (row.frame != s.last_frame) {
     if (s.frames >= trajectory_.Frames()) {
       throw ConfigError("a sequence longer than its trajectory's " +
@@ -127,7 +127,7 @@ bool SequenceResults::Add(const FrameRow& row, double time_ms) {
 
 void SequenceResults::Close() {
   if (!open_) return;
-  const OpenSequence& s = *open_;
+  const SequenceRows& s = *open_;
   const std::string name = SequenceName(s.first);
   std::string truth;
   for (int k = 0; k < s.frames; ++k) truth += TumLine(trajectory_.TruthTime(k), s.truth[k]);
@@ -171,7 +171,7 @@ std::vector<SequenceSummaryRow> SequenceResults::Finish() {
   // Per (cell, marker, tracker), over the trials, in order of first appearance.
   std::vector<SummaryCell> cells;
   std::map<std::tuple<double, std::string, std::string, std::string>, size_t> index;
-  for (const Measured& m : measured_) {
+  for (const MeasuredSequence& m : measured_) {
     const FrameRow& r = m.sequence;
     const auto [it, added] =
         index.try_emplace({r.sweep_value, r.grid, r.marker, m.tracker}, cells.size());

@@ -47,6 +47,23 @@ struct SequenceSummaryRow {
   double detection_ms = NAN;
 };
 
+// The rows of one sequence: its identity and, per tracker in order of appearance, its frames.
+struct SequenceRows {
+  FrameRow first;  // scenario, sweep value, grid, trial, marker
+  int last_frame = -1;
+  int frames = 0;
+  std::vector<Rigid3> truth;
+  std::vector<std::string> trackers;
+  std::map<std::string, std::vector<SequenceFrame>> of_tracker;
+};
+
+// One tracker's metrics over one sequence.
+struct MeasuredSequence {
+  FrameRow sequence;
+  std::string tracker;
+  SequenceMetrics metrics;
+};
+
 // Writes a scenario folder's sequences.csv and TUM files from its rows (frames.csv joined
 // with timing.csv, in plan order), fed one at a time as the report streams them; `entry` is
 // the scenario's manifest entry (its `trajectory`).
@@ -61,22 +78,6 @@ class SequenceResults {
   std::vector<SequenceSummaryRow> Finish();
 
  private:
-  // The sequence being read: its identity and, per tracker in order of appearance, its
-  // frames.
-  struct OpenSequence {
-    FrameRow first;  // scenario, sweep value, grid, trial, marker
-    int last_frame = -1;
-    int frames = 0;
-    std::vector<Rigid3> truth;
-    std::vector<std::string> trackers;
-    std::map<std::string, std::vector<SequenceFrame>> of_tracker;
-  };
-  struct Measured {
-    FrameRow sequence;
-    std::string tracker;
-    SequenceMetrics metrics;
-  };
-
   // Writes the open sequence's TUM files and sequences.csv rows, and keeps its metrics.
   void Close();
   void WriteTum(const std::string& who, const std::string& name, const std::string& text) const;
@@ -84,8 +85,8 @@ class SequenceResults {
   std::string folder_;
   TrajectoryOptions trajectory_;
   std::string csv_;
-  std::optional<OpenSequence> open_;
-  std::vector<Measured> measured_;
+  std::optional<SequenceRows> open_;  // the sequence being read
+  std::vector<MeasuredSequence> measured_;
 };
 
 std::string SequenceSummaryCsv(const std::vector<SequenceSummaryRow>& rows);
