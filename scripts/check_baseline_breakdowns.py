@@ -2,8 +2,8 @@
 """Pins the baselines' breakdowns (issue 17): sweeps a short version of the paper's three
 sweeps (scenarios/paper/, --trials N) with the trackers of scenarios/paper/breakdowns.yaml
 and fails unless each breakdown is within one sweep step of the pinned one. A breakdown is
-the first sweep value with success below 50 % (success: a pose within 10 % of the
-distance); "none" when success never drops below 50 %.
+the report's (breakdowns.csv): the first sweep value with success below 50 % (success: a
+pose within 10 % of the distance); "none" when success never drops below 50 %.
 
 Usage: check_baseline_breakdowns.py MARKERBENCH [--trials N]
 """
@@ -18,15 +18,6 @@ import yaml
 
 ROOT = pathlib.Path(__file__).resolve().parent.parent
 PINS = ROOT / "scenarios/paper/breakdowns.yaml"
-
-
-def breakdown_index(rows, values):
-    """Index into values of the first value with success below 50 %, len(values) if none."""
-    rate = {float(r["sweep_value"]): float(r["success_rate"]) for r in rows}
-    for i, v in enumerate(values):
-        if rate[v] < 0.5:
-            return i
-    return len(values)
 
 
 def main():
@@ -46,14 +37,16 @@ def main():
         subprocess.run([args.markerbench, "report", str(out)], check=True,
                        stdout=subprocess.DEVNULL)
         rows = list(csv.DictReader(open(out / "summary.csv")))
+        breakdowns = list(csv.DictReader(open(out / "breakdowns.csv")))
     failures = 0
     for tracker, per in pins.items():
         for scenario, pinned in per.items():
-            mine = [r for r in rows if r["scenario"] == scenario and r["tracker"] == tracker]
-            values = sorted({float(r["sweep_value"]) for r in mine})
-            index = breakdown_index(mine, values)
+            values = sorted({float(r["sweep_value"]) for r in rows
+                             if r["scenario"] == scenario and r["tracker"] == tracker})
+            (mine,) = [r for r in breakdowns if r["scenario"] == scenario and r["tracker"] == tracker]
+            found = mine["breakdown_value"] or "none"
+            index = len(values) if found == "none" else values.index(float(found))
             pinned_index = len(values) if pinned == "none" else values.index(float(pinned))
-            found = "none" if index == len(values) else f"{values[index]:g}"
             ok = abs(index - pinned_index) <= 1
             failures += not ok
             print(f"{'ok  ' if ok else 'FAIL'} {tracker} {scenario}: breakdown {found}, "

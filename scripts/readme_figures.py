@@ -5,7 +5,7 @@ Each table sits in README.md (the circle accuracy table also in results/circle_a
 the paper sweeps' times in results/speed.md) between
     <!-- readme_figures.py: NAME -->   and   <!-- end NAME -->
 and is computed from results/ (summary.csv of results/circle_accuracy and results/paper,
-results/paper/report.md, results/speed.md, results/sequences/sequence_summary.csv).
+results/paper/breakdowns.csv, results/paper/report.md, results/speed.md, results/sequences/sequence_summary.csv).
 
     readme_figures.py --check   exit 1 naming each table that differs from results/ (ctest)
     readme_figures.py --write   rewrite the tables in the documents (DOCUMENTS)
@@ -137,7 +137,7 @@ def breakdowns():
              "|---|" + "---|" * (len(BREAKDOWN_SWEEPS) + 1)]
     for tracker in TRACKERS:
         times = [number(r["time_median_ms"]) for r in rows if r["tracker"] == tracker]
-        texts = breakdown_texts(rows, tracker)
+        texts = breakdown_texts(tracker)
         lines.append(f"| `{tracker}` | " + " | ".join(texts) +
                      f" | {significant(min(times), 2)}-{significant(max(times), 2)} |")
     return lines
@@ -152,13 +152,18 @@ ORIGINALS = {
 }
 
 
-def breakdown_texts(rows, tracker):
+def breakdown_texts(tracker, marker=None):
+    """Per paper sweep, the report's breakdown (results/paper/breakdowns.csv) of `tracker` on
+    `marker` (default: its marker of the paper's comparison), or "none to" the last value."""
+    if marker is None:
+        (marker,) = {r["marker"] for r in read_paper_summary() if r["tracker"] == tracker}
+    rows = read_summary("results/paper/breakdowns.csv")
     texts = []
     for scenario, _ in BREAKDOWN_SWEEPS:
-        series = [r for r in rows if r["scenario"] == scenario and r["tracker"] == tracker]
-        failed = [r for r in series if number(r["success_rate"]) < 0.5]
-        texts.append(f"{number(failed[0]['sweep_value']):g}" if failed
-                     else f"none to {number(series[-1]['sweep_value']):g}")
+        (r,) = [r for r in rows if r["scenario"] == scenario and r["tracker"] == tracker
+                and r["marker"] == marker and r["grid"] == ""]
+        texts.append(f"{number(r['breakdown_value']):g}" if r["breakdown_value"]
+                     else f"none to {number(r['last_value']):g}")
     return texts
 
 
@@ -173,7 +178,7 @@ def baselines():
                      f" | {found} | {significant(median_mm)} |")
         for ours in (tracker, tracker + "-improved"):
             (r,) = cell(rows, "fig6_noise", 0.0, ours)
-            lines.append(f"| `{ours}` | " + " | ".join(breakdown_texts(rows, ours)) +
+            lines.append(f"| `{ours}` | " + " | ".join(breakdown_texts(ours)) +
                          f" | {100 * number(r['success_rate']):.0f} % | "
                          f"{significant(1e3 * number(r['position_error_median_m']))} |")
     return lines
@@ -284,7 +289,7 @@ def circle_markers():
              "|---|" + "---|" * (len(BREAKDOWN_SWEEPS) + 2)]
     for marker in CIRCLE_MARKERS:
         mine = series(marker)
-        texts = breakdown_texts([r for r in rows if r["marker"] == marker], "circle")
+        texts = breakdown_texts("circle", marker)
         kept = sum(number(mine[k]["success_rate"]) >= 0.95 for k in good)
         ratios = sorted(number(mine[k]["position_error_median_m"]) /
                         number(d[k]["position_error_median_m"]) for k in good)

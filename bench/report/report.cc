@@ -47,27 +47,6 @@ std::string MillimetreRange(const Interval& ci_m) {
   return " (" + Significant(1e3 * ci_m.lo) + "–" + Significant(1e3 * ci_m.hi) + ")";
 }
 
-// A series of one scenario: tracker, marker and grid combination.
-struct SeriesName {
-  std::string tracker, marker, grid;
-  bool operator==(const SeriesName& o) const {
-    return tracker == o.tracker && marker == o.marker && grid == o.grid;
-  }
-};
-
-// The series of one scenario, in order of appearance.
-std::vector<SeriesName> SeriesNames(const std::vector<SummaryRow>& rows,
-                                    const std::string& scenario) {
-  std::vector<SeriesName> names;
-  for (const SummaryRow& r : rows) {
-    const SeriesName name{r.tracker, r.marker, r.grid};
-    if (r.scenario == scenario && std::find(names.begin(), names.end(), name) == names.end()) {
-      names.push_back(name);
-    }
-  }
-  return names;
-}
-
 std::string ScenarioSection(const std::string& scenario,
                             const std::vector<SummaryRow>& summary,
                             const nlohmann::json& entry,
@@ -264,6 +243,7 @@ void WriteReport(const std::string& dir, const ReportOptions& options) {
   }
   const std::vector<SummaryRow> summary = builder.Finish();
   WriteFileAtomically(dir + "/summary.csv", SummaryCsv(summary));
+  WriteFileAtomically(dir + "/breakdowns.csv", BreakdownsCsv(summary, options.summary));
   if (!all_sequences.empty()) {
     WriteFileAtomically(dir + "/sequence_summary.csv", SequenceSummaryCsv(all_sequences));
   }

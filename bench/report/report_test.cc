@@ -215,6 +215,10 @@ TEST_F(ReportTest, SummaryOfASyntheticSweep) {
   const std::string report = ReadFileBytes(dir_ + "/report.md");
   // Breakdown: the first value under 50% success is 0.2, the paper says "fails above 0.18".
   EXPECT_THAT(report, HasSubstr("| apriltag | tag | 0.2 |"));
+  // The same for scripts: breakdowns.csv (the last value reached, 0.2).
+  EXPECT_EQ(ReadFileBytes(dir_ + "/breakdowns.csv"),
+            "scenario,sweep_parameter,grid,tracker,marker,breakdown_value,last_value\n"
+            "fig6_noise,noise_var,,apriltag,tag,0.2,0.2\n");
   EXPECT_THAT(report,
               HasSubstr("| AprilTag noise breakdown | σ² > 0.18 | - | breaks down at noise_var = "
                         "0.2 | agrees | - |"));
@@ -246,6 +250,9 @@ TEST_F(ReportTest, AUsersScenarioMakesNoClaimsOfThePaper) {
   EXPECT_THAT(report, ::testing::Not(HasSubstr("The paper's claims")));
   EXPECT_THAT(report, HasSubstr("## mine (sweep of `noise_var`)"));
   EXPECT_THAT(report, HasSubstr("| 0.1 | circle | tag | 3 |"));
+  // Every frame succeeds: no breakdown (an empty field).
+  EXPECT_THAT(ReadFileBytes(dir_ + "/breakdowns.csv"),
+              HasSubstr("\nmine,noise_var,,circle,tag,,0.1\n"));
 }
 
 TEST_F(ReportTest, StricterSuccessMovesTheBreakdown) {
@@ -254,6 +261,7 @@ TEST_F(ReportTest, StricterSuccessMovesTheBreakdown) {
   options.summary.success_fraction = 0.045;  // 0.1: 4 of 5 succeed; 0.18: 1 of 5
   WriteReport(dir_, options);
   EXPECT_THAT(ReadFileBytes(dir_ + "/report.md"), HasSubstr("| apriltag | tag | 0.18 |"));
+  EXPECT_THAT(ReadFileBytes(dir_ + "/breakdowns.csv"), HasSubstr(",apriltag,tag,0.18,0.2\n"));
 }
 
 // report.html stands alone: its plots are inside it (the same bytes as the PNG) and its tables

@@ -102,6 +102,18 @@ std::vector<SummaryRow> SummaryBuilder::Finish() {
   return summary;
 }
 
+std::vector<SeriesName> SeriesNames(const std::vector<SummaryRow>& rows,
+                                    const std::string& scenario) {
+  std::vector<SeriesName> names;
+  for (const SummaryRow& r : rows) {
+    const SeriesName name{r.tracker, r.marker, r.grid};
+    if (r.scenario == scenario && std::find(names.begin(), names.end(), name) == names.end()) {
+      names.push_back(name);
+    }
+  }
+  return names;
+}
+
 std::optional<double> BreakdownValue(const std::vector<SummaryRow>& rows,
                                      const SummaryOptions& options) {
   for (const SummaryRow& r : rows) {
@@ -155,6 +167,28 @@ std::string SummaryCsv(const std::vector<SummaryRow>& rows) {
       csv += ',' + NumberTextOrEmpty(i.lo) + ',' + NumberTextOrEmpty(i.hi);
     }
     csv += '\n';
+  }
+  return csv;
+}
+
+std::string BreakdownsCsv(const std::vector<SummaryRow>& summary, const SummaryOptions& options) {
+  std::string csv = "scenario,sweep_parameter,grid,tracker,marker,breakdown_value,last_value\n";
+  std::vector<std::string> scenarios;
+  for (const SummaryRow& r : summary) {
+    if (std::find(scenarios.begin(), scenarios.end(), r.scenario) == scenarios.end()) {
+      scenarios.push_back(r.scenario);
+    }
+  }
+  for (const std::string& scenario : scenarios) {
+    for (const SeriesName& name : SeriesNames(summary, scenario)) {
+      const std::vector<SummaryRow> series =
+          SeriesOf(summary, scenario, name.tracker, name.marker, name.grid);
+      const std::optional<double> breakdown = BreakdownValue(series, options);
+      csv += CsvField(scenario) + ',' + series.front().sweep_parameter + ',' + CsvField(name.grid) +
+             ',' + CsvField(name.tracker) + ',' + CsvField(name.marker) + ',' +
+             (breakdown ? NumberText(*breakdown) : "") + ',' +
+             NumberText(series.back().sweep_value) + '\n';
+    }
   }
   return csv;
 }

@@ -87,6 +87,18 @@ class SummaryBuilder {
   std::vector<SummaryRow> rows_;
 };
 
+// A series of one scenario: tracker, marker and grid combination.
+struct SeriesName {
+  std::string tracker, marker, grid;
+  bool operator==(const SeriesName& o) const {
+    return tracker == o.tracker && marker == o.marker && grid == o.grid;
+  }
+};
+
+// The series of one scenario, in order of appearance.
+std::vector<SeriesName> SeriesNames(const std::vector<SummaryRow>& rows,
+                                    const std::string& scenario);
+
 // The first sweep value of `rows` (one series, in sweep order) whose
 // success rate is below the breakdown rate; nullopt when there is none.
 std::optional<double> BreakdownValue(const std::vector<SummaryRow>& rows,
@@ -101,5 +113,9 @@ std::vector<SummaryRow> SeriesOf(const std::vector<SummaryRow>& summary,
                                  const std::string& grid = "");
 
 std::string SummaryCsv(const std::vector<SummaryRow>& rows);
+
+// breakdowns.csv: per series, its breakdown value (BreakdownValue; empty for none) and the
+// last sweep value it reached, so that scripts read the report's rule instead of repeating it.
+std::string BreakdownsCsv(const std::vector<SummaryRow>& summary, const SummaryOptions& options);
 
 }  // namespace markerbench
