@@ -127,6 +127,7 @@ std::vector<ExposureSample> ExposureSamples(const FrameRequest& request,
   }
   return samples;
 }
+
 // Gauss-Legendre nodes and weights on [0, 1] (Newton on the Legendre polynomial).
 template <int N>
 struct GaussLegendre {
@@ -187,6 +188,15 @@ double GaussianNormCdf(double r, double l1, double l2, double l3) {
 }
 
 }  // namespace
+
+double ProbabilityNormWithin(double r, const Eigen::Vector3d& variances) {
+  if (std::isnan(r) || variances.hasNaN()) return NAN;
+  if (!(r > 0.0) || !std::isfinite(variances.maxCoeff())) return 0.0;
+  Eigen::Vector3d l = variances.cwiseMax(0.0);
+  std::sort(l.data(), l.data() + 3);
+  if (!(l(2) > 0.0)) return 1.0;  // no error at all
+  return std::min(1.0, GaussianNormCdf(r, l(2), l(1), l(0)));
+}
 
 double MedianGaussianNorm(const Eigen::Matrix3d& covariance) {
   const Eigen::Vector3d l =
@@ -327,6 +337,7 @@ PoseBound PoseCrlb(const FrameRequest& request, const CrlbOptions& options) {
   bound.position_rms_m = bound.position_median_m = kInfinity;
   bound.rotation_rms_deg = bound.rotation_median_deg = kInfinity;
   bound.position_covariance.setConstant(kInfinity);
+  bound.position_variances_m2.setConstant(kInfinity);
   bound.rotation_covariance.setConstant(kInfinity);
   const Eigen::Matrix<double, 6, 1> diagonal = bound.fisher.diagonal();
   if (!(diagonal.minCoeff() > 0.0)) return bound;
@@ -349,6 +360,10 @@ PoseBound PoseCrlb(const FrameRequest& request, const CrlbOptions& options) {
   Eigen::Matrix<double, 3, 6> dC_dtheta;
   dC_dtheta << -R0.transpose() * t_cross, -R0.transpose();
   bound.position_covariance = dC_dtheta * covariance * dC_dtheta.transpose();
+  bound.position_variances_m2 = Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d>(
+                                    bound.position_covariance, Eigen::EigenvaluesOnly)
+                                    .eigenvalues()
+                                    .cwiseMax(0.0);
   bound.rotation_covariance = covariance.topLeftCorner<3, 3>();
   constexpr double kDeg = 180.0 / kPi;
   bound.position_rms_m = std::sqrt(bound.position_covariance.trace());

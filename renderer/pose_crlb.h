@@ -53,6 +53,9 @@ struct PoseBound {
   double position_median_m = 0.0;                                 // median |e| for e ~ N(0, cov(C))
   double rotation_rms_deg = 0.0;                                  // sqrt(trace cov(ω))
   double rotation_median_deg = 0.0;
+  // The eigenvalues of cov(C), ascending (m²): with ProbabilityNormWithin, the chance that an
+  // efficient estimator's camera-centre error is within a given distance.
+  Eigen::Vector3d position_variances_m2 = Eigen::Vector3d::Zero();
 };
 
 // F for the frame `request` describes (its noise seed is not used).
@@ -63,5 +66,9 @@ PoseBound PoseCrlb(const FrameRequest& request, const CrlbOptions& options = {})
 // The median of |e| for e ~ N(0, covariance) in 3-D (a quadrature, relative error < 1e-6):
 // what an efficient estimator's median error is compared with (crlb.md).
 double MedianGaussianNorm(const Eigen::Matrix3d& covariance);
+
+// P(|e| <= r) for e ~ N(0, diag(variances)) in 3-D, variances >= 0 in any order (a
+// quadrature, absolute error < 1e-6); 0 when a variance is +inf.
+double ProbabilityNormWithin(double r, const Eigen::Vector3d& variances);
 
 }  // namespace markerbench

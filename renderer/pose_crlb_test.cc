@@ -108,6 +108,28 @@ TEST(MedianGaussianNormTest, IsRotationInvariantAndHandlesStrongAnisotropy) {
   EXPECT_LT(median, 100.0 * 0.6744897502 * 1.001);
 }
 
+TEST(ProbabilityNormWithinTest, MatchesClosedFormsAndTheMedian) {
+  constexpr double kTol = 1e-6;
+  const double s = 0.02, r = 0.03;
+  // One axis: erf(r / (σ√2)); isotropic: the χ distribution with 3 degrees of freedom,
+  // erf(x/√2) - √(2/π) x e^{-x²/2} with x = r/σ.
+  EXPECT_NEAR(ProbabilityNormWithin(r, Eigen::Vector3d(0.0, s * s, 0.0)),
+              std::erf(r / (s * std::sqrt(2.0))),
+              kTol);
+  const double x = r / s;
+  EXPECT_NEAR(ProbabilityNormWithin(r, Eigen::Vector3d::Constant(s * s)),
+              std::erf(x / std::sqrt(2.0)) - std::sqrt(2.0 / kPi) * x * std::exp(-0.5 * x * x),
+              kTol);
+  // At the median of |e|, one half, for an anisotropic covariance in any order.
+  const Eigen::Vector3d variances(4e-6, 1e-4, 2.5e-5);
+  const double median = MedianGaussianNorm(variances.asDiagonal());
+  EXPECT_NEAR(ProbabilityNormWithin(median, variances), 0.5, kTol);
+  // No bound (unobservable): never within; no error: always; no bound computed: unknown.
+  EXPECT_EQ(ProbabilityNormWithin(r, Eigen::Vector3d(1e-6, INFINITY, 1e-6)), 0.0);
+  EXPECT_EQ(ProbabilityNormWithin(r, Eigen::Vector3d::Zero()), 1.0);
+  EXPECT_TRUE(std::isnan(ProbabilityNormWithin(r, Eigen::Vector3d::Constant(NAN))));
+}
+
 TEST(PoseCrlbTest, BlurredDiskCentreMatchesTheClosedForm) {
   // crlb.md: sd(x0) = (σ_n/c)·sqrt(2σ_b/(√π R)), the exact value 1-4 % above it.
   constexpr double kFocal = 600.0, kDistance = 1.0, kNoiseVar = 0.02;

@@ -96,6 +96,9 @@ def plot_errors(directory, scenario, series):
             err_ax.plot(x, bound, ":", color=line.get_color(), linewidth=1.0)
             floors.append((x, bound, line.get_color()))
         ok_ax.plot(x, success, "o-", color=line.get_color(), label=label, markersize=4)
+        at_bound = band(rows, "success_at_bound", 100)
+        if any(math.isfinite(s) for s in at_bound):
+            ok_ax.plot(x, at_bound, ":", color=line.get_color(), linewidth=1.0)
     err_ax.set_yscale("log")
     if floors:
         bottom = err_ax.get_ylim()[0]
@@ -110,7 +113,7 @@ def plot_errors(directory, scenario, series):
     err_ax.set_title(f"{scenario}: localization error versus {LABELS.get(parameter, parameter)}")
     ok_ax.axhline(50, color="grey", linewidth=0.8, linestyle=":")
     ok_ax.set_ylim(-5, 105)
-    ok_ax.set_ylabel("success rate (%)\n95% Wilson band")
+    ok_ax.set_ylabel("success rate (%)\n95% Wilson band,\nat the bound dotted")
     ok_ax.set_xlabel(LABELS.get(parameter, parameter))
     ok_ax.grid(True, alpha=0.3)
     fig.tight_layout()

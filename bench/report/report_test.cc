@@ -21,7 +21,9 @@ using ::testing::Not;
 namespace fs = std::filesystem;
 
 // A frame of tracker `tracker` whose first hypothesis is `error_m` from the truth along x
-// (NaN: not detected), at 1 m; its bound's median position error is (trial + 1) cm.
+// (NaN: not detected), at 1 m; its bound's median position error is (trial + 1) cm, and its
+// camera-centre covariance has one axis of standard deviation 5 (trial + 1) cm (an efficient
+// estimator is within 10 % of the distance with probability erf(√2 / (trial + 1))).
 FrameRow Row(const std::string& scenario,
              const std::string& tracker,
              double value,
@@ -43,6 +45,7 @@ FrameRow Row(const std::string& scenario,
   r.crlb_position_med_m = 0.01 * (trial + 1);
   r.crlb_rotation_deg = 0.6;
   r.crlb_rotation_med_deg = 0.5;
+  r.crlb_position_variances_m2 = Eigen::Vector3d(0.0, 0.0, std::pow(0.05 * (trial + 1), 2));
   if (std::isnan(error_m)) {
     r.status = TrackStatus::kNotDetected;
     r.errors = {NAN, NAN, NAN, NAN, false};
@@ -61,9 +64,11 @@ FrameRow Row(const std::string& scenario,
 TEST(FramesCsv, RowsRoundTrip) {
   FrameRow unobservable = Row("s", "x", 0.2, 1, NAN);
   unobservable.crlb_position_m = unobservable.crlb_position_med_m = INFINITY;
+  unobservable.crlb_position_variances_m2.setConstant(INFINITY);
   FrameRow without_bound = Row("s", "y", 0.2, 1, NAN);
   without_bound.crlb_position_m = without_bound.crlb_position_med_m = NAN;
   without_bound.crlb_rotation_deg = without_bound.crlb_rotation_med_deg = NAN;
+  without_bound.crlb_position_variances_m2.setConstant(NAN);
   for (const FrameRow& row : {Row("s", "apriltag", 0.1, 3, 0.02), unobservable, without_bound}) {
     std::string line = FormatFrameRow(row);
     ASSERT_EQ(line.back(), '\n');
@@ -74,6 +79,11 @@ TEST(FramesCsv, RowsRoundTrip) {
     EXPECT_EQ(back.estimate.has_value(), row.estimate.has_value());
     EXPECT_EQ(std::isinf(back.crlb_position_m), std::isinf(row.crlb_position_m));
     EXPECT_EQ(std::isnan(back.crlb_rotation_med_deg), std::isnan(row.crlb_rotation_med_deg));
+    for (int k = 0; k < 3; ++k) {
+      const double v = row.crlb_position_variances_m2[k];
+      EXPECT_TRUE(std::isnan(v) ? std::isnan(back.crlb_position_variances_m2[k])
+                                : back.crlb_position_variances_m2[k] == v);
+    }
   }
   EXPECT_THROW(ParseFrameRow("a,b,c"), std::runtime_error);
 }
@@ -198,13 +208,16 @@ TEST_F(ReportTest, SummaryOfASyntheticSweep) {
   for (const std::vector<double>& want : expected) {
     ASSERT_TRUE(std::getline(summary, line));
     const std::vector<std::string> fields = SplitCsvLine(line);
-    ASSERT_EQ(fields.size(), 29u) << line;
+    ASSERT_EQ(fields.size(), 30u) << line;
     // Five or fewer posed frames: no median interval reaches 95 % (empty fields).
     for (size_t i = 25; i < 29; ++i) {
       EXPECT_EQ(fields[i], "") << line;
     }
     // scenario, grid (empty: one axis), tracker, marker
     EXPECT_EQ(fields[0] + "|" + fields[3] + "|" + fields[4] + fields[5], "fig6_noise||apriltagtag");
+    // Success at the bound: the mean over the 5 trials of erf(√2 / (trial + 1)), whatever
+    // the tracker found (0.95450, 0.68269, 0.49501, 0.38292, 0.31084).
+    EXPECT_NEAR(std::stod(fields[29]), 0.5651945, 1e-6) << line;
     for (size_t i = 0; i < want.size(); ++i) {
       EXPECT_NEAR(std::stod(fields[6 + i]), want[i], i < 15 ? 1e-12 : 5e-5)
           << line << " column " << 6 + i;
@@ -228,7 +241,7 @@ TEST_F(ReportTest, SummaryOfASyntheticSweep) {
                         "0.12 | not run: no `artkplus` rows in `fig6_noise`"));
   EXPECT_THAT(report,
               HasSubstr("| 0.18 | apriltag | tag | 5 | 60 | 80% | 60% (23–88%) | 70 | 87.5 |"));
-  EXPECT_THAT(report, HasSubstr("| 3 | 30 | 2.8 | 0 |\n"));  // ms, bound, × bound
+  EXPECT_THAT(report, HasSubstr("| 3 | 30 | 2.8 | 0 | 57% |\n"));  // ms, bound, × bound, at bound
   // The circle method's own claims, not run here.
   EXPECT_THAT(report, HasSubstr("| circle method blur | works up to σ = 10 | - | not run"));
   EXPECT_THAT(ReadFileBytes(dir_ + "/manifest.json"),

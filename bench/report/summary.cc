@@ -8,6 +8,7 @@
 #include "bench/run/frames_csv.h"
 #include "core/config_error.h"
 #include "core/number_text.h"
+#include "renderer/pose_crlb.h"
 
 namespace markerbench {
 
@@ -47,6 +48,8 @@ void SummaryBuilder::Add(const FrameRow& r, double time_ms) {
   g.times.push_back(time_ms);
   g.position_bound.push_back(r.crlb_position_med_m);
   g.rotation_bound.push_back(r.crlb_rotation_med_deg);
+  g.success_at_bound_sum +=
+      ProbabilityNormWithin(options_.success_fraction * r.distance_m, r.crlb_position_variances_m2);
   if (!has_pose) return;
   g.posed_position_bound.push_back(r.crlb_position_med_m);
   g.posed_rotation_bound.push_back(r.crlb_rotation_med_deg);
@@ -76,6 +79,7 @@ void SummaryBuilder::CloseCell() {
     s.crlb_rotation_median_deg = Median(g.rotation_bound);
     s.efficiency = s.position_error_median_m / Median(g.posed_position_bound);
     s.rotation_efficiency = s.rotation_error_median_deg / Median(g.posed_rotation_bound);
+    s.success_at_bound = g.success_at_bound_sum / s.n;
     s.detection_rate_ci = WilsonInterval(g.detected, s.n);
     s.success_rate_ci = WilsonInterval(g.successes, s.n);
     s.position_error_median_ci_m = MedianInterval(g.position);
@@ -145,7 +149,7 @@ std::string SummaryCsv(const std::vector<SummaryRow>& rows) {
       "crlb_position_median_m,efficiency,crlb_rotation_median_deg,rotation_efficiency,"
       "detection_rate_lo,detection_rate_hi,success_rate_lo,success_rate_hi,"
       "position_error_median_lo_m,position_error_median_hi_m,"
-      "rotation_error_median_lo_deg,rotation_error_median_hi_deg\n";
+      "rotation_error_median_lo_deg,rotation_error_median_hi_deg,success_at_bound\n";
   for (const SummaryRow& r : rows) {
     csv += CsvField(r.scenario) + ',' + r.sweep_parameter + ',' + NumberText(r.sweep_value) + ',' +
            CsvField(r.grid) + ',' + CsvField(r.tracker) + ',' + CsvField(r.marker) + ',' +
@@ -166,7 +170,7 @@ std::string SummaryCsv(const std::vector<SummaryRow>& rows) {
                               r.rotation_error_median_ci_deg}) {
       csv += ',' + NumberTextOrEmpty(i.lo) + ',' + NumberTextOrEmpty(i.hi);
     }
-    csv += '\n';
+    csv += ',' + NumberTextOrEmpty(r.success_at_bound) + '\n';
   }
   return csv;
 }

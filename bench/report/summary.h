@@ -48,6 +48,10 @@ struct SummaryRow {
   double crlb_rotation_median_deg = 0.0;
   double efficiency = 0.0;
   double rotation_efficiency = 0.0;
+  // The success rate an efficient estimator would have: the mean over the cell's frames of
+  // P(|e| <= success_fraction × distance) for e ~ N(0, the bound's covariance of the camera
+  // centre). What the frames allow, whatever the tracker; NaN when the run has no bound.
+  double success_at_bound = 0.0;
   // 95 % intervals (bench/metrics/intervals.h): Wilson for the rates, order statistics for medians.
   Interval detection_rate_ci;
   Interval success_rate_ci;
@@ -78,6 +82,7 @@ class SummaryBuilder {
     std::vector<double> sizes, times, position_bound, rotation_bound;  // every frame
     std::vector<double> position, rotation, best_position;             // frames with a pose
     std::vector<double> posed_position_bound, posed_rotation_bound;
+    double success_at_bound_sum = 0.0;  // NaN once a frame has no bound
   };
   void CloseCell();
 

@@ -38,6 +38,9 @@ const std::vector<std::string>& Columns() {
     for (const char* p : kPoseColumns) c.push_back(p);
     c.push_back("message");
     c.push_back("grid");
+    for (const char* v :
+         {"crlb_position_var1_m2", "crlb_position_var2_m2", "crlb_position_var3_m2"})
+      c.push_back(v);
     return c;
   }();
   return kColumns;
@@ -127,7 +130,9 @@ std::string FormatFrameRow(const FrameRow& r) {
       ',' + NumberTextOrEmpty(r.crlb_rotation_deg) + ',' +
       NumberTextOrEmpty(r.crlb_rotation_med_deg);
   out += PoseFields(r.truth) + (r.estimate ? PoseFields(*r.estimate) : std::string(12, ','));
-  return out + ',' + CsvField(r.message) + ',' + CsvField(r.grid) + '\n';
+  out += ',' + CsvField(r.message) + ',' + CsvField(r.grid);
+  for (int k = 0; k < 3; ++k) out += ',' + NumberTextOrEmpty(r.crlb_position_variances_m2[k]);
+  return out + '\n';
 }
 
 FrameRow ParseFrameRow(const std::string& line) {
@@ -166,6 +171,7 @@ FrameRow ParseFrameRow(const std::string& line) {
     r.estimate = PoseFromFields(f, ConsecutiveColumns(33), "", RotationCheck::kNone);
   r.message = f[45];
   r.grid = f[46];
+  for (int k = 0; k < 3; ++k) r.crlb_position_variances_m2[k] = ParseNumber(f, 47 + k, true);
   return r;
 }
 

@@ -37,6 +37,9 @@ struct FrameRow {
   double crlb_position_med_m = NAN;
   double crlb_rotation_deg = NAN;
   double crlb_rotation_med_deg = NAN;
+  // The eigenvalues of the bound's camera-centre covariance, ascending (m²): the chance of
+  // success of an efficient estimator (renderer/pose_crlb.h, ProbabilityNormWithin).
+  Eigen::Vector3d crlb_position_variances_m2 = Eigen::Vector3d::Constant(NAN);
   Rigid3 truth;
   std::optional<Rigid3> estimate;  // the first hypothesis, when the status is ok
   std::string message;

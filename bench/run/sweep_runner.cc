@@ -308,12 +308,14 @@ void RunFrame(const PreparedSweep& p,
   if (f.occluded) {
     row.crlb_position_m = row.crlb_position_med_m = INFINITY;  // nothing to see
     row.crlb_rotation_deg = row.crlb_rotation_med_deg = INFINITY;
+    row.crlb_position_variances_m2.setConstant(INFINITY);
   } else if (s.crlb) {
     const PoseBound bound = PoseCrlb(request);
     row.crlb_position_m = bound.position_rms_m;
     row.crlb_position_med_m = bound.position_median_m;
     row.crlb_rotation_deg = bound.rotation_rms_deg;
     row.crlb_rotation_med_deg = bound.rotation_median_deg;
+    row.crlb_position_variances_m2 = bound.position_variances_m2;
   }
   for (const size_t t : tracker_indices) {
     Tracker* tracker = (*trackers)[t].get();
