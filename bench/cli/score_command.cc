@@ -117,11 +117,7 @@ void RunScoreCommand(const ScoreOptions& o, std::ostream& out) {
       ++missing;
       row.message = "no estimate";
     } else {
-      row.status = e->second.status;
-      const std::vector<Rigid3>& hypotheses = e->second.hypotheses;
-      row.hypotheses = static_cast<int>(hypotheses.size());
-      row.errors = ComputePoseErrors(hypotheses, d.truth);
-      if (!hypotheses.empty()) row.estimate = hypotheses.front();
+      SetTrackResult(e->second.status, e->second.hypotheses, &row);
     }
     frames += FormatFrameRow(row);
     if (e != estimates.end() && e->second.time_ms) {

@@ -79,6 +79,14 @@ uint64_t ParseSeed(const std::vector<std::string>& f, size_t i) {
 
 }  // namespace
 
+void SetTrackResult(TrackStatus status, const std::vector<Rigid3>& hypotheses, FrameRow* row) {
+  const bool has_pose = status == TrackStatus::kOk && !hypotheses.empty();
+  row->status = status;
+  row->hypotheses = static_cast<int>(hypotheses.size());
+  row->errors = ComputePoseErrors(has_pose ? hypotheses : std::vector<Rigid3>{}, row->truth);
+  row->estimate = has_pose ? std::optional<Rigid3>(hypotheses.front()) : std::nullopt;
+}
+
 std::string CsvField(std::string text) {
   for (char& ch : text) {
     if (ch == '\n' || ch == '\r') ch = ' ';

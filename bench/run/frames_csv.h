@@ -45,6 +45,10 @@ struct FrameRow {
   std::string message;
 };
 
+// Sets the row's result from a tracker's status and hypotheses (best first), against the
+// row's truth: the errors and the estimate only with status ok and a hypothesis.
+void SetTrackResult(TrackStatus status, const std::vector<Rigid3>& hypotheses, FrameRow* row);
+
 // The header line and one row, each ending in '\n'.
 std::string FramesCsvHeader();
 std::string FormatFrameRow(const FrameRow& row);

@@ -328,13 +328,8 @@ void RunFrame(const PreparedSweep& p,
         std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
     // The tracker's own time, when it runs in another process and reports it.
     const double time_ms = result.time_ms.value_or(round_trip_ms);
-    const bool has_pose = result.status == TrackStatus::kOk && !result.hypotheses.empty();
     row.tracker = s.trackers[t].name;
-    row.status = result.status;
-    row.hypotheses = static_cast<int>(result.hypotheses.size());
-    row.errors =
-        ComputePoseErrors(has_pose ? result.hypotheses : std::vector<Rigid3>{}, f.cam_from_marker);
-    row.estimate = has_pose ? std::optional<Rigid3>(result.hypotheses.front()) : std::nullopt;
+    SetTrackResult(result.status, result.hypotheses, &row);
     row.message = result.message;
     *frame_rows += FormatFrameRow(row);
     *timing_rows += FormatTimingRow(row, time_ms, round_trip_ms);
