@@ -112,11 +112,12 @@ TEST(FramesCsv, CountsOutOfRangeAreErrors) {
     return line;
   };
   EXPECT_NO_THROW(ParseFrameRow(with(3, "7")));
-  for (const auto& [column, value] : std::vector<std::pair<size_t, std::string>>{
+  // Not structured bindings: the lambda below uses them (C++17 cannot capture those).
+  for (const auto& bad : std::vector<std::pair<size_t, std::string>>{
            {3, "8.65065e+13"}, {3, "-1"}, {4, "2.5"}, {11, "1e300"}, {7, "-3"}, {7, "1x"}}) {
-    EXPECT_THAT([&] { ParseFrameRow(with(column, value)); },
+    EXPECT_THAT([&] { ParseFrameRow(with(bad.first, bad.second)); },
                 ::testing::ThrowsMessage<std::runtime_error>(HasSubstr("expected a whole number")))
-        << column << " " << value;
+        << bad.first << " " << bad.second;
   }
 }
 
