@@ -5,6 +5,8 @@
 #include <benchmark/benchmark.h>
 #include <sys/resource.h>
 
+#include <Eigen/Geometry>
+
 #include "core/marker_yaml.h"
 #include "core/random.h"
 #include "renderer/pose_crlb.h"
@@ -14,9 +16,28 @@
 namespace markerbench {
 namespace {
 
-// Calls work(request) on a fresh paired-protocol frame of `file` per iteration.
+// A hand-held camera's motion as in scenarios/sequences/handheld_rolling_shutter.yaml: 1/60 s
+// exposure, 20 ms rolling-shutter readout, 0.15 m/s sideways and 30°/s about the camera's y
+// axis, the truth at mid-exposure of the middle row.
+void MakeMoving(FrameRequest* request) {
+  request->exposure_s = 1.0 / 60.0;
+  request->readout_s = 0.02;
+  const double truth_time = 0.5 * (request->exposure_s + request->readout_s);
+  const Rigid3 truth = request->scene.cam_from_marker;
+  request->cam_from_marker_at = [truth, truth_time](double t) {
+    const double s = t - truth_time;
+    const Eigen::Matrix3d turn =
+        Eigen::AngleAxisd(s * 30.0 * 3.14159265358979323846 / 180.0, Eigen::Vector3d::UnitY())
+            .toRotationMatrix();
+    return Rigid3(turn, Eigen::Vector3d(0.15 * s, 0.0, 0.0)) * truth;
+  };
+}
+
+// Calls work(request) on a fresh paired-protocol frame of `file` per iteration (seen by a
+// moving camera when `moving`).
 template <typename Work>
-void EachFrame(benchmark::State& state, const char* file, int channels, Work work) {
+void EachFrame(
+    benchmark::State& state, const char* file, int channels, Work work, bool moving = false) {
   const MarkerSpec marker = LoadMarkerYaml(file);
   FrameRequest request;
   request.scene.marker = &marker;
@@ -31,14 +52,18 @@ void EachFrame(benchmark::State& state, const char* file, int channels, Work wor
     request.scene.cam_from_marker = TiltedView(0.6, rng.Uniform(0, 40), rng.Uniform(0, 360));
     request.scene.cam_from_marker.translation -= request.scene.cam_from_marker.rotation * center;
     request.noise_seed = SeedFor(1, 0, frame++, SeedPurpose::kNoise);
+    if (moving) MakeMoving(&request);
     work(request);
   }
 }
 
-void RenderMarker(benchmark::State& state, const char* file, int channels) {
-  EachFrame(state, file, channels, [](const FrameRequest& request) {
-    benchmark::DoNotOptimize(RenderFrame(request));
-  });
+void RenderMarker(benchmark::State& state, const char* file, int channels, bool moving = false) {
+  EachFrame(
+      state,
+      file,
+      channels,
+      [](const FrameRequest& request) { benchmark::DoNotOptimize(RenderFrame(request)); },
+      moving);
 }
 
 void BM_RenderTag36h11Grey(benchmark::State& state) {
@@ -50,10 +75,13 @@ void BM_RenderCirclesAColour(benchmark::State& state) {
 
 // The Cramér-Rao bound of the same frames (computed once per frame in sweeps): its cost
 // against the render's is what it adds to a sweep.
-void BoundOfMarker(benchmark::State& state, const char* file, int channels) {
-  EachFrame(state, file, channels, [](const FrameRequest& request) {
-    benchmark::DoNotOptimize(PoseCrlb(request));
-  });
+void BoundOfMarker(benchmark::State& state, const char* file, int channels, bool moving = false) {
+  EachFrame(
+      state,
+      file,
+      channels,
+      [](const FrameRequest& request) { benchmark::DoNotOptimize(PoseCrlb(request)); },
+      moving);
 }
 void BM_CrlbTag36h11Grey(benchmark::State& state) {
   BoundOfMarker(state, "scenarios/markers/apriltag.yaml", 1);
@@ -64,6 +92,16 @@ void BM_CrlbCirclesAColour(benchmark::State& state) {
 void BM_CrlbRuneTagGrey(benchmark::State& state) {
   BoundOfMarker(state, "scenarios/markers/runetag.yaml", 1);
 }
+// A moving camera (MakeMoving): the render integrates the exposure row band by row band, the
+// bound samples the exposure every 0.25 px of motion.
+void BM_RenderCirclesAMovingGrey(benchmark::State& state) {
+  RenderMarker(state, "scenarios/markers/circles_a.yaml", 1, true);
+}
+void BM_CrlbCirclesAMovingGrey(benchmark::State& state) {
+  BoundOfMarker(state, "scenarios/markers/circles_a.yaml", 1, true);
+}
+BENCHMARK(BM_RenderCirclesAMovingGrey)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_CrlbCirclesAMovingGrey)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_CrlbTag36h11Grey)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_CrlbCirclesAColour)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_CrlbRuneTagGrey)->Unit(benchmark::kMillisecond);
