@@ -53,7 +53,7 @@ BoundaryDistances DistancesTo(const Shape& shape, const Eigen::Vector2d& p) {
     const Eigen::Vector2d d = p - disk.center;
     const double r = d.norm();
     const Eigen::Vector2d gradient = r > 0.0 ? Eigen::Vector2d(d / r) : Eigen::Vector2d::UnitX();
-    b.terms[b.count++] = {sign * CircleDistance(disk, p), sign * gradient};
+    b.terms[b.count++] = {sign * CircleDistance(disk, p), sign * gradient, sign / disk.radius};
   };
   if (const auto* disk = std::get_if<DiskShape>(&shape)) {
     circle(*disk, 1.0);
@@ -65,7 +65,7 @@ BoundaryDistances DistancesTo(const Shape& shape, const Eigen::Vector2d& p) {
     const Eigen::Vector2d d = p - sector->center;
     auto line = [&](double angle, double sign) {
       const Eigen::Vector2d normal(-std::sin(angle), std::cos(angle));  // left of the ray
-      b.terms[b.count++] = {sign * normal.dot(d), sign * normal};
+      b.terms[b.count++] = {sign * normal.dot(d), sign * normal, 0.0};
     };
     circle({sector->center, sector->radius}, 1.0);
     line(sector->start_rad, -1.0);

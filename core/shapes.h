@@ -71,11 +71,13 @@ struct PaintSample {
 PaintSample PaintAt(const PaintedShape& painted, const Eigen::Vector2d& p);
 
 // A disk, crescent or sector as the signed distances from a point to the circles and lines
-// that bound it (the shape is where all are negative), each with its unit gradient; none for
-// grids.
+// that bound it (the shape is where all are negative), each with its unit gradient and how
+// fast that turns along the boundary (1/radius for a circle the shape lies inside, -1/radius
+// for one it lies outside, 0 for a line); none for grids.
 struct EdgeDistance {
   double metres = 0.0;
   Eigen::Vector2d gradient = Eigen::Vector2d::UnitX();
+  double curvature_per_m = 0.0;
 };
 struct BoundaryDistances {
   std::array<EdgeDistance, 3> terms;

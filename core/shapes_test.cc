@@ -100,8 +100,8 @@ TEST(Shapes, PaintAtKnowsInsideAndKeepsItsColourWithinTheClearance) {
 }
 
 // DistancesTo: a point is inside (PaintAt) where every distance is negative; stepping back
-// along a term's gradient by its distance lands on that term's circle or line; grids have
-// none.
+// along a term's gradient by its distance lands on that term's circle or line, where the
+// gradient turns along the boundary at the term's curvature; grids have none.
 TEST(Shapes, DistancesToLeadToEachBoundary) {
   const std::vector<Shape> shapes = {DiskShape{{0.01, -0.01}, 0.03},
                                      CrescentFromTips({0.03, 0.0}, {0.0, -0.03}, 0.012, 0.005),
@@ -119,6 +119,13 @@ TEST(Shapes, DistancesToLeadToEachBoundary) {
         EXPECT_NEAR(b.terms[t].gradient.norm(), 1.0, 1e-12);
         const Eigen::Vector2d foot = p - b.terms[t].metres * b.terms[t].gradient;
         EXPECT_NEAR(DistancesTo(shapes[k], foot).terms[t].metres, 0.0, 1e-12) << k << " " << t;
+        const Eigen::Vector2d tangent(-b.terms[t].gradient.y(), b.terms[t].gradient.x());
+        const double h = 1e-6;
+        const Eigen::Vector2d turned = DistancesTo(shapes[k], foot + h * tangent).terms[t].gradient;
+        EXPECT_NEAR((turned - b.terms[t].gradient).dot(tangent) / h,
+                    b.terms[t].curvature_per_m,
+                    1e-3 * (1.0 + std::abs(b.terms[t].curvature_per_m)))
+            << k << " " << t;
       }
       EXPECT_EQ(inside, PaintAt({shapes[k], Rgb::Zero()}, p).color.has_value()) << k;
     }

@@ -5,6 +5,7 @@
 #include <cmath>
 
 #include "core/marker_spec.h"
+#include "core/random.h"
 #include "core/rigid3.h"
 #include "renderer/render_frame.h"
 
@@ -43,6 +44,15 @@ inline Rigid3 TiltedView(double distance_m, double tilt_deg, double roll_deg) {
   const Eigen::Matrix3d R = Eigen::AngleAxisd(roll_deg * kDeg, Eigen::Vector3d::UnitZ()) * frontal *
                             Eigen::AngleAxisd(tilt_deg * kDeg, Eigen::Vector3d::UnitX());
   return {R, Eigen::Vector3d(0.0, 0.0, distance_m)};
+}
+
+// `truth` moved by about 1 mm and 0.25°: a refinement's start a typical edge fit away.
+inline Rigid3 SlightlyPerturbed(const Rigid3& truth, Rng* rng) {
+  const Eigen::Vector3d axis(rng->Gaussian(), rng->Gaussian(), rng->Gaussian());
+  Rigid3 start = truth;
+  start.rotation = Eigen::AngleAxisd(0.25 * M_PI / 180.0, axis.normalized()) * truth.rotation;
+  start.translation += 0.0006 * Eigen::Vector3d(rng->Gaussian(), rng->Gaussian(), rng->Gaussian());
+  return start;
 }
 
 // The request for `marker` at a pose from the default camera, with noise and blur (the noise

@@ -59,7 +59,9 @@ Eigen::Matrix2d TiltedMap() {
 }
 
 // f's wedge: its sides are straight and its apex the corner of two half-planes, which the
-// model takes exactly; where the wedge meets the rim, the corner of a line and a circle.
+// model takes exactly; where the wedge meets the rim, the corner of a line and a circle. Along
+// its arc the wedge and the disk share the rim, grey to white: their steps add (a cover of
+// the wedge over the blurred disk would be 0.2 too dark there).
 TEST(BlurredDesign, MatchesTheConvolvedWedge) {
   const MarkerSpec f = LoadMarkerYaml("scenarios/markers/circle_f.yaml");
   const double sigma = 2.0;
@@ -70,8 +72,11 @@ TEST(BlurredDesign, MatchesTheConvolvedWedge) {
                                    Eigen::Vector2d(0.02, 0.0015),
                                    Eigen::Vector2d(0.01, 0.012),
                                    Eigen::Vector2d(0.03, 0.02),
-                                   Eigen::Vector2d(-0.01, -0.01)}) {
-    const double model = BlurredDesignLuma(f, p, TiltedMap(), sigma).luma;
+                                   Eigen::Vector2d(-0.01, -0.01),
+                                   Eigen::Vector2d(0.0433, 0.025),
+                                   Eigen::Vector2d(0.0448, 0.0258),
+                                   Eigen::Vector2d(0.0413, 0.0239)}) {
+    const double model = BlurredDesign(f).At(p, TiltedMap(), sigma).luma;
     const double truth = ConvolvedLuma(f, p, TiltedMap(), sigma);
     largest = std::max(largest, std::abs(model - truth));
     EXPECT_NEAR(model, truth, 2e-3) << p.transpose();
@@ -89,7 +94,7 @@ TEST(BlurredDesign, ApproximatesTheConvolvedMouth) {
                                    Eigen::Vector2d(0.02, -0.02),
                                    Eigen::Vector2d(0.03, 0.0),
                                    Eigen::Vector2d(0.028, -0.004)}) {
-    EXPECT_NEAR(BlurredDesignLuma(e, p, TiltedMap(), sigma).luma,
+    EXPECT_NEAR(BlurredDesign(e).At(p, TiltedMap(), sigma).luma,
                 ConvolvedLuma(e, p, TiltedMap(), sigma),
                 0.03)
         << p.transpose();
@@ -97,22 +102,30 @@ TEST(BlurredDesign, ApproximatesTheConvolvedMouth) {
 }
 
 // The gradient leaves out how each edge's direction turns along p (second order at the edge):
-// within 5 % and 0.5 per metre (across the edges it reaches 150 per metre).
+// within 5 % and 0.5 per metre (across the edges it reaches 150 per metre). The derivative in
+// σ is exact.
 TEST(BlurredDesign, GradientIsTheDerivative) {
   for (const char* kind : {"circle_e", "circle_f"}) {
     const MarkerSpec marker = LoadMarkerYaml(std::string("scenarios/markers/") + kind + ".yaml");
+    const BlurredDesign design(marker);
     for (const Eigen::Vector2d& p : {Eigen::Vector2d(0.001, 0.002),
                                      Eigen::Vector2d(0.02, -0.018),
                                      Eigen::Vector2d(0.015, 0.004)}) {
-      const BlurredLuma at = BlurredDesignLuma(marker, p, TiltedMap(), 1.2);
+      const BlurredLuma at = design.At(p, TiltedMap(), 1.2);
       for (int axis = 0; axis < 2; ++axis) {
         const Eigen::Vector2d h = 1e-7 * Eigen::Vector2d::Unit(axis);
-        const double numeric = (BlurredDesignLuma(marker, p + h, TiltedMap(), 1.2).luma -
-                                BlurredDesignLuma(marker, p - h, TiltedMap(), 1.2).luma) /
-                               2e-7;
+        const double numeric =
+            (design.At(p + h, TiltedMap(), 1.2).luma - design.At(p - h, TiltedMap(), 1.2).luma) /
+            2e-7;
         EXPECT_NEAR(at.gradient(axis), numeric, 0.5 + 0.05 * std::abs(numeric))
             << kind << " " << p.transpose() << " axis " << axis;
       }
+      // In σ nothing is held: the derivative is exact.
+      const double numeric_sigma = (design.At(p, TiltedMap(), 1.2 + 1e-6).luma -
+                                    design.At(p, TiltedMap(), 1.2 - 1e-6).luma) /
+                                   2e-6;
+      EXPECT_NEAR(at.d_sigma, numeric_sigma, 1e-6 + 1e-5 * std::abs(numeric_sigma))
+          << kind << " " << p.transpose();
     }
   }
 }

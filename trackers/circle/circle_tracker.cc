@@ -308,22 +308,34 @@ TrackResult CircleTracker::TrackIn(const Observation& observation,
   };
   Rigid3 cam_from_paper = refined_from_best(analytic->pose.cam_from_paper, starts);
 
+  // e, f: the circle (and e's nose) are blind to the roll, and f's circle alone to which of
+  // its two tilts is seen (§4.7). The design inside the circle gives the roll and its centre
+  // m0 (roll_feature.h), and whether it shows.
+  std::optional<RollFeature> feature;
+  if (geometry.roll_from_design) feature.emplace(*observation.marker, geometry);
+  const double paper_level = detection->circles[0].edges.outside_level;
+  auto align = [&](const Rigid3& pose, bool fit_center) {
+    return feature->Align(*observation.image,
+                          camera,
+                          pose,
+                          paper_level,
+                          diagnostics_.image_blur_sigma_px,
+                          255.0 * diagnostics_.noise_sigma,
+                          fit_center);
+  };
+  // Where the fit on the design's pixels starts (below).
+  std::vector<Rigid3> design_starts;
   if (geometry.roll_from_design) {
-    // e, f: the circle (and e's nose) are blind to the roll, and f's circle alone to which of
-    // its two tilts is seen (§4.7). The design inside the circle gives the roll and its
-    // centre m0 (roll_feature.h); m0 becomes the point term (for e in place of the nose's
-    // centroid), the pose is refined again, and the roll fitted at that pose.
-    const RollFeature feature(*observation.marker, geometry);
-    const double paper_level = detection->circles[0].edges.outside_level;
-    auto align = [&](const Rigid3& pose, bool fit_center) {
-      return feature.Align(*observation.image,
-                           camera,
-                           pose,
-                           paper_level,
-                           diagnostics_.image_blur_sigma_px,
-                           255.0 * diagnostics_.noise_sigma,
-                           fit_center);
-    };
+    const double radius_px = camera.fx * geometry.radii_m[0] / cam_from_paper.translation.norm();
+    if (!(radius_px >= options_.min_design_radius_per_blur * diagnostics_.image_blur_sigma_px)) {
+      result.status = TrackStatus::kNotDetected;
+      result.message = "the design inside the circle is too blurred to read: radius " +
+                       NumberText(radius_px) + " px < min_design_radius_per_blur x blur " +
+                       NumberText(diagnostics_.image_blur_sigma_px) + " px";
+      return result;
+    }
+    // m0 becomes the point term (for e in place of the nose's centroid), the pose is refined
+    // again, and the roll fitted at that pose.
     std::optional<RollAlignment> aligned = align(cam_from_paper, true);
     if (aligned) {
       const Eigen::Vector3d center =
@@ -347,9 +359,21 @@ TrackResult CircleTracker::TrackIn(const Observation& observation,
       return result;
     }
     cam_from_paper = aligned->cam_from_paper;
-    // m1 as the design places it, for the tracking mode's check of the prediction.
-    diagnostics_.m1_px =
-        (K * (cam_from_paper * Eigen::Vector3d(geometry.Lx, 0.0, 0.0))).hnormalized();
+    design_starts.push_back(cam_from_paper);
+    // The circle fixes its tilt only up to the other of its two (§4.7), which the centre
+    // point may have picked; the design's pixels tell the two apart, so the fit on them starts
+    // from the other too: the analytic start whose normal lies furthest from this pose's,
+    // turned to the design.
+    const Eigen::Vector3d normal = cam_from_paper.rotation.col(2);
+    const auto other =
+        std::min_element(starts.begin(), starts.end(), [&](const Rigid3& a, const Rigid3& b) {
+          return a.rotation.col(2).dot(normal) < b.rotation.col(2).dot(normal);
+        });
+    if (other != starts.end() &&
+        other->rotation.col(2).dot(normal) < std::cos(options_.min_branch_angle_rad)) {
+      const std::optional<RollAlignment> turned = align(*other, true);
+      if (turned && turned->shows_design) design_starts.push_back(turned->cam_from_paper);
+    }
   }
 
   diagnostics_.edge_rms_px = EdgeRmsPx(problem, cam_from_paper);
@@ -357,24 +381,35 @@ TrackResult CircleTracker::TrackIn(const Observation& observation,
   // (most of them clutter) it would cost its time for nothing.
   if (options_.refine && options_.photometric &&
       diagnostics_.edge_rms_px <= options_.max_edge_rms_px) {
-    const std::optional<PhotometricResult> direct =
-        RefinePhotometric(*observation.image,
-                          camera,
-                          *observation.marker,
-                          cam_from_paper * paper_from_marker,
-                          diagnostics_.image_blur_sigma_px,
-                          options_.photometric_refinement);
+    const std::optional<Rigid3> direct =
+        geometry.roll_from_design ? OnDesignPixels(observation, design_starts, paper_from_marker)
+                                  : OnDiskPixels(observation, cam_from_paper * paper_from_marker);
     // Kept unless it leaves the edges (a fit gone astray: the pixels and the edge points
-    // measure the same edges).
+    // measure the same edges). For (e) and (f) the edge points under blur are pulled by the
+    // design next to the rim (f's wedge meets it) by up to a pixel or two, and the tilt
+    // they fit may be the circle's other one, so there the limit is the acceptance's, and
+    // the design must still show there (a fit of clutter can leave the design behind).
     if (direct) {
-      const Rigid3 on_pixels = direct->cam_from_marker * geometry.marker_from_paper;
+      const Rigid3 on_pixels = *direct * geometry.marker_from_paper;
       const double rms = EdgeRmsPx(problem, on_pixels);
-      diagnostics_.photometric_used = rms <= diagnostics_.edge_rms_px + 0.5;
+      if (geometry.roll_from_design) {
+        const std::optional<RollAlignment> at_pixels = align(on_pixels, false);
+        diagnostics_.photometric_used =
+            rms <= options_.max_edge_rms_px && at_pixels && at_pixels->shows_design;
+      } else {
+        diagnostics_.photometric_used = rms <= diagnostics_.edge_rms_px + 0.5;
+      }
       if (diagnostics_.photometric_used) {
         cam_from_paper = on_pixels;
         diagnostics_.edge_rms_px = rms;
       }
     }
+  }
+
+  if (geometry.roll_from_design) {
+    // m1 as the design places it, for the tracking mode's check of the prediction.
+    diagnostics_.m1_px =
+        (K * (cam_from_paper * Eigen::Vector3d(geometry.Lx, 0.0, 0.0))).hnormalized();
   }
 
   // Acceptance: the marker in front of the camera, and its projected circles on the edges.
@@ -416,6 +451,44 @@ TrackResult CircleTracker::TrackIn(const Observation& observation,
   }
   previous_cam_from_paper_ = cam_from_paper;
   return result;
+}
+
+std::optional<Rigid3> CircleTracker::OnDiskPixels(const Observation& observation,
+                                                  const Rigid3& cam_from_marker) const {
+  const std::optional<PhotometricResult> direct =
+      RefinePhotometric(*observation.image,
+                        *observation.camera,
+                        *observation.marker,
+                        cam_from_marker,
+                        diagnostics_.image_blur_sigma_px,
+                        options_.photometric_refinement);
+  if (!direct) return std::nullopt;
+  return direct->cam_from_marker;
+}
+
+std::optional<Rigid3> CircleTracker::OnDesignPixels(
+    const Observation& observation,
+    const std::vector<Rigid3>& cam_from_paper_starts,
+    const Rigid3& paper_from_marker) const {
+  std::vector<DesignRefinement> fits;
+  for (const Rigid3& start : cam_from_paper_starts) {
+    std::optional<DesignRefinement> fit = RefineDesign(*observation.image,
+                                                       *observation.camera,
+                                                       *observation.marker,
+                                                       start * paper_from_marker,
+                                                       diagnostics_.image_blur_sigma_px,
+                                                       diagnostics_.noise_sigma,
+                                                       options_.design_refinement);
+    if (fit) fits.push_back(std::move(*fit));
+  }
+  if (fits.empty()) return std::nullopt;
+  const size_t best = BestDesignRefinement(*observation.image,
+                                           *observation.camera,
+                                           *observation.marker,
+                                           fits,
+                                           diagnostics_.noise_sigma,
+                                           options_.design_refinement);
+  return fits[best].fit.cam_from_marker;
 }
 
 std::unique_ptr<Tracker> MakeCircleTracker(const CircleTrackerOptions& options) {

@@ -15,6 +15,7 @@
 
 #include "trackers/circle/analytic_solver.h"
 #include "trackers/circle/circle_detector.h"
+#include "trackers/circle/design_refinement.h"
 #include "trackers/circle/photometric_refinement.h"
 #include "trackers/circle/pose_refinement.h"
 #include "trackers/printed_appearance.h"
@@ -28,9 +29,19 @@ struct CircleTrackerOptions {
   CircleDetectorOptions detector;
   AnalyticOptions analytic;
   RefinementOptions refinement;
-  bool refine = true;       // run the LM refinement (§6); off = analytic pose only
-  bool photometric = true;  // and then on the pixels (photometric_refinement.h)
+  bool refine = true;  // run the LM refinement (§6); off = analytic pose only
+  // and then on the pixels (photometric_refinement.h; for (e) and (f) design_refinement.h)
+  bool photometric = true;
   PhotometricOptions photometric_refinement;
+  DesignRefinementOptions design_refinement;
+  // (e, f) The design's pixels are fitted from the circle's other tilt too when its normal is
+  // this far from the chosen one's (nearer, the fit reaches it from either).
+  double min_branch_angle_rad = 0.02;
+  // (e, f) The circle's radius must be at least this many blur σ: below, the design (a 60°
+  // wedge, a mouth) is too blurred to tell from clutter, which it then fits (on the negative
+  // set, dark blobs as circles of 14.7-15.9 px at σ 2.2-3.7 px, 4.2-6.7 σ; on the paper sweeps
+  // 6 % of the frames of e and f, at blur σ 4 and beyond, fall below).
+  double min_design_radius_per_blur = 7.0;
   bool tracking = true;      // search around the previous pose first (paper step 5)
   double roi_margin = 0.25;  // tracking region: predicted box grown by this fraction
   // A tracking-mode result stands only if each ellipse is within this fraction of its
@@ -84,6 +95,14 @@ class CircleTracker final : public Tracker {
                       const cv::Rect& region,
                       const std::vector<Eigen::Matrix3d>* predicted_conics_px,
                       const Rigid3* previous_cam_from_paper);
+  // The pose refined on the pixels around the disks' edges (photometric_refinement.h).
+  std::optional<Rigid3> OnDiskPixels(const Observation& observation,
+                                     const Rigid3& cam_from_marker) const;
+  // (e, f) The pose refined on the pixels around every edge of the design from each start,
+  // the one that explains them best (design_refinement.h).
+  std::optional<Rigid3> OnDesignPixels(const Observation& observation,
+                                       const std::vector<Rigid3>& cam_from_paper_starts,
+                                       const Rigid3& paper_from_marker) const;
 
   CircleTrackerOptions options_;
   std::optional<Rigid3> previous_cam_from_paper_;

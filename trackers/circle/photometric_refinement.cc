@@ -3,7 +3,6 @@
 #include <ceres/jet.h>
 #include <ceres/rotation.h>
 
-#include <Eigen/Cholesky>
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -11,6 +10,7 @@
 
 #include "trackers/circle/blurred_disk_profile.h"
 #include "trackers/circle/conic.h"
+#include "trackers/circle/pixel_fit.h"
 
 namespace markerbench {
 namespace {
@@ -380,49 +380,6 @@ PixelSet PixelsNearEdges(const Image8& image,
   return set;
 }
 
-// Levenberg-Marquardt on the normal equations (Marquardt's diagonal scaling) from a pose and
-// σ, gains 1 and offsets 0.
-PhotometricResult Solve(const PixelModel& model,
-                        const Rigid3& cam_from_marker,
-                        double sigma_px,
-                        int max_iterations) {
-  Eigen::VectorXd theta = Eigen::VectorXd::Zero(model.Parameters());
-  ceres::RotationMatrixToAngleAxis(ceres::ColumnMajorAdapter3x3(cam_from_marker.rotation.data()),
-                                   theta.data());
-  theta.segment<3>(3) = cam_from_marker.translation;
-  theta[6] = sigma_px;
-  for (int gain = 8; gain < model.Parameters(); gain += 2) theta[gain] = 1.0;
-  Eigen::MatrixXd jtj;
-  Eigen::VectorXd jtr;
-  double cost = model.Evaluate(theta, &jtj, &jtr);
-  PhotometricResult result;
-  double damping = 1e-3;
-  for (int iteration = 0; iteration < max_iterations; ++iteration) {
-    Eigen::MatrixXd damped = jtj;
-    damped.diagonal() += damping * jtj.diagonal();
-    Eigen::VectorXd trial = theta + damped.ldlt().solve(-jtr);
-    trial[6] = std::max(trial[6], 0.2);
-    const double trial_cost = model.Evaluate(trial, nullptr, nullptr);
-    ++result.iterations;
-    if (!(trial_cost < cost)) {
-      damping *= 10.0;
-      if (damping > 1e6) break;
-      continue;
-    }
-    const bool converged = cost - trial_cost < 1e-6 * cost;  // Ceres's function tolerance
-    theta = trial;
-    cost = model.Evaluate(theta, &jtj, &jtr);
-    damping = std::max(damping / 10.0, 1e-9);
-    if (converged) break;
-  }
-  ceres::AngleAxisToRotationMatrix(
-      theta.data(), ceres::ColumnMajorAdapter3x3(result.cam_from_marker.rotation.data()));
-  result.cam_from_marker.translation = theta.segment<3>(3);
-  result.sigma_px = theta[6];
-  result.final_cost = 0.5 * cost;
-  return result;
-}
-
 // One solve on the pixels near the edges at `cam_from_marker`, each tied to its edges' points.
 std::optional<PhotometricResult> RefineOnce(const Image8& image,
                                             const Camera& camera,
@@ -452,7 +409,12 @@ std::optional<PhotometricResult> RefineOnce(const Image8& image,
                                           options.max_depth_per_curvature);
   if (pixels.pixels.size() < 20) return std::nullopt;
   const PixelModel model(camera.K(), *layers, pixels, image.channels);
-  PhotometricResult result = Solve(model, cam_from_marker, sigma, options.max_iterations);
+  const PixelFit fit = FitPixels(model, cam_from_marker, sigma, options.max_iterations);
+  PhotometricResult result;
+  result.cam_from_marker = fit.cam_from_marker;
+  result.sigma_px = fit.sigma_px;
+  result.iterations = fit.iterations;
+  result.final_cost = 0.5 * fit.cost;
   result.pixels = static_cast<int>(pixels.pixels.size());
   return result;
 }

@@ -23,15 +23,6 @@ MarkerSpec Load(const std::string& kind) {
   return LoadMarkerYaml("scenarios/markers/" + kind + ".yaml");
 }
 
-// The truth moved by about 1 mm and 0.25°, the edge-point refinement's typical error here.
-Rigid3 Perturbed(const Rigid3& truth, Rng* rng) {
-  const Eigen::Vector3d axis(rng->Gaussian(), rng->Gaussian(), rng->Gaussian());
-  Rigid3 start = truth;
-  start.rotation = Eigen::AngleAxisd(0.25 * M_PI / 180.0, axis.normalized()) * truth.rotation;
-  start.translation += 0.0006 * Eigen::Vector3d(rng->Gaussian(), rng->Gaussian(), rng->Gaussian());
-  return start;
-}
-
 TEST(PhotometricRefinement, RecoversThePoseAndTheBlurFromAPerturbedStart) {
   const Camera camera;
   Rng rng(3);
@@ -42,7 +33,7 @@ TEST(PhotometricRefinement, RecoversThePoseAndTheBlurFromAPerturbedStart) {
       const Rigid3 truth = TiltedView(0.5, 30.0, 40.0);
       const RenderedFrame frame = RenderMarker(marker, truth, 0.005, blur, 7);
       const std::optional<PhotometricResult> refined =
-          RefinePhotometric(frame.image, camera, marker, Perturbed(truth, &rng), 1.0);
+          RefinePhotometric(frame.image, camera, marker, SlightlyPerturbed(truth, &rng), 1.0);
       ASSERT_TRUE(refined);
       // Measured: 0.23-0.90 mm and 0.026-0.11° over these eight frames.
       EXPECT_LE(PositionError(refined->cam_from_marker, truth), 1.2e-3);
@@ -110,7 +101,7 @@ TEST(PhotometricRefinement, ModelsOverlappingHeavilyBlurredEdges) {
     const Rigid3 truth = TiltedView(0.6, c.tilt_deg, 40.0);
     const RenderedFrame frame = RenderMarker(marker, truth, 0.0, c.blur, 7);
     const std::optional<PhotometricResult> refined =
-        RefinePhotometric(frame.image, camera, marker, Perturbed(truth, &rng), c.blur);
+        RefinePhotometric(frame.image, camera, marker, SlightlyPerturbed(truth, &rng), c.blur);
     ASSERT_TRUE(refined);
     EXPECT_LE(PositionError(refined->cam_from_marker, truth), 1e-3 * c.max_error_mm);
     EXPECT_NEAR(refined->sigma_px, c.blur, 0.02 * c.blur);

@@ -8,7 +8,7 @@
 #include <vector>
 
 #include "core/shapes.h"
-#include "trackers/circle/blurred_design.h"
+#include "trackers/circle/plane_view.h"
 #include "trackers/upper_median.h"
 
 namespace markerbench {
@@ -57,11 +57,6 @@ struct DesignIntegral {
   }
 };
 
-double LumaAt(const Image8& image, int x, int y) {
-  const uint8_t* p = &image.pixels[(static_cast<size_t>(y) * image.width + x) * image.channels];
-  return image.channels == 3 ? Luma(Rgb(p[0], p[1], p[2])) : p[0];
-}
-
 // A pixel of the window: its luma, its point q in the paper frame, the plane area it covers
 // (times the window's weight) and d(q)/d(pixel).
 struct WindowPixel {
@@ -106,23 +101,16 @@ std::optional<WindowPixels> ReadWindow(const Image8& image,
   out.rows = static_cast<int>(std::ceil(y1)) - out.y_begin + 1;
   // Each pixel, at its plane point q, covers |det H⁻¹| / q̃_z³ of the normalized image's area
   // per unit of it (H = [r1 r2 t], q̃ = H⁻¹ ray).
-  const Eigen::Matrix3d plane_from_ray = ray_from_plane.inverse();
-  const Eigen::Matrix3d plane_from_px_h = plane_from_ray * camera.K().inverse();
-  const double pixel_area = std::abs(plane_from_ray.determinant()) / (camera.fx * camera.fy);
+  const PlaneView view(camera, cam_from_paper);
+  const double pixel_area = std::abs(view.plane_from_ray().determinant()) / (camera.fx * camera.fy);
   for (int y = out.y_begin; y < out.y_begin + out.rows; ++y) {
     for (int x = out.x_begin; x < out.x_begin + out.columns; ++x) {
-      const Eigen::Vector3d q = plane_from_ray * camera.CamFromImg(Eigen::Vector2d(x, y));
-      const Eigen::Vector2d on_plane = q.head<2>() / q.z();
-      const double weight = window.At(on_plane.norm());
+      const PlaneLook look = view.Look(x, y);
+      const double weight = window.At(look.point.norm());
       if (!(weight > 0.0)) continue;
-      const double area = weight * pixel_area / std::abs(q.z() * q.z() * q.z());
-      // d(plane point)/d(pixel) through the pinhole (the lens's distortion is smooth).
-      Eigen::Matrix2d plane_from_px;
-      for (int j = 0; j < 2; ++j) {
-        plane_from_px.col(j) =
-            (plane_from_px_h.block<2, 1>(0, j) - on_plane * plane_from_px_h(2, j)) / q.z();
-      }
-      out.pixels.push_back({x, y, LumaAt(image, x, y), on_plane, area, plane_from_px});
+      const double h = look.homogeneous;
+      const double area = weight * pixel_area / std::abs(h * h * h);
+      out.pixels.push_back({x, y, LumaAt(image, x, y), look.point, area, look.plane_from_px});
     }
   }
   return out;
@@ -131,7 +119,7 @@ std::optional<WindowPixels> ReadWindow(const Image8& image,
 // The printed design seen through a pixel, with the design turned by `turn` and its centre
 // moved to `center` in the paper frame (blurred_design.h); its gradient in the marker point.
 struct DesignModel {
-  const MarkerSpec& marker;
+  const BlurredDesign& design;
   Eigen::Matrix2d marker_rotation;  // marker_from_paper's
   Eigen::Vector2d marker_shift;
   double sigma_px;
@@ -142,10 +130,8 @@ struct DesignModel {
   BlurredLuma At(const WindowPixel& pixel,
                  const Eigen::Matrix2d& to_marker,
                  const Eigen::Vector2d& center) const {
-    return BlurredDesignLuma(marker,
-                             to_marker * (pixel.q - center) + marker_shift,
-                             to_marker * pixel.plane_from_px,
-                             sigma_px);
+    return design.At(
+        to_marker * (pixel.q - center) + marker_shift, to_marker * pixel.plane_from_px, sigma_px);
   }
 };
 
@@ -250,6 +236,7 @@ RollFeature::RollFeature(const MarkerSpec& marker,
                          const CircleGeometry& geometry,
                          const RollFeatureOptions& options)
     : marker_(marker),
+      blurred_(marker),
       marker_from_paper_(geometry.marker_from_paper),
       window_m_(options.window_per_radius * geometry.radii_m[0]),
       taper_m_(options.taper_per_radius * geometry.radii_m[0]),
@@ -307,7 +294,7 @@ std::optional<RollAlignment> RollFeature::Align(const Image8& image,
       std::abs(cam_from_paper.rotation.col(2).dot(cam_from_paper.translation)) / depth;
   const double metres_per_px = depth / (camera.fx * std::max(facing, 0.1));
   const double reach_m = (3.0 * blur_sigma_px + 2.0) * metres_per_px + 0.1 * window_m_;
-  const DesignModel model{marker_,
+  const DesignModel model{blurred_,
                           marker_from_paper_.rotation.topLeftCorner<2, 2>(),
                           marker_from_paper_.translation.head<2>(),
                           std::max(blur_sigma_px, 0.3)};

@@ -1,0 +1,298 @@
+#include "trackers/circle/design_refinement.h"
+
+#include <ceres/jet.h>
+#include <ceres/rotation.h>
+
+#include <Eigen/LU>
+#include <algorithm>
+#include <cmath>
+#include <iterator>
+
+#include "trackers/circle/blurred_design.h"
+#include "trackers/circle/plane_view.h"
+
+namespace markerbench {
+namespace {
+
+struct DesignPixel {
+  int x = 0, y = 0;
+  Eigen::Vector3d ray = Eigen::Vector3d::Zero();  // camera frame, z = 1
+  double value = 0.0;                             // luma, 0-1
+};
+
+// Row-major order, in which the pixels are chosen (so selections merge).
+bool RowMajorBefore(const DesignPixel& a, const DesignPixel& b) {
+  return a.y != b.y ? a.y < b.y : a.x < b.x;
+}
+
+// The most metres a pixel spans on the plane: the largest singular value of the local map.
+double LargestStretch(const Eigen::Matrix2d& m) {
+  const double sum = m.squaredNorm();
+  const double det = m.determinant();
+  return std::sqrt(0.5 * (sum + std::sqrt(std::max(0.0, sum * sum - 4.0 * det * det))));
+}
+
+double ReachPx(double sigma_px, const DesignRefinementOptions& options) {
+  return options.band_sigmas * std::max(sigma_px, 0.3) + options.band_px;
+}
+
+// The pixels whose plane points at the pose lie within `reach_px` of an edge of the design,
+// in row-major order; none when the design's ink is not wholly in front of the camera.
+std::vector<DesignPixel> PixelsNearDesignEdges(const Image8& image,
+                                               const Camera& camera,
+                                               const MarkerSpec& marker,
+                                               const Rigid3& cam_from_marker,
+                                               double reach_px) {
+  const Eigen::AlignedBox2d ink = marker.InkBounds();
+  double x0 = image.width, y0 = image.height, x1 = -1.0, y1 = -1.0;
+  for (const auto corner : {Eigen::AlignedBox2d::BottomLeft,
+                            Eigen::AlignedBox2d::BottomRight,
+                            Eigen::AlignedBox2d::TopLeft,
+                            Eigen::AlignedBox2d::TopRight}) {
+    const Eigen::Vector2d p = ink.corner(corner);
+    const Eigen::Vector3d in_camera = cam_from_marker * Eigen::Vector3d(p.x(), p.y(), 0.0);
+    if (!(in_camera.z() > 0.0)) return {};
+    const Eigen::Vector2d px = camera.ImgFromCam(in_camera);
+    x0 = std::min(x0, px.x()), y0 = std::min(y0, px.y());
+    x1 = std::max(x1, px.x()), y1 = std::max(y1, px.y());
+  }
+  const double pad = reach_px + 2.0;
+  // Clamped as doubles first: a corner may project far off the image.
+  const auto clamped = [](double v, int size) {
+    return static_cast<int>(std::clamp(v, 0.0, size - 1.0));
+  };
+  const int u0 = clamped(std::floor(x0 - pad), image.width);
+  const int u1 = clamped(std::ceil(x1 + pad), image.width);
+  const int v0 = clamped(std::floor(y0 - pad), image.height);
+  const int v1 = clamped(std::ceil(y1 + pad), image.height);
+  const PlaneView view(camera, cam_from_marker);
+  std::vector<DesignPixel> pixels;
+  for (int v = v0; v <= v1; ++v) {
+    for (int u = u0; u <= u1; ++u) {
+      const Eigen::Vector3d ray = camera.CamFromImg(Eigen::Vector2d(u, v));
+      const PlaneLook look = view.LookAlong(ray);
+      if (!(look.homogeneous > 0.0)) continue;
+      const double clearance = marker.ColorAt(look.point).clearance_m;
+      if (clearance <= reach_px * LargestStretch(look.plane_from_px)) {
+        pixels.push_back({u, v, ray, LumaAt(image, u, v) / 255.0});
+      }
+    }
+  }
+  return pixels;
+}
+
+double NormalCdf(double x) { return 0.5 * std::erfc(-x / std::sqrt(2.0)); }
+double NormalDensity(double x) { return std::exp(-0.5 * x * x) / std::sqrt(2.0 * M_PI); }
+
+// The mean of a pixel of noise-free value μ (0-1) after Gaussian noise of σ_n and clipping to
+// [0, 1], as sensors saturate (and the renderer clips): with α = -μ/σ_n, β = (1 - μ)/σ_n,
+//   E = μ (Φ(β) - Φ(α)) + σ_n (φ(α) - φ(β)) + 1 - Φ(β),   dE/dμ = Φ(β) - Φ(α).
+// Near black and white it is lifted from μ by up to 0.4 σ_n, which moves an edge between a
+// grey and black (f's wedge on its disk) by a fraction of a pixel when left out.
+struct ClippedMean {
+  double value;
+  double slope;
+};
+ClippedMean ClippedNoisyMean(double mu, double noise_sigma) {
+  const double alpha = -mu / noise_sigma, beta = (1.0 - mu) / noise_sigma;
+  const double inside = NormalCdf(beta) - NormalCdf(alpha);
+  return {mu * inside + noise_sigma * (NormalDensity(alpha) - NormalDensity(beta)) + 1.0 -
+              NormalCdf(beta),
+          inside};
+}
+
+// Σ r² of the design seen through the pose in θ (pixel_fit.h, one channel: luma), with its
+// normal equations. The plane point of each pixel is differentiated by Jets in the pose; the
+// design's luma by its gradient in that point and in σ (blurred_design.h).
+class DesignModel {
+ public:
+  using Jet = ceres::Jet<double, 6>;
+
+  DesignModel(const Camera& camera,
+              const MarkerSpec& marker,
+              const std::vector<DesignPixel>& pixels,
+              double noise_sigma)
+      : px_from_ray_inverse_(camera.K().inverse()),
+        design_(marker),
+        pixels_(pixels),
+        noise_sigma_(noise_sigma) {}
+
+  int Parameters() const { return 9; }
+
+  double Evaluate(const Eigen::VectorXd& theta, Eigen::MatrixXd* jtj, Eigen::VectorXd* jtr) const {
+    return Evaluate(theta, jtj, jtr, nullptr);
+  }
+
+  // The same, and each pixel's residual if `residuals` is given.
+  double Evaluate(const Eigen::VectorXd& theta,
+                  Eigen::MatrixXd* jtj,
+                  Eigen::VectorXd* jtr,
+                  std::vector<double>* residuals) const {
+    Jet angle_axis[3];
+    Eigen::Matrix<Jet, 3, 1> t;
+    for (int k = 0; k < 3; ++k) {
+      angle_axis[k] = Jet(theta[k], k);
+      t[k] = Jet(theta[3 + k], 3 + k);
+    }
+    Eigen::Matrix<Jet, 3, 3> R;
+    ceres::AngleAxisToRotationMatrix(angle_axis, ceres::ColumnMajorAdapter3x3(R.data()));
+    Eigen::Matrix<Jet, 3, 3> ray_from_plane;
+    ray_from_plane << R.col(0), R.col(1), t;
+    const Eigen::Matrix<Jet, 3, 3> plane_from_ray = ray_from_plane.inverse();
+    Eigen::Matrix3d plane_from_px;  // through the pinhole, for the local map
+    for (int i = 0; i < 9; ++i) plane_from_px(i) = plane_from_ray(i).a;
+    plane_from_px = plane_from_px * px_from_ray_inverse_;
+    const double sigma = theta[6], offset = theta[7], gain = theta[8];
+
+    Eigen::Matrix<double, 9, 9> normal = Eigen::Matrix<double, 9, 9>::Zero();
+    Eigen::Matrix<double, 9, 1> gradient = Eigen::Matrix<double, 9, 1>::Zero();
+    double cost = 0.0;
+    for (const DesignPixel& pixel : pixels_) {
+      const Eigen::Matrix<Jet, 3, 1> q = plane_from_ray.col(0) * pixel.ray.x() +
+                                         plane_from_ray.col(1) * pixel.ray.y() +
+                                         plane_from_ray.col(2) * pixel.ray.z();
+      const Jet x = q.x() / q.z(), y = q.y() / q.z();
+      const Eigen::Vector2d point(x.a, y.a);
+      Eigen::Matrix2d marker_from_px;
+      for (int j = 0; j < 2; ++j) {
+        marker_from_px.col(j) =
+            (plane_from_px.block<2, 1>(0, j) - point * plane_from_px(2, j)) / q.z().a;
+      }
+      const BlurredLuma printed = design_.At(point, marker_from_px, sigma);
+      const ClippedMean mean = ClippedNoisyMean(offset + gain * printed.luma, noise_sigma_);
+      const double r = pixel.value - mean.value;
+      cost += r * r;
+      if (residuals) residuals->push_back(r);
+      if (!jtj) continue;
+      Eigen::Matrix<double, 9, 1> row;  // d r / d θ
+      row.head<6>() = -gain * (printed.gradient.x() * x.v + printed.gradient.y() * y.v);
+      row[6] = -gain * printed.d_sigma;
+      row[7] = -1.0;
+      row[8] = -printed.luma;
+      row *= mean.slope;
+      normal.selfadjointView<Eigen::Upper>().rankUpdate(row);
+      gradient += r * row;
+    }
+    if (jtj) {
+      *jtj = normal.selfadjointView<Eigen::Upper>();
+      *jtr = gradient;
+    }
+    return cost;
+  }
+
+ private:
+  Eigen::Matrix3d px_from_ray_inverse_;  // K⁻¹
+  BlurredDesign design_;
+  const std::vector<DesignPixel>& pixels_;
+  double noise_sigma_;
+};
+
+// The image's noise as the model takes it: at least 8-bit rounding's (0-1 units).
+double ModelNoiseSigma(double noise_sigma) {
+  return std::max(noise_sigma, 1.0 / (255.0 * std::sqrt(12.0)));
+}
+
+std::optional<DesignRefinement> RefineOnce(const Image8& image,
+                                           const Camera& camera,
+                                           const MarkerSpec& marker,
+                                           const Rigid3& cam_from_marker,
+                                           double sigma_px,
+                                           double noise_sigma,
+                                           const DesignRefinementOptions& options) {
+  const std::vector<DesignPixel> pixels =
+      PixelsNearDesignEdges(image, camera, marker, cam_from_marker, ReachPx(sigma_px, options));
+  if (pixels.size() < 20) return std::nullopt;
+  const DesignModel model(camera, marker, pixels, ModelNoiseSigma(noise_sigma));
+  DesignRefinement refinement{
+      FitPixels(model, cam_from_marker, std::max(sigma_px, 0.3), options.max_iterations),
+      static_cast<int>(pixels.size()),
+      0.0};
+  // The misfit from residuals two pixels apart in a row: they share the model's error and
+  // not the noise, so their mean product estimates its square.
+  const PixelFit& fit = refinement.fit;
+  std::vector<double> residuals;
+  model.Evaluate(PixelFitParameters(fit.cam_from_marker, fit.sigma_px, fit.levels),
+                 nullptr,
+                 nullptr,
+                 &residuals);
+  double sum = 0.0;
+  int pairs = 0;
+  for (size_t i = 0; i < pixels.size(); ++i) {
+    for (size_t j = i + 1; j < std::min(i + 3, pixels.size()); ++j) {
+      if (pixels[j].y == pixels[i].y && pixels[j].x == pixels[i].x + 2) {
+        sum += residuals[i] * residuals[j];
+        ++pairs;
+      }
+    }
+  }
+  const double gain = std::abs(fit.levels[1]);
+  refinement.misfit =
+      pairs > 0 && gain > 0.0 ? std::sqrt(std::max(0.0, sum / pairs)) / gain : INFINITY;
+  return refinement;
+}
+
+}  // namespace
+
+std::optional<DesignRefinement> RefineDesign(const Image8& image,
+                                             const Camera& camera,
+                                             const MarkerSpec& marker,
+                                             const Rigid3& cam_from_marker,
+                                             double sigma_px,
+                                             double noise_sigma,
+                                             const DesignRefinementOptions& options) {
+  // The pixels are chosen at each solve's start; from a start a few pixels off, some of the
+  // result's band is missing, so they are chosen again at the result until it stays put.
+  std::optional<DesignRefinement> result =
+      RefineOnce(image, camera, marker, cam_from_marker, sigma_px, noise_sigma, options);
+  for (int round = 1; result && round < options.max_rounds; ++round) {
+    const Rigid3& last = result->fit.cam_from_marker;
+    std::optional<DesignRefinement> next =
+        RefineOnce(image, camera, marker, last, result->fit.sigma_px, noise_sigma, options);
+    if (!next) break;
+    const double moved_m = (next->fit.cam_from_marker.translation - last.translation).norm();
+    next->fit.iterations += result->fit.iterations;
+    result = next;
+    if (moved_m < 1e-4 * result->fit.cam_from_marker.translation.norm()) break;
+  }
+  return result;
+}
+
+size_t BestDesignRefinement(const Image8& image,
+                            const Camera& camera,
+                            const MarkerSpec& marker,
+                            const std::vector<DesignRefinement>& fits,
+                            double noise_sigma,
+                            const DesignRefinementOptions& options) {
+  std::vector<DesignPixel> pixels;
+  for (const DesignRefinement& refinement : fits) {
+    const std::vector<DesignPixel> near =
+        PixelsNearDesignEdges(image,
+                              camera,
+                              marker,
+                              refinement.fit.cam_from_marker,
+                              ReachPx(refinement.fit.sigma_px, options));
+    std::vector<DesignPixel> both;
+    std::set_union(pixels.begin(),
+                   pixels.end(),
+                   near.begin(),
+                   near.end(),
+                   std::back_inserter(both),
+                   RowMajorBefore);
+    pixels = std::move(both);
+  }
+  const DesignModel model(camera, marker, pixels, ModelNoiseSigma(noise_sigma));
+  size_t best = 0;
+  double best_cost = 0.0;
+  for (size_t i = 0; i < fits.size(); ++i) {
+    const PixelFit& fit = fits[i].fit;
+    const double cost = model.Evaluate(
+        PixelFitParameters(fit.cam_from_marker, fit.sigma_px, fit.levels), nullptr, nullptr);
+    if (i == 0 || cost < best_cost) {
+      best = i;
+      best_cost = cost;
+    }
+  }
+  return best;
+}
+
+}  // namespace markerbench

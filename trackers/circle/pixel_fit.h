@@ -1,0 +1,81 @@
+// Levenberg-Marquardt for the photometric fits (photometric_refinement.h, design_refinement.h)
+// on the normal equations, with Marquardt's diagonal scaling. A model of the pixels takes
+// θ = (angle-axis (3), translation (3), blur σ in px, then an offset and a gain per channel)
+// and provides Parameters() and Evaluate(θ, JᵀJ*, Jᵀr*): Σ r² at θ and, when the pointers
+// are given, the normal equations.
+#pragma once
+
+#include <ceres/rotation.h>
+
+#include <Eigen/Cholesky>
+#include <Eigen/Core>
+#include <algorithm>
+
+#include "core/rigid3.h"
+
+namespace markerbench {
+
+struct PixelFit {
+  Rigid3 cam_from_marker;
+  double sigma_px = 0.0;
+  Eigen::VectorXd levels;  // offset and gain per channel
+  int iterations = 0;
+  double cost = 0.0;  // Σ r² at the result
+};
+
+// θ of a pose, σ and the levels (offset and gain per channel).
+inline Eigen::VectorXd PixelFitParameters(const Rigid3& cam_from_marker,
+                                          double sigma_px,
+                                          const Eigen::VectorXd& levels) {
+  Eigen::VectorXd theta(7 + levels.size());
+  ceres::RotationMatrixToAngleAxis(ceres::ColumnMajorAdapter3x3(cam_from_marker.rotation.data()),
+                                   theta.data());
+  theta.segment<3>(3) = cam_from_marker.translation;
+  theta[6] = sigma_px;
+  theta.tail(levels.size()) = levels;
+  return theta;
+}
+
+// From a pose and σ, gains 1 and offsets 0; σ kept at 0.2 px at least. Stops when a step
+// lowers the cost by less than 1e-6 of it (Ceres's function tolerance).
+template <class Model>
+PixelFit FitPixels(const Model& model,
+                   const Rigid3& cam_from_marker,
+                   double sigma_px,
+                   int max_iterations) {
+  Eigen::VectorXd levels = Eigen::VectorXd::Zero(model.Parameters() - 7);
+  for (int gain = 1; gain < levels.size(); gain += 2) levels[gain] = 1.0;
+  Eigen::VectorXd theta = PixelFitParameters(cam_from_marker, sigma_px, levels);
+  Eigen::MatrixXd jtj;
+  Eigen::VectorXd jtr;
+  double cost = model.Evaluate(theta, &jtj, &jtr);
+  PixelFit fit;
+  double damping = 1e-3;
+  for (int iteration = 0; iteration < max_iterations; ++iteration) {
+    Eigen::MatrixXd damped = jtj;
+    damped.diagonal() += damping * jtj.diagonal();
+    Eigen::VectorXd trial = theta + damped.ldlt().solve(-jtr);
+    trial[6] = std::max(trial[6], 0.2);
+    const double trial_cost = model.Evaluate(trial, nullptr, nullptr);
+    ++fit.iterations;
+    if (!(trial_cost < cost)) {
+      damping *= 10.0;
+      if (damping > 1e6) break;
+      continue;
+    }
+    const bool converged = cost - trial_cost < 1e-6 * cost;
+    theta = trial;
+    cost = model.Evaluate(theta, &jtj, &jtr);
+    damping = std::max(damping / 10.0, 1e-9);
+    if (converged) break;
+  }
+  ceres::AngleAxisToRotationMatrix(
+      theta.data(), ceres::ColumnMajorAdapter3x3(fit.cam_from_marker.rotation.data()));
+  fit.cam_from_marker.translation = theta.template segment<3>(3);
+  fit.sigma_px = theta[6];
+  fit.levels = theta.tail(model.Parameters() - 7);
+  fit.cost = cost;
+  return fit;
+}
+
+}  // namespace markerbench

@@ -1,0 +1,42 @@
+// Pixels seen on a marker plane through a pose: the plane point each pixel looks at, and how
+// that point moves with the pixel (the local map of blurred_design.h).
+#pragma once
+
+#include <Eigen/Core>
+
+#include "core/camera.h"
+#include "core/image.h"
+#include "core/rigid3.h"
+
+namespace markerbench {
+
+struct PlaneLook {
+  Eigen::Vector2d point = Eigen::Vector2d::Zero();
+  // d(point)/d(pixel) through the pinhole (the lens's distortion is smooth).
+  Eigen::Matrix2d plane_from_px = Eigen::Matrix2d::Zero();
+  // The plane's homogeneous scale along the ray: positive in front of the camera; a pixel
+  // covers |det plane_from_ray| / (fx fy homogeneous³) of the plane.
+  double homogeneous = 0.0;
+};
+
+class PlaneView {
+ public:
+  PlaneView(const Camera& camera, const Rigid3& cam_from_plane);
+
+  // What pixel (x, y) of the (distorted) image sees.
+  PlaneLook Look(double x, double y) const;
+  // The same along a ray of the camera frame with z = 1 (Camera::CamFromImg).
+  PlaneLook LookAlong(const Eigen::Vector3d& ray) const;
+
+  const Eigen::Matrix3d& plane_from_ray() const { return plane_from_ray_; }
+
+ private:
+  const Camera& camera_;
+  Eigen::Matrix3d plane_from_ray_;
+  Eigen::Matrix3d plane_from_px_;  // through the pinhole: plane_from_ray K⁻¹
+};
+
+// A pixel's luma, 0-255 (Rec. 601 for RGB).
+double LumaAt(const Image8& image, int x, int y);
+
+}  // namespace markerbench
