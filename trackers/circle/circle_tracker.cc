@@ -463,7 +463,7 @@ std::optional<Rigid3> CircleTracker::OnDiskPixels(const Observation& observation
                         diagnostics_.image_blur_sigma_px,
                         options_.photometric_refinement);
   if (!direct) return std::nullopt;
-  return direct->cam_from_marker;
+  return direct->fit.cam_from_marker;
 }
 
 std::optional<Rigid3> CircleTracker::OnDesignPixels(

@@ -240,21 +240,12 @@ std::optional<DesignRefinement> RefineDesign(const Image8& image,
                                              double sigma_px,
                                              double noise_sigma,
                                              const DesignRefinementOptions& options) {
-  // The pixels are chosen at each solve's start; from a start a few pixels off, some of the
-  // result's band is missing, so they are chosen again at the result until it stays put.
-  std::optional<DesignRefinement> result =
-      RefineOnce(image, camera, marker, cam_from_marker, sigma_px, noise_sigma, options);
-  for (int round = 1; result && round < options.max_rounds; ++round) {
-    const Rigid3& last = result->fit.cam_from_marker;
-    std::optional<DesignRefinement> next =
-        RefineOnce(image, camera, marker, last, result->fit.sigma_px, noise_sigma, options);
-    if (!next) break;
-    const double moved_m = (next->fit.cam_from_marker.translation - last.translation).norm();
-    next->fit.iterations += result->fit.iterations;
-    result = next;
-    if (moved_m < 1e-4 * result->fit.cam_from_marker.translation.norm()) break;
-  }
-  return result;
+  // A solve's pixels are those near the edges at its start; from a start a few pixels off,
+  // some of the result's are missing.
+  return FitInRounds<DesignRefinement>(
+      cam_from_marker, sigma_px, options.max_rounds, [&](const Rigid3& start, double sigma) {
+        return RefineOnce(image, camera, marker, start, sigma, noise_sigma, options);
+      });
 }
 
 size_t BestDesignRefinement(const Image8& image,

@@ -409,14 +409,8 @@ std::optional<PhotometricResult> RefineOnce(const Image8& image,
                                           options.max_depth_per_curvature);
   if (pixels.pixels.size() < 20) return std::nullopt;
   const PixelModel model(camera.K(), *layers, pixels, image.channels);
-  const PixelFit fit = FitPixels(model, cam_from_marker, sigma, options.max_iterations);
-  PhotometricResult result;
-  result.cam_from_marker = fit.cam_from_marker;
-  result.sigma_px = fit.sigma_px;
-  result.iterations = fit.iterations;
-  result.final_cost = 0.5 * fit.cost;
-  result.pixels = static_cast<int>(pixels.pixels.size());
-  return result;
+  return PhotometricResult{FitPixels(model, cam_from_marker, sigma, options.max_iterations),
+                           static_cast<int>(pixels.pixels.size())};
 }
 
 }  // namespace
@@ -427,22 +421,10 @@ std::optional<PhotometricResult> RefinePhotometric(const Image8& image,
                                                    const Rigid3& cam_from_marker,
                                                    double sigma_px,
                                                    const PhotometricOptions& options) {
-  // Each solve ties pixels to edge points at its start; from a start a few pixels off that
-  // tie is loose, so the pixels are chosen again at the result until it stays put.
-  std::optional<PhotometricResult> result =
-      RefineOnce(image, camera, marker, cam_from_marker, sigma_px, options);
-  for (int round = 1; result && round < options.max_rounds; ++round) {
-    const std::optional<PhotometricResult> next =
-        RefineOnce(image, camera, marker, result->cam_from_marker, result->sigma_px, options);
-    if (!next) break;
-    const double moved_m =
-        (next->cam_from_marker.translation - result->cam_from_marker.translation).norm();
-    const int iterations = result->iterations + next->iterations;
-    result = next;
-    result->iterations = iterations;
-    if (moved_m < 1e-4 * result->cam_from_marker.translation.norm()) break;
-  }
-  return result;
+  return FitInRounds<PhotometricResult>(
+      cam_from_marker, sigma_px, options.max_rounds, [&](const Rigid3& start, double sigma) {
+        return RefineOnce(image, camera, marker, start, sigma, options);
+      });
 }
 
 }  // namespace markerbench

@@ -20,6 +20,7 @@
 #include "core/image.h"
 #include "core/marker_spec.h"
 #include "core/rigid3.h"
+#include "trackers/circle/pixel_fit.h"
 
 namespace markerbench {
 
@@ -42,11 +43,8 @@ struct PhotometricOptions {
 };
 
 struct PhotometricResult {
-  Rigid3 cam_from_marker;
-  double sigma_px = 0.0;
+  PixelFit fit;  // iterations over all rounds
   int pixels = 0;
-  int iterations = 0;  // over all rounds
-  double final_cost = 0.0;
 };
 
 // nullopt for designs with layers other than disks, blur beyond max_blur_per_radius, or too

@@ -36,11 +36,11 @@ TEST(PhotometricRefinement, RecoversThePoseAndTheBlurFromAPerturbedStart) {
           RefinePhotometric(frame.image, camera, marker, SlightlyPerturbed(truth, &rng), 1.0);
       ASSERT_TRUE(refined);
       // Measured: 0.23-0.90 mm and 0.026-0.11° over these eight frames.
-      EXPECT_LE(PositionError(refined->cam_from_marker, truth), 1.2e-3);
-      EXPECT_LE(RotationErrorDeg(refined->cam_from_marker, truth), 0.15);
+      EXPECT_LE(PositionError(refined->fit.cam_from_marker, truth), 1.2e-3);
+      EXPECT_LE(RotationErrorDeg(refined->fit.cam_from_marker, truth), 0.15);
       // The image's edge σ: the blur and the pixel's area (variance 1/12); measured 7 % low at
       // blur 2.
-      EXPECT_NEAR(refined->sigma_px, std::sqrt(blur * blur + 1.0 / 12.0), 0.05 + 0.1 * blur);
+      EXPECT_NEAR(refined->fit.sigma_px, std::sqrt(blur * blur + 1.0 / 12.0), 0.05 + 0.1 * blur);
       EXPECT_GT(refined->pixels, 300);
     }
   }
@@ -103,8 +103,8 @@ TEST(PhotometricRefinement, ModelsOverlappingHeavilyBlurredEdges) {
     const std::optional<PhotometricResult> refined =
         RefinePhotometric(frame.image, camera, marker, SlightlyPerturbed(truth, &rng), c.blur);
     ASSERT_TRUE(refined);
-    EXPECT_LE(PositionError(refined->cam_from_marker, truth), 1e-3 * c.max_error_mm);
-    EXPECT_NEAR(refined->sigma_px, c.blur, 0.02 * c.blur);
+    EXPECT_LE(PositionError(refined->fit.cam_from_marker, truth), 1e-3 * c.max_error_mm);
+    EXPECT_NEAR(refined->fit.sigma_px, c.blur, 0.02 * c.blur);
   }
 }
 

@@ -10,6 +10,8 @@
 #include <Eigen/Cholesky>
 #include <Eigen/Core>
 #include <algorithm>
+#include <optional>
+#include <utility>
 
 #include "core/rigid3.h"
 
@@ -76,6 +78,27 @@ PixelFit FitPixels(const Model& model,
   fit.levels = theta.tail(model.Parameters() - 7);
   fit.cost = cost;
   return fit;
+}
+
+// A fit in rounds, each on the pixels chosen at the last result (a solve ties its pixels to
+// the start's edges), until the translation moves by less than 1e-4 of its length:
+// solve_once(cam_from_marker, σ) gives an optional Result with a PixelFit `fit`.
+template <class Result, class SolveOnce>
+std::optional<Result> FitInRounds(const Rigid3& cam_from_marker,
+                                  double sigma_px,
+                                  int max_rounds,
+                                  const SolveOnce& solve_once) {
+  std::optional<Result> result = solve_once(cam_from_marker, sigma_px);
+  for (int round = 1; result && round < max_rounds; ++round) {
+    std::optional<Result> next = solve_once(result->fit.cam_from_marker, result->fit.sigma_px);
+    if (!next) break;
+    const Eigen::Vector3d& last = result->fit.cam_from_marker.translation;
+    const double moved_m = (next->fit.cam_from_marker.translation - last).norm();
+    next->fit.iterations += result->fit.iterations;
+    result = std::move(next);
+    if (moved_m < 1e-4 * result->fit.cam_from_marker.translation.norm()) break;
+  }
+  return result;
 }
 
 }  // namespace markerbench
