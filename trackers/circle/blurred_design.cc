@@ -58,7 +58,9 @@ Cover BlurredCover(const BoundaryDistances& b,
     // in σ/ρ, a straight edge that much moved.
     const Eigen::Vector2d tangent_px =
         px_from_marker * Eigen::Vector2d(-term.gradient.y(), term.gradient.x());
-    const double curvature_px = term.curvature_per_m * area_px / std::pow(tangent_px.norm(), 3);
+    const double tangent_norm = tangent_px.norm();
+    const double curvature_px =
+        term.curvature_per_m * area_px / (tangent_norm * tangent_norm * tangent_norm);
     const double distance = term.metres * per_metre;
     edges[i] = {distance + 0.5 * sigma_px * curvature_px,
                 per_metre * term.gradient,

@@ -71,4 +71,12 @@ std::optional<CircleGeometry> CircleGeometryOf(const MarkerSpec& marker, std::st
   return geometry;
 }
 
+Rigid3 OtherTilt(const Rigid3& cam_from_plane) {
+  const Eigen::Vector3d ray = cam_from_plane.translation.normalized();
+  const Eigen::Matrix3d reflect_about_ray =
+      2.0 * ray * ray.transpose() - Eigen::Matrix3d::Identity();
+  const Eigen::Matrix3d half_turn = Eigen::Vector3d(-1.0, -1.0, 1.0).asDiagonal();
+  return {reflect_about_ray * cam_from_plane.rotation * half_turn, cam_from_plane.translation};
+}
+
 }  // namespace markerbench

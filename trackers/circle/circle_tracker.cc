@@ -362,17 +362,11 @@ TrackResult CircleTracker::TrackIn(const Observation& observation,
     design_starts.push_back(cam_from_paper);
     // The circle fixes its tilt only up to the other of its two (§4.7), which the centre
     // point may have picked; the design's pixels tell the two apart, so the fit on them starts
-    // from the other too: the analytic start whose normal lies furthest from this pose's,
-    // turned to the design.
-    const Eigen::Vector3d normal = cam_from_paper.rotation.col(2);
-    const auto other =
-        std::min_element(starts.begin(), starts.end(), [&](const Rigid3& a, const Rigid3& b) {
-          return a.rotation.col(2).dot(normal) < b.rotation.col(2).dot(normal);
-        });
-    if (other != starts.end() &&
-        other->rotation.col(2).dot(normal) < std::cos(options_.min_branch_angle_rad)) {
-      const std::optional<RollAlignment> turned = align(*other, true);
-      if (turned && turned->shows_design) design_starts.push_back(turned->cam_from_paper);
+    // from the other too, unless the two nearly coincide (near fronto-parallel).
+    const Rigid3 other = OtherTilt(cam_from_paper);
+    if (other.rotation.col(2).dot(cam_from_paper.rotation.col(2)) <
+        std::cos(options_.min_branch_angle_rad)) {
+      design_starts.push_back(other);
     }
   }
 
@@ -486,7 +480,6 @@ std::optional<Rigid3> CircleTracker::OnDesignPixels(
                                            *observation.camera,
                                            *observation.marker,
                                            fits,
-                                           diagnostics_.noise_sigma,
                                            options_.design_refinement);
   return fits[best].fit.cam_from_marker;
 }

@@ -34,13 +34,11 @@ struct DesignRefinementOptions {
 struct DesignRefinement {
   PixelFit fit;  // on a grey image: levels = (offset, gain) of the design's luma, 0-1
   int pixels = 0;
-  // RMS of the residuals that pixels two apart share, as a fraction of the fitted contrast:
-  // how far the design misses the image, whatever the noise.
-  double misfit = 0.0;
+  double noise_sigma = 0.0;  // the image's, 0-1, as its residuals show (the model's clipping)
 };
 
-// `noise_sigma` is the image's, 0-1 units. nullopt when too few pixels near the design's edges are
-// in front of the camera and in the image.
+// `noise_sigma`: a first estimate of the image's, 0-1 units. nullopt when too few pixels near the
+// design's edges are in front of the camera and in the image.
 std::optional<DesignRefinement> RefineDesign(const Image8& image,
                                              const Camera& camera,
                                              const MarkerSpec& marker,
@@ -55,7 +53,6 @@ size_t BestDesignRefinement(const Image8& image,
                             const Camera& camera,
                             const MarkerSpec& marker,
                             const std::vector<DesignRefinement>& fits,
-                            double noise_sigma,
                             const DesignRefinementOptions& options = {});
 
 }  // namespace markerbench

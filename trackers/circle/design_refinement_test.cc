@@ -42,7 +42,7 @@ TEST(DesignRefinement, RecoversThePoseAndTheBlurFromAPerturbedStart) {
       EXPECT_LE(PositionError(pose, truth), 1.5e-3);
       EXPECT_LE(RotationErrorDeg(pose, truth), 0.15);
       // The image's edge σ: the blur and the pixel's area (variance 1/12); measured within
-      // 0.03 px.
+      // 0.033 px.
       EXPECT_NEAR(refined->fit.sigma_px, std::sqrt(blur * blur + 1.0 / 12.0), 0.05 + 0.03 * blur);
       EXPECT_GT(refined->pixels, 500);
     }
@@ -52,28 +52,28 @@ TEST(DesignRefinement, RecoversThePoseAndTheBlurFromAPerturbedStart) {
 // f at 1 m, blur σ = 3, noise variance 0.02 (the paper's blur sweep): the noise clipped at the
 // black disk lifts its pixels, and at the white paper lowers them, most where the blurred
 // edge is near either level, so an edge model without the clipping sees the edges sharper
-// than they are (its σ measured 11 % low) and the wedge's sides moved. With it the σ is
-// right (measured 0.9 % low).
+// than they are (its σ measured 11 % low) and the wedge's sides moved. The clipping depends
+// on the noise, which a global estimate on clipped white paper puts far too low (the
+// detector's: 0.06 for these 0.14); from such a start the fit finds it from its residuals,
+// its noise within 5 % (0.135-0.141) and the σ right (1 % low).
 TEST(DesignRefinement, ModelsTheNoiseClippedAtBlackAndWhite) {
   const Camera camera;
   const MarkerSpec marker = Load("circle_f");
   const double blur = 3.0, noise_var = 0.02;
   const double edge_sigma = std::sqrt(blur * blur + 1.0 / 12.0);
   Rng rng(5);
-  double with_clipping = 0.0, without = 0.0;
   constexpr int kFrames = 8;
+  double sigma_ratio = 0.0;
   for (int i = 0; i < kFrames; ++i) {
     const Rigid3 truth = TiltedView(1.0, rng.Uniform(10.0, 40.0), rng.Uniform(0.0, 360.0));
     const RenderedFrame frame = RenderMarker(marker, truth, noise_var, blur, 20 + i);
-    for (const bool clipped : {true, false}) {
-      const std::optional<DesignRefinement> refined = RefineDesign(
-          frame.image, camera, marker, truth, blur, clipped ? std::sqrt(noise_var) : 0.0);
-      ASSERT_TRUE(refined);
-      (clipped ? with_clipping : without) += refined->fit.sigma_px / edge_sigma / kFrames;
-    }
+    const std::optional<DesignRefinement> refined =
+        RefineDesign(frame.image, camera, marker, truth, blur, 0.06);
+    ASSERT_TRUE(refined);
+    EXPECT_NEAR(refined->noise_sigma, std::sqrt(noise_var), 0.1 * std::sqrt(noise_var));
+    sigma_ratio += refined->fit.sigma_px / edge_sigma / kFrames;
   }
-  EXPECT_NEAR(with_clipping, 1.0, 0.03);
-  EXPECT_LT(without, 0.95);
+  EXPECT_NEAR(sigma_ratio, 1.0, 0.03);
 }
 
 // f's circle alone is seen the same from either of its two tilts (§4.7); the design is not.
@@ -97,12 +97,12 @@ TEST(DesignRefinement, KeepsTheTiltTheDesignShows) {
     // Measured: 420-760 mm from the other tilt, 0.6-3.8 mm from the true one.
     EXPECT_GT(PositionError(fits[0].fit.cam_from_marker, truth), 0.1);
     EXPECT_LT(PositionError(fits[1].fit.cam_from_marker, truth), 0.01);
-    EXPECT_EQ(BestDesignRefinement(frame.image, camera, marker, fits, std::sqrt(0.02)), 1u);
+    EXPECT_EQ(BestDesignRefinement(frame.image, camera, marker, fits), 1u);
   }
 }
 
 // 24 frames of f at 1 m and σ² = 0.02 tracked with and without the pixels: the camera-centre
-// error drops on most frames (measured: 21 of 24) and so does its median (measured: 4.2 mm
+// error drops on most frames (measured: 21 of 24) and so does its median (measured: 4.4 mm
 // against 9.1 mm).
 TEST(DesignRefinement, BeatsTheEdgesAndTheCentrePointOnTheSameFrames) {
   const MarkerSpec marker = Load("circle_f");

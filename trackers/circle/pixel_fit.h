@@ -48,8 +48,8 @@ PixelFit FitPixels(const Model& model,
   Eigen::VectorXd levels = Eigen::VectorXd::Zero(model.Parameters() - 7);
   for (int gain = 1; gain < levels.size(); gain += 2) levels[gain] = 1.0;
   Eigen::VectorXd theta = PixelFitParameters(cam_from_marker, sigma_px, levels);
-  Eigen::MatrixXd jtj;
-  Eigen::VectorXd jtr;
+  Eigen::MatrixXd jtj, trial_jtj;
+  Eigen::VectorXd jtr, trial_jtr;
   double cost = model.Evaluate(theta, &jtj, &jtr);
   PixelFit fit;
   double damping = 1e-3;
@@ -58,7 +58,8 @@ PixelFit FitPixels(const Model& model,
     damped.diagonal() += damping * jtj.diagonal();
     Eigen::VectorXd trial = theta + damped.ldlt().solve(-jtr);
     trial[6] = std::max(trial[6], 0.2);
-    const double trial_cost = model.Evaluate(trial, nullptr, nullptr);
+    // With its normal equations: most steps are taken, and then they are the next ones.
+    const double trial_cost = model.Evaluate(trial, &trial_jtj, &trial_jtr);
     ++fit.iterations;
     if (!(trial_cost < cost)) {
       damping *= 10.0;
@@ -67,7 +68,9 @@ PixelFit FitPixels(const Model& model,
     }
     const bool converged = cost - trial_cost < 1e-6 * cost;
     theta = trial;
-    cost = model.Evaluate(theta, &jtj, &jtr);
+    cost = trial_cost;
+    jtj.swap(trial_jtj);
+    jtr.swap(trial_jtr);
     damping = std::max(damping / 10.0, 1e-9);
     if (converged) break;
   }
