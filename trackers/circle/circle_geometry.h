@@ -40,11 +40,12 @@ struct CircleGeometry {
 // nullopt (with `error` set) for markers other than circles_a/b/c and circle_d/e/f.
 std::optional<CircleGeometry> CircleGeometryOf(const MarkerSpec& marker, std::string* error);
 
-// A circle about the plane's origin seen from `cam_from_plane` is seen as nearly the same
-// ellipse from the other of its two tilts (§4.7): the plane's normal reflected about the ray
+// The start of the other of the two tilts (§4.7) from which a circle about the plane's origin
+// looks nearly the same as from `cam_from_plane`: the plane's normal reflected about the ray
 // to the circle's centre, R' = (2uuᵀ - I) R Rz(π) for the unit ray u, the centre kept; the
-// Rz(π) keeps the plane's x axis where the image had it. Exact when the centre lies on the
-// optical axis; a start for the other tilt elsewhere. Its own inverse.
+// Rz(π) keeps the plane's x axis where the image had it. From a centre on the optical axis
+// the ellipse has the same shape, its centre mirrored through the principal point (a pixel
+// or two); a fit from there finds the other tilt's pose. Its own inverse.
 Rigid3 OtherTilt(const Rigid3& cam_from_plane);
 
 }  // namespace markerbench

@@ -1,8 +1,8 @@
 // The refinement on the design's pixels (markers e and f) on rendered frames with known ground
 // truth: from a perturbed start it recovers the pose and the blur; the clipping of noise at
-// black and white is what keeps its blur (and so its edges) unbiased; of the circle's two
-// tilts it keeps the one the design shows; in the tracker it beats the edge points and the
-// centre point on the same frames.
+// black and white, at the noise its residuals show, keeps its blur (and so its edges)
+// unbiased; of the circle's two tilts it keeps the one the design shows; in the tracker it
+// beats the edge points and the centre point on the same frames.
 #include "trackers/circle/design_refinement.h"
 
 #include <gtest/gtest.h>
@@ -16,7 +16,9 @@
 #include "core/random.h"
 #include "renderer/test_scenes.h"
 #include "testing/square_tracker_testing.h"
+#include "trackers/circle/circle_geometry.h"
 #include "trackers/circle/circle_tracker.h"
+#include "trackers/circle/conic.h"
 
 namespace markerbench {
 namespace {
@@ -98,6 +100,34 @@ TEST(DesignRefinement, KeepsTheTiltTheDesignShows) {
     EXPECT_GT(PositionError(fits[0].fit.cam_from_marker, truth), 0.1);
     EXPECT_LT(PositionError(fits[1].fit.cam_from_marker, truth), 0.01);
     EXPECT_EQ(BestDesignRefinement(frame.image, camera, marker, fits), 1u);
+  }
+}
+
+// OtherTilt, the start of the circle's other tilt: its own inverse; from a centre on the
+// optical axis the tilt about the same axis the other way, seen as an ellipse of the same
+// shape with its centre mirrored through the principal point (0.8-2.3 px apart here, which
+// the fit then closes).
+TEST(OtherTilt, IsItsOwnInverseAndMirrorsTheEllipse) {
+  const Camera camera;
+  for (const double tilt : {10.0, 25.0, 40.0}) {
+    for (const double roll : {0.0, 70.0}) {
+      const Rigid3 pose = TiltedView(0.8, tilt, roll);
+      const Rigid3 other = OtherTilt(pose);
+      const Rigid3 back = OtherTilt(other);
+      EXPECT_LT((back.rotation - pose.rotation).norm(), 1e-12);
+      EXPECT_LT((back.translation - pose.translation).norm(), 1e-12);
+      EXPECT_LT((other.rotation - TiltedView(0.8, -tilt, roll).rotation).norm(), 1e-12);
+      const auto ellipse = [&](const Rigid3& cam_from_plane) {
+        return EllipseFromConic(ImageOfCircle<double>(
+            camera.K() * RayFromPlane(cam_from_plane), Eigen::Vector2d::Zero(), 0.05));
+      };
+      const Ellipse seen = ellipse(pose), from_other = ellipse(other);
+      EXPECT_NEAR(from_other.semi_major, seen.semi_major, 1e-9);
+      EXPECT_NEAR(from_other.semi_minor, seen.semi_minor, 1e-9);
+      const Eigen::Vector2d principal(camera.cx, camera.cy);
+      EXPECT_LT((from_other.center + seen.center - 2.0 * principal).norm(), 1e-6);
+      EXPECT_GT((from_other.center - seen.center).norm(), 0.5);
+    }
   }
 }
 
