@@ -53,6 +53,7 @@ std::vector<DesignPixel> PixelsNearDesignEdges(const Image8& image,
     const Eigen::Vector3d in_camera = cam_from_marker * Eigen::Vector3d(p.x(), p.y(), 0.0);
     if (!(in_camera.z() > 0.0)) return {};
     const Eigen::Vector2d px = camera.ImgFromCam(in_camera);
+    if (!px.allFinite()) return {};
     x0 = std::min(x0, px.x()), y0 = std::min(y0, px.y());
     x1 = std::max(x1, px.x()), y1 = std::max(y1, px.y());
   }
@@ -269,6 +270,7 @@ size_t BestDesignRefinement(const Image8& image,
                             const MarkerSpec& marker,
                             const std::vector<DesignRefinement>& fits,
                             const DesignRefinementOptions& options) {
+  if (fits.size() == 1) return 0;
   std::vector<DesignPixel> pixels;
   for (const DesignRefinement& refinement : fits) {
     const std::vector<DesignPixel> near =
