@@ -9,9 +9,6 @@
 namespace markerbench {
 namespace {
 
-double NormalCdf(double x) { return 0.5 * std::erfc(-x / std::sqrt(2.0)); }
-double NormalDensity(double x) { return std::exp(-0.5 * x * x) / std::sqrt(2.0 * M_PI); }
-
 // 10-point Gauss-Legendre rule on [-1, 1]: nodes (positive half) and weights.
 constexpr std::array<double, 5> kNodes = {0.1488743389816312,
                                           0.4333953941292472,
@@ -103,6 +100,9 @@ Cover BlurredCover(const BoundaryDistances& b,
 }
 
 }  // namespace
+
+double NormalCdf(double x) { return 0.5 * std::erfc(-x / std::sqrt(2.0)); }
+double NormalDensity(double x) { return std::exp(-0.5 * x * x) / std::sqrt(2.0 * M_PI); }
 
 double BivariateNormalCdf(double h, double k, double rho) {
   rho = std::clamp(rho, -1.0, 1.0);

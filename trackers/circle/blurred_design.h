@@ -20,6 +20,9 @@
 
 namespace markerbench {
 
+// The standard normal CDF Φ and density φ.
+double NormalCdf(double x);
+double NormalDensity(double x);
 // The bivariate standard normal CDF P(X < h, Y < k) at correlation rho in [-1, 1].
 double BivariateNormalCdf(double h, double k, double rho);
 

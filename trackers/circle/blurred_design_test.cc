@@ -11,8 +11,6 @@
 namespace markerbench {
 namespace {
 
-double NormalCdf(double x) { return 0.5 * std::erfc(-x / std::sqrt(2.0)); }
-
 TEST(BivariateNormalCdf, MatchesClosedForms) {
   for (double h : {-1.3, 0.0, 0.7}) {
     for (double k : {-0.4, 0.0, 1.9}) {

@@ -82,9 +82,6 @@ std::vector<DesignPixel> PixelsNearDesignEdges(const Image8& image,
   return pixels;
 }
 
-double NormalCdf(double x) { return 0.5 * std::erfc(-x / std::sqrt(2.0)); }
-double NormalDensity(double x) { return std::exp(-0.5 * x * x) / std::sqrt(2.0 * M_PI); }
-
 // The mean of a pixel of noise-free value μ (0-1) after Gaussian noise of σ_n and clipping to
 // [0, 1], as sensors saturate (and the renderer clips): with α = -μ/σ_n, β = (1 - μ)/σ_n,
 //   E = μ (Φ(β) - Φ(α)) + σ_n (φ(α) - φ(β)) + 1 - Φ(β),   dE/dμ = Φ(β) - Φ(α).
