@@ -74,6 +74,60 @@ BoundaryDistances DistancesTo(const Shape& shape, const Eigen::Vector2d& p) {
   return b;
 }
 
+namespace {
+
+// Where two of a shape's edges meet: a sector's centre and the ends of its arc, a crescent's
+// tips; none for a disk.
+std::vector<Eigen::Vector2d> OutlineCorners(const Shape& shape) {
+  if (const auto* crescent = std::get_if<CrescentShape>(&shape)) {
+    const DiskShape& a = crescent->outer;
+    const DiskShape& b = crescent->inner;
+    const Eigen::Vector2d between = b.center - a.center;
+    const double d = between.norm();
+    const double along = (a.radius * a.radius - b.radius * b.radius + d * d) / (2.0 * d);
+    const double across_squared = a.radius * a.radius - along * along;
+    if (!(d > 0.0) || !(across_squared >= 0.0)) return {};
+    const Eigen::Vector2d u = between / d, normal(-u.y(), u.x());
+    const double across = std::sqrt(across_squared);
+    return {a.center + along * u + across * normal, a.center + along * u - across * normal};
+  }
+  if (const auto* sector = std::get_if<SectorShape>(&shape)) {
+    const auto rim = [&](double angle) {
+      return Eigen::Vector2d(sector->center +
+                             sector->radius * Eigen::Vector2d(std::cos(angle), std::sin(angle)));
+    };
+    return {sector->center, rim(sector->start_rad), rim(sector->end_rad)};
+  }
+  return {};
+}
+
+}  // namespace
+
+double DistanceToOutline(const Shape& shape, const Eigen::Vector2d& p) {
+  if (const auto* grid = std::get_if<GridShape>(&shape)) {
+    return GridPaint(*grid, Rgb::Zero(), p).clearance_m;
+  }
+  // The outline is each edge where the others are not positive. The nearest point of an
+  // edge's part is p's foot on the edge when the foot lies on the part, else an end of the
+  // part, which is a corner; so the distance is the least of the feet on their parts and
+  // the corners.
+  const BoundaryDistances b = DistancesTo(shape, p);
+  double distance = std::numeric_limits<double>::infinity();
+  for (size_t i = 0; i < b.count; ++i) {
+    const Eigen::Vector2d foot = p - b.terms[i].metres * b.terms[i].gradient;
+    const BoundaryDistances at_foot = DistancesTo(shape, foot);
+    bool on_outline = true;
+    for (size_t j = 0; j < at_foot.count; ++j) {
+      on_outline &= j == i || at_foot.terms[j].metres <= 1e-12;
+    }
+    if (on_outline) distance = std::min(distance, std::abs(b.terms[i].metres));
+  }
+  for (const Eigen::Vector2d& corner : OutlineCorners(shape)) {
+    distance = std::min(distance, (p - corner).norm());
+  }
+  return distance;
+}
+
 PaintSample PaintAt(const PaintedShape& painted, const Eigen::Vector2d& p) {
   if (const auto* grid = std::get_if<GridShape>(&painted.shape)) {
     return GridPaint(*grid, painted.color, p);

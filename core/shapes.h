@@ -85,6 +85,12 @@ struct BoundaryDistances {
 };
 BoundaryDistances DistancesTo(const Shape& shape, const Eigen::Vector2d& p);
 
+// The distance from p to a shape's outline: to the arcs and segments that bound a disk,
+// crescent or sector, not to the whole circles and lines of DistancesTo (a sector's lines go
+// on past its centre and its rim, a crescent's circles past its tips); for a grid, to its
+// box's and cells' edges (PaintAt's clearance).
+double DistanceToOutline(const Shape& shape, const Eigen::Vector2d& p);
+
 // Axis-aligned bounds of a shape in the marker plane.
 Eigen::AlignedBox2d ShapeBounds(const Shape& shape);
 

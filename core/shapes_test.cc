@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <limits>
 
 #include "core/random.h"
 
@@ -131,6 +132,58 @@ TEST(Shapes, DistancesToLeadToEachBoundary) {
     }
   }
   EXPECT_EQ(DistancesTo(GridShape{}, Eigen::Vector2d::Zero()).count, 0u);
+}
+
+// DistanceToOutline against the outline found by brute force: the points of a 0.1 mm grid
+// inside the shape with a neighbour outside. Near a sector's line past its centre, or a
+// crescent's circle past its tips, the nearest edge term (DistancesTo) is much nearer than
+// the outline.
+TEST(Shapes, DistanceToOutlineIsTheDistanceToTheDrawnEdges) {
+  const std::vector<Shape> shapes = {DiskShape{{0.01, -0.01}, 0.03},
+                                     CrescentFromTips({0.03, 0.0}, {0.0, -0.03}, 0.012, 0.005),
+                                     SectorShape{{0.0, 0.01}, 0.04, 0.3, 0.3 + 1.0}};
+  constexpr double kStep = 1e-4;
+  constexpr int kCells = 1200;  // [-0.06, 0.06]²
+  Rng rng(8);
+  for (size_t k = 0; k < shapes.size(); ++k) {
+    const auto inside = [&](int i, int j) {
+      const Eigen::Vector2d q(-0.06 + i * kStep, -0.06 + j * kStep);
+      return PaintAt({shapes[k], Rgb::Zero()}, q).color.has_value();
+    };
+    std::vector<Eigen::Vector2d> outline;
+    for (int i = 1; i < kCells; ++i) {
+      for (int j = 1; j < kCells; ++j) {
+        if (inside(i, j) &&
+            (!inside(i - 1, j) || !inside(i + 1, j) || !inside(i, j - 1) || !inside(i, j + 1))) {
+          outline.emplace_back(-0.06 + i * kStep, -0.06 + j * kStep);
+        }
+      }
+    }
+    int nearer_terms = 0;
+    for (int n = 0; n < 300; ++n) {
+      const Eigen::Vector2d p(rng.Uniform(-0.05, 0.05), rng.Uniform(-0.05, 0.05));
+      double brute = std::numeric_limits<double>::infinity();
+      for (const Eigen::Vector2d& q : outline) brute = std::min(brute, (p - q).norm());
+      const double exact = DistanceToOutline(shapes[k], p);
+      EXPECT_NEAR(exact, brute, 1.5 * kStep) << k << " at " << p.transpose();
+      const BoundaryDistances b = DistancesTo(shapes[k], p);
+      for (size_t t = 0; t < b.count; ++t)
+        nearer_terms += std::abs(b.terms[t].metres) < 0.5 * exact;
+    }
+    // The disk's one circle is its outline; the others' extended edges come nearer.
+    if (k == 0) {
+      EXPECT_EQ(nearer_terms, 0);
+    } else {
+      EXPECT_GT(nearer_terms, 10) << k;
+    }
+  }
+  GridShape grid;
+  grid.cell_m = 0.01;
+  grid.rows = grid.cols = 2;
+  grid.ink = {1, 0, 0, 1};
+  for (const Eigen::Vector2d& p : {Eigen::Vector2d(0.013, -0.004), Eigen::Vector2d(0.03, 0.01)}) {
+    EXPECT_EQ(DistanceToOutline(grid, p), PaintAt({grid, Rgb::Zero()}, p).clearance_m);
+  }
 }
 
 }  // namespace

@@ -23,6 +23,7 @@ constexpr std::array<double, 5> kWeights = {0.2955242247147529,
 
 // Edges nearer than this (in σ) to a point make a corner with its nearest edge.
 constexpr double kCornerSigmas = 5.0;
+constexpr double kSharpSigmas = 9.0;
 
 // One edge of a layer at a point: its distance in σ (positive outside), d(that)/dp and
 // d(that)/dσ.
@@ -78,7 +79,14 @@ Cover BlurredCover(const BoundaryDistances& b,
         cover.d_sigma * factor + cover.value * (d_a1 * e1.da_dsigma + d_a2 * e2.da_dsigma);
     cover.value *= factor;
   };
+  // Beyond kSharpSigmas of an edge its step is 0 or 1 and its slope 0 in double precision
+  // (Φ(-9) = 1e-19): most edges of a layer are that far from most of its pixels.
   auto multiply_edge = [&](const Edge& e) {
+    if (e.a < -kSharpSigmas) return;
+    if (e.a > kSharpSigmas) {
+      cover = {0.0, Eigen::Vector2d::Zero(), 0.0};
+      return;
+    }
     multiply(NormalCdf(-e.a), -NormalDensity(e.a), e, 0.0, e);
   };
   // Beyond kCornerSigmas of the second edge its step is 0 or 1 within 3e-7, and so is
@@ -151,12 +159,25 @@ BlurredLuma BlurredDesign::At(const Eigen::Vector2d& p,
                               const Eigen::Matrix2d& marker_from_px,
                               double sigma_px) const {
   BlurredLuma out{Luma(marker_.background), Eigen::Vector2d::Zero(), 0.0};
+  // An edge farther than this from p is farther than kSharpSigmas + 1 σ in the image (the
+  // map's Frobenius norm bounds the metres a pixel spans; the 1 σ covers the curvature's
+  // shift of a circle's blurred edge, σ/2ρ σ for ρ ≥ σ).
+  const double sharp_beyond_m = (kSharpSigmas + 1.0) * sigma_px * marker_from_px.norm();
   for (size_t l = 0; l < marker_.layers.size(); ++l) {
     const PaintedShape& layer = marker_.layers[l];
     const BoundaryDistances b = DistancesTo(layer.shape, p);
     if (b.count == 0) {
       // Sharp: where it paints, its colour replaces the layers below.
       if (PaintAt(layer, p).color) out = {Luma(layer.color), Eigen::Vector2d::Zero(), 0.0};
+      continue;
+    }
+    bool inside = true, far = true;
+    for (size_t i = 0; i < b.count; ++i) {
+      inside &= b.terms[i].metres < 0.0;
+      far &= std::abs(b.terms[i].metres) > sharp_beyond_m;
+    }
+    if (far) {  // what BlurredCover gives there, to double precision
+      if (inside) out.luma += steps_[l];
       continue;
     }
     const Cover cover = BlurredCover(b, marker_from_px, sigma_px);

@@ -99,6 +99,27 @@ TEST(BlurredDesign, ApproximatesTheConvolvedMouth) {
   }
 }
 
+// Far from an edge the blurred step is taken as sharp, but only where the blur leaves nothing
+// in double precision: 5 σ outside f's rim (and far from its wedge) the black disk's tail,
+// Φ(-5) (the circle's curvature moves it by σ/2ρ = 0.01 σ), still darkens the white paper;
+// 12 σ and 20 σ out the paper is white, with no gradient.
+TEST(BlurredDesign, IsSharpOnlyWhereTheBlurLeavesNothing) {
+  const MarkerSpec f = LoadMarkerYaml("scenarios/markers/circle_f.yaml");
+  const BlurredDesign design(f);
+  const Eigen::Matrix2d one_mm_per_px = 0.001 * Eigen::Matrix2d::Identity();
+  const Eigen::Vector2d outward(std::cos(200.0 * M_PI / 180.0), std::sin(200.0 * M_PI / 180.0));
+  const double paper = Luma(f.background);
+  const BlurredLuma near = design.At((0.05 + 0.005) * outward, one_mm_per_px, 1.0);
+  EXPECT_NEAR(paper - near.luma, NormalCdf(-5.01), 1e-9);
+  EXPECT_GT(near.gradient.norm(), 0.0);
+  for (const double out_m : {0.012, 0.02}) {
+    const BlurredLuma far = design.At((0.05 + out_m) * outward, one_mm_per_px, 1.0);
+    EXPECT_EQ(far.luma, paper) << out_m;
+    EXPECT_EQ(far.gradient, Eigen::Vector2d::Zero()) << out_m;
+    EXPECT_EQ(far.d_sigma, 0.0) << out_m;
+  }
+}
+
 // The gradient leaves out how each edge's direction turns along p (second order at the edge):
 // within 5 % and 0.5 per metre (across the edges it reaches 150 per metre). The derivative in
 // σ is exact.

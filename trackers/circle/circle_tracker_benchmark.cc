@@ -2,7 +2,8 @@
 // analytic pose + refinement (with and without the refinement on the pixels), tracking mode
 // (the region predicted from the previous pose), and the check of the printed design. circles_a
 // with a 0.1 m equal-area footprint at 0.6 m, σ² = 0.02, the frames of the other tracker
-// benchmarks. Run from the project root.
+// benchmarks; and full detection of markers (e) and (f) on the same poses (issue 22: their
+// pose fitted on the pixels of the whole design). Run from the project root.
 #include <benchmark/benchmark.h>
 
 #include <opencv2/core.hpp>
@@ -15,10 +16,13 @@
 namespace markerbench {
 namespace {
 
-MarkerSpec PaperCirclesA() {
-  const MarkerSpec marker = LoadMarkerYaml("scenarios/markers/circles_a.yaml");
+// A marker of scenarios/markers/ at the paper's 0.1 m equal-area footprint.
+MarkerSpec PaperMarker(const std::string& kind) {
+  const MarkerSpec marker = LoadMarkerYaml("scenarios/markers/" + kind + ".yaml");
   return ScaledMarker(marker, EqualAreaFactor(marker, 0.01));
 }
+
+MarkerSpec PaperCirclesA() { return PaperMarker("circles_a"); }
 
 void BM_CircleFullDetection(benchmark::State& state) {
   cv::setNumThreads(1);
@@ -36,6 +40,16 @@ void BM_CircleFullDetectionEdgesOnly(benchmark::State& state) {
   CircleTrackerOptions options;
   options.photometric = false;
   CircleTracker tracker(options);
+  TimeIndependentFrames(state, tracker, marker, frames);
+}
+
+// Markers (e) and (f): full detection, the pose fitted on the design's pixels from both of
+// the circle's tilts.
+void BM_CircleDesignFullDetection(benchmark::State& state, const std::string& kind) {
+  cv::setNumThreads(1);
+  const MarkerSpec marker = PaperMarker(kind);
+  const std::vector<Image8> frames = BenchmarkFrames(marker, 16);
+  CircleTracker tracker;
   TimeIndependentFrames(state, tracker, marker, frames);
 }
 
@@ -87,6 +101,10 @@ void BM_CircleAppearanceCheck(benchmark::State& state) {
 
 BENCHMARK(BM_CircleFullDetection)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_CircleFullDetectionEdgesOnly)->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(BM_CircleDesignFullDetection, circle_e, std::string("circle_e"))
+    ->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(BM_CircleDesignFullDetection, circle_f, std::string("circle_f"))
+    ->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_CircleTrackingMode)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_CircleAppearanceCheck)->Unit(benchmark::kMillisecond);
 
