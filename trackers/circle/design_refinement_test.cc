@@ -103,6 +103,43 @@ TEST(DesignRefinement, KeepsTheTiltTheDesignShows) {
   }
 }
 
+// Near fronto-parallel and far, f's design tells its two tilts apart only weakly: at 1.5 m
+// (the circle 40 px across) and 3-8° of tilt, the best fit at the mirrored pose differs from
+// the true pose's image by about one noise σ in all (0.7-1.6 σ on noise-free renders). The
+// least Σ r² between fits started at the true pose and at its mirror (no search: the best a
+// likelihood can do with the right basins) is then wrong on several frames, and the tracker,
+// which finds its starts itself, about as often. Measured: 4 of 30 from the truth, 5 ours
+// (seeds 14-18: 6, 11, 12, 4, 9 from the truth, ours the same or one more). No choice by
+// likelihood reaches 95 % success on such poses with this design (results/paper: f at 1.5 m).
+TEST(DesignRefinement, ChoosesTheTiltAsOftenAsFromTheTruePoseAndItsMirror) {
+  const MarkerSpec marker = Load("circle_f");
+  const Camera camera;
+  CircleTracker tracker;
+  Rng rng(13);
+  int ours_wrong = 0, from_truth_wrong = 0;
+  constexpr int kFrames = 30;
+  for (int i = 0; i < kFrames; ++i) {
+    const Rigid3 truth = TiltedView(1.5, rng.Uniform(3.0, 8.0), rng.Uniform(0.0, 360.0));
+    const RenderedFrame frame = RenderMarker(marker, truth, 0.02, 0.0, 200 + i);
+    const double wrong_m = 0.15;  // the benchmark's success: within 10 % of the distance
+    tracker.Reset();
+    const TrackResult ours = tracker.Track({&frame.image, &camera, &marker});
+    ours_wrong +=
+        ours.status != TrackStatus::kOk || PositionError(ours.hypotheses.front(), truth) > wrong_m;
+    std::vector<DesignRefinement> fits;
+    for (const Rigid3& start : {truth, OtherTilt(truth)}) {
+      const std::optional<DesignRefinement> fit =
+          RefineDesign(frame.image, camera, marker, start, 0.3, std::sqrt(0.02));
+      ASSERT_TRUE(fit);
+      fits.push_back(*fit);
+    }
+    const size_t best = BestDesignRefinement(frame.image, camera, marker, fits);
+    from_truth_wrong += PositionError(fits[best].fit.cam_from_marker, truth) > wrong_m;
+  }
+  EXPECT_GE(from_truth_wrong, 3);
+  EXPECT_LE(ours_wrong, from_truth_wrong + 2);
+}
+
 // OtherTilt, the start of the circle's other tilt: its own inverse; from a centre on the
 // optical axis the tilt about the same axis the other way, seen as an ellipse of the same
 // shape with its centre mirrored through the principal point (0.8-2.3 px apart here, which
