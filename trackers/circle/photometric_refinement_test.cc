@@ -7,14 +7,15 @@
 #include <gtest/gtest.h>
 
 #include <Eigen/Geometry>
-#include <algorithm>
 
 #include "core/marker_yaml.h"
 #include "core/pose_error.h"
 #include "core/random.h"
 #include "renderer/test_scenes.h"
+#include "testing/paired_tracking.h"
 #include "testing/square_tracker_testing.h"
 #include "trackers/circle/circle_tracker.h"
+#include "trackers/upper_median.h"
 
 namespace markerbench {
 namespace {
@@ -51,32 +52,15 @@ TEST(PhotometricRefinement, RecoversThePoseAndTheBlurFromAPerturbedStart) {
 // 24) and so does its median (measured: 0.81 of the edge points'; on the paper's noise sweep,
 // with the marker scaled to 0.1 m equal area, 0.61).
 TEST(PhotometricRefinement, BeatsTheEdgePointsOnTheSameFrames) {
-  const MarkerSpec marker = Load("circles_a");
-  const Camera camera;
   CircleTrackerOptions edges_only;
   edges_only.photometric = false;
   CircleTracker with_pixels, without_pixels(edges_only);
-  Rng rng(11);
-  std::vector<double> on, off;
-  int better = 0;
-  for (int i = 0; i < 24; ++i) {
-    const Rigid3 truth = TiltedView(0.6, rng.Uniform(10.0, 40.0), rng.Uniform(0.0, 360.0));
-    const RenderedFrame frame = RenderMarker(marker, truth, 0.02, 0.0, 100 + i);
-    const Observation observation{&frame.image, &camera, &marker};
-    with_pixels.Reset();
-    without_pixels.Reset();
-    const TrackResult a = with_pixels.Track(observation);
-    const TrackResult b = without_pixels.Track(observation);
-    ASSERT_EQ(a.status, TrackStatus::kOk) << a.message;
-    ASSERT_EQ(b.status, TrackStatus::kOk) << b.message;
-    on.push_back(PositionError(a.hypotheses.front(), truth));
-    off.push_back(PositionError(b.hypotheses.front(), truth));
-    better += on.back() < off.back();
-  }
-  std::nth_element(on.begin(), on.begin() + 12, on.end());
-  std::nth_element(off.begin(), off.begin() + 12, off.end());
-  EXPECT_LE(on[12], 0.9 * off[12]) << on[12] << " vs " << off[12];
-  EXPECT_GE(better, 17);  // a sign test: P(>= 17 of 24 | no difference) = 0.032
+  const PairedErrors errors =
+      TrackPaired(Load("circles_a"), with_pixels, without_pixels, 0.6, 0.02, 24, 11, 100);
+  EXPECT_EQ(errors.first_missed + errors.second_missed, 0);
+  const double on = UpperMedian(errors.first), off = UpperMedian(errors.second);
+  EXPECT_LE(on, 0.9 * off) << on << " vs " << off;
+  EXPECT_GE(errors.first_better, 17);  // a sign test: P(>= 17 of 24 | no difference) = 0.032
 }
 
 // Under heavy blur the two disks' blurred edges overlap (circles_a at 0.6 m: 30 px disks, a
