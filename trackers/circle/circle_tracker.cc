@@ -79,6 +79,10 @@ bool CircleTrackerOptions::IsValid(std::string* error) const {
     msg << "max_edge_rms_px=" << max_edge_rms_px << " must be > 0";
   } else if (!(appearance.max_misfit > 0.0)) {
     msg << "max_appearance_misfit=" << appearance.max_misfit << " must be > 0";
+  } else if (!(min_branch_angle_rad >= 0.0 && min_branch_angle_rad < 0.5 * M_PI)) {
+    msg << "min_branch_angle_rad=" << min_branch_angle_rad << " must be in [0, pi/2)";
+  } else if (!(min_design_radius_per_blur >= 0.0)) {
+    msg << "min_design_radius_per_blur=" << min_design_radius_per_blur << " must be >= 0";
   } else {
     return true;
   }
@@ -118,6 +122,9 @@ CircleTrackerOptions CircleTrackerOptions::FromYaml(const YamlMap& map) {
   o.detector.min_contrast = map.GetOr<double>("min_contrast", o.detector.min_contrast);
   o.detector.edge_passes = map.GetOr<int>("edge_passes", o.detector.edge_passes);
   o.detector.edges.max_rays = map.GetOr<int>("max_rays", o.detector.edges.max_rays);
+  o.min_branch_angle_rad = map.GetOr<double>("min_branch_angle_rad", o.min_branch_angle_rad);
+  o.min_design_radius_per_blur =
+      map.GetOr<double>("min_design_radius_per_blur", o.min_design_radius_per_blur);
   FinishOptions(map, o);
   return o;
 }
@@ -147,6 +154,8 @@ std::vector<std::pair<std::string, std::string>> CircleTracker::Parameters() con
       {"min_contrast", NumberText(o.detector.min_contrast)},
       {"edge_passes", std::to_string(o.detector.edge_passes)},
       {"max_rays", std::to_string(o.detector.edges.max_rays)},
+      {"min_branch_angle_rad", NumberText(o.min_branch_angle_rad)},
+      {"min_design_radius_per_blur", NumberText(o.min_design_radius_per_blur)},
   };
 }
 

@@ -54,8 +54,8 @@ struct CircleTrackerOptions {
   bool IsValid(std::string* error) const;
   // Reads flat keys (cost, huber_px, point_weight, max_iterations, k_normal, depth, refine,
   // photometric, tracking, roi_margin, max_prediction_error, max_edge_rms_px,
-  // max_appearance_misfit, min_contrast, edge_passes, max_rays); throws ConfigError naming the
-  // file and key.
+  // max_appearance_misfit, min_contrast, edge_passes, max_rays, min_branch_angle_rad,
+  // min_design_radius_per_blur); throws ConfigError naming the file and key.
   static CircleTrackerOptions FromYaml(const YamlMap& map);
 };
 
