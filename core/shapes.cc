@@ -84,9 +84,10 @@ std::vector<Eigen::Vector2d> OutlineCorners(const Shape& shape) {
     const DiskShape& b = crescent->inner;
     const Eigen::Vector2d between = b.center - a.center;
     const double d = between.norm();
+    if (!(d > 0.0)) return {};  // concentric: a ring, no tips
     const double along = (a.radius * a.radius - b.radius * b.radius + d * d) / (2.0 * d);
     const double across_squared = a.radius * a.radius - along * along;
-    if (!(d > 0.0) || !(across_squared >= 0.0)) return {};
+    if (!(across_squared >= 0.0)) return {};  // the circles do not cross
     const Eigen::Vector2d u = between / d, normal(-u.y(), u.x());
     const double across = std::sqrt(across_squared);
     return {a.center + along * u + across * normal, a.center + along * u - across * normal};

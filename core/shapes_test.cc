@@ -167,8 +167,9 @@ TEST(Shapes, DistanceToOutlineIsTheDistanceToTheDrawnEdges) {
       const double exact = DistanceToOutline(shapes[k], p);
       EXPECT_NEAR(exact, brute, 1.5 * kStep) << k << " at " << p.transpose();
       const BoundaryDistances b = DistancesTo(shapes[k], p);
-      for (size_t t = 0; t < b.count; ++t)
+      for (size_t t = 0; t < b.count; ++t) {
         nearer_terms += std::abs(b.terms[t].metres) < 0.5 * exact;
+      }
     }
     // The disk's one circle is its outline; the others' extended edges come nearer.
     if (k == 0) {
