@@ -33,6 +33,13 @@ inline Eigen::Vector3d CameraCenterInMarker(const Rigid3& cam_from_marker) {
   return -cam_from_marker.rotation.transpose() * cam_from_marker.translation;
 }
 
+// Whether the marker's origin is in front of the camera and the camera on the marker's
+// printed side (+z). Negating r1, r2 and t leaves the image of the plane the same, [r1 r2 t]
+// up to scale, but fails this.
+inline bool FacesTheCamera(const Rigid3& cam_from_marker) {
+  return cam_from_marker.translation.z() > 0.0 && CameraCenterInMarker(cam_from_marker).z() > 0.0;
+}
+
 // [r1 r2 t]: the homography from the marker plane's points (X, Y, 1) (z = 0) to their rays
 // (x, y, z) in the camera frame; K times it maps them to pixels (circle-method.md §0).
 inline Eigen::Matrix3d RayFromPlane(const Rigid3& cam_from_marker) {

@@ -418,8 +418,7 @@ TrackResult CircleTracker::TrackIn(const Observation& observation,
   // Acceptance: the marker in front of the camera, and its projected circles on the edges.
   const Rigid3 cam_from_marker = cam_from_paper * paper_from_marker;
   diagnostics_.refined_cam_from_marker = cam_from_marker;
-  if (!(cam_from_paper.translation.z() > 0.0) ||
-      !(CameraCenterInMarker(cam_from_paper).z() > 0.0)) {
+  if (!FacesTheCamera(cam_from_paper)) {
     result.status = TrackStatus::kPoseFailed;
     result.message = "the pose puts the marker behind the camera";
     return result;

@@ -85,15 +85,22 @@ PixelFit FitPixels(const Model& model,
 
 // A fit in rounds, each on the pixels chosen at the last result (a solve ties its pixels to
 // the start's edges), until the translation moves by less than 1e-4 of its length:
-// solve_once(cam_from_marker, σ) gives an optional Result with a PixelFit `fit`.
+// solve_once(cam_from_marker, σ) gives an optional Result with a PixelFit `fit`. A solve that
+// ends with the marker behind the camera (the plane's mirror image, FacesTheCamera) gives
+// none: the rounds stop at the last result before it.
 template <class Result, class SolveOnce>
 std::optional<Result> FitInRounds(const Rigid3& cam_from_marker,
                                   double sigma_px,
                                   int max_rounds,
                                   const SolveOnce& solve_once) {
-  std::optional<Result> result = solve_once(cam_from_marker, sigma_px);
+  const auto solve = [&](const Rigid3& start, double sigma) {
+    std::optional<Result> solved = solve_once(start, sigma);
+    if (solved && !FacesTheCamera(solved->fit.cam_from_marker)) solved.reset();
+    return solved;
+  };
+  std::optional<Result> result = solve(cam_from_marker, sigma_px);
   for (int round = 1; result && round < max_rounds; ++round) {
-    std::optional<Result> next = solve_once(result->fit.cam_from_marker, result->fit.sigma_px);
+    std::optional<Result> next = solve(result->fit.cam_from_marker, result->fit.sigma_px);
     if (!next) break;
     const Eigen::Vector3d& last = result->fit.cam_from_marker.translation;
     const double moved_m = (next->fit.cam_from_marker.translation - last).norm();
