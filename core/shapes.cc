@@ -102,17 +102,12 @@ std::vector<Eigen::Vector2d> OutlineCorners(const Shape& shape) {
   return {};
 }
 
-}  // namespace
-
-double DistanceToOutline(const Shape& shape, const Eigen::Vector2d& p) {
-  if (const auto* grid = std::get_if<GridShape>(&shape)) {
-    return GridPaint(*grid, Rgb::Zero(), p).clearance_m;
-  }
+// DistanceToOutline of a disk, crescent or sector from p's distances `b` to its edges.
+double OutlineDistance(const Shape& shape, const Eigen::Vector2d& p, const BoundaryDistances& b) {
   // The outline is each edge where the others are not positive. The nearest point of an
   // edge's part is p's foot on the edge when the foot lies on the part, else an end of the
   // part, which is a corner; so the distance is the least of the feet on their parts and
   // the corners.
-  const BoundaryDistances b = DistancesTo(shape, p);
   double distance = std::numeric_limits<double>::infinity();
   for (size_t i = 0; i < b.count; ++i) {
     const Eigen::Vector2d foot = p - b.terms[i].metres * b.terms[i].gradient;
@@ -127,6 +122,27 @@ double DistanceToOutline(const Shape& shape, const Eigen::Vector2d& p) {
     distance = std::min(distance, (p - corner).norm());
   }
   return distance;
+}
+
+}  // namespace
+
+double DistanceToOutline(const Shape& shape, const Eigen::Vector2d& p) {
+  if (const auto* grid = std::get_if<GridShape>(&shape)) {
+    return GridPaint(*grid, Rgb::Zero(), p).clearance_m;
+  }
+  return OutlineDistance(shape, p, DistancesTo(shape, p));
+}
+
+bool IsNearOutline(const Shape& shape, const Eigen::Vector2d& p, double reach_m) {
+  if (const auto* grid = std::get_if<GridShape>(&shape)) {
+    return GridPaint(*grid, Rgb::Zero(), p).clearance_m <= reach_m;
+  }
+  // The outline lies on the edges' circles and lines: a point beyond reach of all of them is
+  // beyond reach of the outline, which settles most points without finding the feet.
+  const BoundaryDistances b = DistancesTo(shape, p);
+  bool near_an_edge = false;
+  for (size_t i = 0; i < b.count; ++i) near_an_edge |= std::abs(b.terms[i].metres) <= reach_m;
+  return near_an_edge && OutlineDistance(shape, p, b) <= reach_m;
 }
 
 PaintSample PaintAt(const PaintedShape& painted, const Eigen::Vector2d& p) {

@@ -91,6 +91,10 @@ BoundaryDistances DistancesTo(const Shape& shape, const Eigen::Vector2d& p);
 // box's and cells' edges (PaintAt's clearance).
 double DistanceToOutline(const Shape& shape, const Eigen::Vector2d& p);
 
+// Whether DistanceToOutline(shape, p) <= reach_m, found at the cost of DistancesTo for points
+// beyond reach of every edge's whole circle or line.
+bool IsNearOutline(const Shape& shape, const Eigen::Vector2d& p, double reach_m);
+
 // Axis-aligned bounds of a shape in the marker plane.
 Eigen::AlignedBox2d ShapeBounds(const Shape& shape);
 

@@ -166,6 +166,9 @@ TEST(Shapes, DistanceToOutlineIsTheDistanceToTheDrawnEdges) {
       for (const Eigen::Vector2d& q : outline) brute = std::min(brute, (p - q).norm());
       const double exact = DistanceToOutline(shapes[k], p);
       EXPECT_NEAR(exact, brute, 1.5 * kStep) << k << " at " << p.transpose();
+      for (const double reach : {0.002, 0.01, 0.03}) {
+        EXPECT_EQ(IsNearOutline(shapes[k], p, reach), exact <= reach) << k << " " << reach;
+      }
       const BoundaryDistances b = DistancesTo(shapes[k], p);
       for (size_t t = 0; t < b.count; ++t) {
         nearer_terms += std::abs(b.terms[t].metres) < 0.5 * exact;
@@ -183,7 +186,10 @@ TEST(Shapes, DistanceToOutlineIsTheDistanceToTheDrawnEdges) {
   grid.rows = grid.cols = 2;
   grid.ink = {1, 0, 0, 1};
   for (const Eigen::Vector2d& p : {Eigen::Vector2d(0.013, -0.004), Eigen::Vector2d(0.03, 0.01)}) {
-    EXPECT_EQ(DistanceToOutline(grid, p), PaintAt({grid, Rgb::Zero()}, p).clearance_m);
+    const double clearance = PaintAt({grid, Rgb::Zero()}, p).clearance_m;
+    EXPECT_EQ(DistanceToOutline(grid, p), clearance);
+    EXPECT_TRUE(IsNearOutline(grid, p, clearance));
+    EXPECT_FALSE(IsNearOutline(grid, p, 0.99 * clearance));
   }
 }
 

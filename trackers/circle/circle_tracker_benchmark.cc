@@ -22,11 +22,9 @@ MarkerSpec PaperMarker(const std::string& kind) {
   return ScaledMarker(marker, EqualAreaFactor(marker, 0.01));
 }
 
-MarkerSpec PaperCirclesA() { return PaperMarker("circles_a"); }
-
 void BM_CircleFullDetection(benchmark::State& state) {
   cv::setNumThreads(1);
-  const MarkerSpec marker = PaperCirclesA();
+  const MarkerSpec marker = PaperMarker("circles_a");
   const std::vector<Image8> frames = BenchmarkFrames(marker, 16);
   CircleTracker tracker;
   TimeIndependentFrames(state, tracker, marker, frames);
@@ -35,7 +33,7 @@ void BM_CircleFullDetection(benchmark::State& state) {
 // The same without the refinement on the pixels (`photometric: false`): the fast path.
 void BM_CircleFullDetectionEdgesOnly(benchmark::State& state) {
   cv::setNumThreads(1);
-  const MarkerSpec marker = PaperCirclesA();
+  const MarkerSpec marker = PaperMarker("circles_a");
   const std::vector<Image8> frames = BenchmarkFrames(marker, 16);
   CircleTrackerOptions options;
   options.photometric = false;
@@ -57,7 +55,7 @@ void BM_CircleDesignFullDetection(benchmark::State& state, const std::string& ki
 // from that pose, as for a marker that did not move between frames.
 void BM_CircleTrackingMode(benchmark::State& state) {
   cv::setNumThreads(1);
-  const MarkerSpec marker = PaperCirclesA();
+  const MarkerSpec marker = PaperMarker("circles_a");
   const std::vector<Image8> frames = BenchmarkFrames(marker, 16);
   const Camera camera;
   CircleTracker tracker;
@@ -79,7 +77,7 @@ void BM_CircleTrackingMode(benchmark::State& state) {
 // both timings above.
 void BM_CircleAppearanceCheck(benchmark::State& state) {
   cv::setNumThreads(1);
-  const MarkerSpec marker = PaperCirclesA();
+  const MarkerSpec marker = PaperMarker("circles_a");
   const std::vector<Image8> frames = BenchmarkFrames(marker, 16);
   const Camera camera;
   CircleTracker tracker;

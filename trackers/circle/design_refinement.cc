@@ -36,24 +36,10 @@ double ReachPx(double sigma_px, const DesignRefinementOptions& options) {
   return options.band_sigmas * std::max(sigma_px, 0.3) + options.band_px;
 }
 
-// Whether a marker-plane point is within `reach_m` of an edge drawn in the design: any layer's
-// outline (not the lines of f's wedge past its centre and rim, nor the circles of e's mouth
-// past its tips, on which nothing changes). The outline lies on the layer's circles and lines,
-// so a point farther than reach_m from all of them is not near it.
-bool NearDesignEdges(const MarkerSpec& marker, const Eigen::Vector2d& p, double reach_m) {
-  for (const PaintedShape& layer : marker.layers) {
-    const BoundaryDistances edges = DistancesTo(layer.shape, p);
-    bool near_an_edge = edges.count == 0;  // a grid: DistanceToOutline is PaintAt's clearance
-    for (size_t i = 0; i < edges.count; ++i) {
-      near_an_edge |= std::abs(edges.terms[i].metres) <= reach_m;
-    }
-    if (near_an_edge && DistanceToOutline(layer.shape, p) <= reach_m) return true;
-  }
-  return false;
-}
-
-// The pixels whose plane points at the pose lie within `reach_px` of an edge of the design,
-// in row-major order; none when the design's ink is not wholly in front of the camera.
+// The pixels whose plane points at the pose lie within `reach_px` of an edge drawn in the
+// design, any layer's outline (not the lines of f's wedge past its centre and rim, nor the
+// circles of e's mouth past its tips, on which nothing changes), in row-major order; none
+// when the design's ink is not wholly in front of the camera.
 std::vector<DesignPixel> PixelsNearDesignEdges(const Image8& image,
                                                const Camera& camera,
                                                const MarkerSpec& marker,
@@ -89,7 +75,10 @@ std::vector<DesignPixel> PixelsNearDesignEdges(const Image8& image,
       const Eigen::Vector3d ray = camera.CamFromImg(Eigen::Vector2d(u, v));
       const PlaneLook look = view.LookAlong(ray);
       if (!(look.homogeneous > 0.0)) continue;
-      if (NearDesignEdges(marker, look.point, reach_px * LargestStretch(look.plane_from_px))) {
+      const double reach_m = reach_px * LargestStretch(look.plane_from_px);
+      if (std::any_of(marker.layers.begin(), marker.layers.end(), [&](const PaintedShape& layer) {
+            return IsNearOutline(layer.shape, look.point, reach_m);
+          })) {
         pixels.push_back({u, v, ray, LumaAt(image, u, v) / 255.0});
       }
     }
