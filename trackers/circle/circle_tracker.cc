@@ -379,28 +379,30 @@ TrackResult CircleTracker::TrackIn(const Observation& observation,
     }
   }
 
-  diagnostics_.edge_rms_px = EdgeRmsPx(problem, cam_from_paper);
-  // On the pixels only where the edges pass acceptance (below): on ellipses that do not fit
-  // (most of them clutter) it would cost its time for nothing.
-  if (options_.refine && options_.photometric &&
-      diagnostics_.edge_rms_px <= options_.max_edge_rms_px) {
+  // The ellipses are accepted on the edge fit (below); the pixels' fit runs only then: on
+  // ellipses that do not fit (most of them clutter) it would cost its time for nothing.
+  const double ellipses_rms_px = EdgeRmsPx(problem, cam_from_paper);
+  diagnostics_.edge_rms_px = ellipses_rms_px;
+  if (options_.refine && options_.photometric && ellipses_rms_px <= options_.max_edge_rms_px) {
     const std::optional<Rigid3> direct =
         geometry.roll_from_design ? OnDesignPixels(observation, design_starts, paper_from_marker)
                                   : OnDiskPixels(observation, cam_from_paper * paper_from_marker);
     // Kept unless it leaves the edges (a fit gone astray: the pixels and the edge points
-    // measure the same edges). For (e) and (f) the edge points under blur are pulled by the
-    // design next to the rim (f's wedge meets it) by up to a pixel or two, and the tilt
-    // they fit may be the circle's other one, so there the limit is the acceptance's, and
-    // the design must still show there (a fit of clutter can leave the design behind).
+    // measure the same edges) by more than half a pixel RMS. For (e) and (f) the edge points
+    // under blur are pulled by the design next to the rim (f's wedge meets it) by up to a
+    // pixel or two, and the tilt they fit may be the circle's other one, so there anything
+    // within the ellipses' acceptance goes too, and the design must still show there (a fit
+    // of clutter can leave the design behind).
     if (direct) {
       const Rigid3 on_pixels = *direct * geometry.marker_from_paper;
       const double rms = EdgeRmsPx(problem, on_pixels);
+      const bool keeps_the_edges = rms <= ellipses_rms_px + 0.5;
       if (geometry.roll_from_design) {
         const std::optional<RollAlignment> at_pixels = align(on_pixels, false);
-        diagnostics_.photometric_used =
-            rms <= options_.max_edge_rms_px && at_pixels && at_pixels->shows_design;
+        diagnostics_.photometric_used = (keeps_the_edges || rms <= options_.max_edge_rms_px) &&
+                                        at_pixels && at_pixels->shows_design;
       } else {
-        diagnostics_.photometric_used = rms <= diagnostics_.edge_rms_px + 0.5;
+        diagnostics_.photometric_used = keeps_the_edges;
       }
       if (diagnostics_.photometric_used) {
         cam_from_paper = on_pixels;
@@ -423,10 +425,10 @@ TrackResult CircleTracker::TrackIn(const Observation& observation,
     result.message = "the pose puts the marker behind the camera";
     return result;
   }
-  if (!(diagnostics_.edge_rms_px <= options_.max_edge_rms_px)) {
+  if (!(ellipses_rms_px <= options_.max_edge_rms_px)) {
     result.status = TrackStatus::kNotDetected;
-    result.message = "ellipses rejected: edge residual " + NumberText(diagnostics_.edge_rms_px) +
-                     " px > max_edge_rms_px";
+    result.message =
+        "ellipses rejected: edge residual " + NumberText(ellipses_rms_px) + " px > max_edge_rms_px";
     return result;
   }
 

@@ -47,7 +47,7 @@ struct CircleTrackerOptions {
   // A tracking-mode result stands only if each ellipse is within this fraction of its
   // prediction (centre shift per semi-minor axis, and each semi-axis); else full detection.
   double max_prediction_error = 0.5;
-  double max_edge_rms_px = 2.0;  // accept a pose only if its edge residual RMS is below
+  double max_edge_rms_px = 2.0;  // accept the ellipses only if the edge fit's residual RMS is below
   // ... and only if the image shows the marker's whole design there (printed_appearance.h).
   AppearanceOptions appearance;
 
