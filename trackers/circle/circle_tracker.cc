@@ -50,6 +50,21 @@ bool MatchPrediction(const CircleDiagnostics& detected,
                                 max_error * EllipseFromConic(predicted_conics_px[0]).semi_minor;
 }
 
+// The fit on the pixels from each start by `refine` (an optional Fit with a PixelFit `fit`),
+// the one `best` picks among them; nullopt when no start gives one.
+template <class Fit, class Refine, class Best>
+std::optional<Rigid3> BestFitFromStarts(const std::vector<Rigid3>& cam_from_marker_starts,
+                                        const Refine& refine,
+                                        const Best& best) {
+  std::vector<Fit> fits;
+  for (const Rigid3& start : cam_from_marker_starts) {
+    std::optional<Fit> fit = refine(start);
+    if (fit) fits.push_back(std::move(*fit));
+  }
+  if (fits.empty()) return std::nullopt;
+  return fits[best(fits)].fit.cam_from_marker;
+}
+
 // RMS of the edge points' PND distances to the circles projected from a pose (px).
 double EdgeRmsPx(const RefinementProblem& problem, const Rigid3& cam_from_paper) {
   const Eigen::Matrix3d H = problem.K * RayFromPlane(cam_from_paper);
@@ -81,6 +96,8 @@ bool CircleTrackerOptions::IsValid(std::string* error) const {
     msg << "max_appearance_misfit=" << appearance.max_misfit << " must be > 0";
   } else if (!(min_branch_angle_rad >= 0.0 && min_branch_angle_rad < 0.5 * M_PI)) {
     msg << "min_branch_angle_rad=" << min_branch_angle_rad << " must be in [0, pi/2)";
+  } else if (!(max_other_tilt_log_ratio >= 0.0)) {
+    msg << "max_other_tilt_log_ratio=" << max_other_tilt_log_ratio << " must be >= 0";
   } else if (!(min_design_radius_per_blur >= 0.0)) {
     msg << "min_design_radius_per_blur=" << min_design_radius_per_blur << " must be >= 0";
   } else {
@@ -123,6 +140,8 @@ CircleTrackerOptions CircleTrackerOptions::FromYaml(const YamlMap& map) {
   o.detector.edge_passes = map.GetOr<int>("edge_passes", o.detector.edge_passes);
   o.detector.edges.max_rays = map.GetOr<int>("max_rays", o.detector.edges.max_rays);
   o.min_branch_angle_rad = map.GetOr<double>("min_branch_angle_rad", o.min_branch_angle_rad);
+  o.max_other_tilt_log_ratio =
+      map.GetOr<double>("max_other_tilt_log_ratio", o.max_other_tilt_log_ratio);
   o.min_design_radius_per_blur =
       map.GetOr<double>("min_design_radius_per_blur", o.min_design_radius_per_blur);
   FinishOptions(map, o);
@@ -155,6 +174,7 @@ std::vector<std::pair<std::string, std::string>> CircleTracker::Parameters() con
       {"edge_passes", std::to_string(o.detector.edge_passes)},
       {"max_rays", std::to_string(o.detector.edges.max_rays)},
       {"min_branch_angle_rad", NumberText(o.min_branch_angle_rad)},
+      {"max_other_tilt_log_ratio", NumberText(o.max_other_tilt_log_ratio)},
       {"min_design_radius_per_blur", NumberText(o.min_design_radius_per_blur)},
   };
 }
@@ -332,8 +352,6 @@ TrackResult CircleTracker::TrackIn(const Observation& observation,
                           255.0 * diagnostics_.noise_sigma,
                           fit_center);
   };
-  // Where the fit on the design's pixels starts (below).
-  std::vector<Rigid3> design_starts;
   if (geometry.roll_from_design) {
     const double radius_px = camera.fx * geometry.radii_m[0] / cam_from_paper.translation.norm();
     if (!(radius_px >= options_.min_design_radius_per_blur * diagnostics_.image_blur_sigma_px)) {
@@ -368,14 +386,32 @@ TrackResult CircleTracker::TrackIn(const Observation& observation,
       return result;
     }
     cam_from_paper = aligned->cam_from_paper;
-    design_starts.push_back(cam_from_paper);
-    // The circle fixes its tilt only up to the other of its two (§4.7), which the centre
-    // point may have picked; the design's pixels tell the two apart, so the fit on them starts
-    // from the other too, unless the two nearly coincide (near fronto-parallel).
-    const Rigid3 other = OtherTilt(cam_from_paper);
-    if (other.rotation.col(2).dot(cam_from_paper.rotation.col(2)) <
-        std::cos(options_.min_branch_angle_rad)) {
-      design_starts.push_back(other);
+  }
+  // The circle fixes its tilt only up to the other of its two (§4.7), and so, far away or
+  // under heavy blur, do the edge points of two small disks, or (e, f) the centre point; the
+  // pixels tell the two apart, so the fit on them starts from the other too, unless the two
+  // nearly coincide (near fronto-parallel).
+  std::vector<Rigid3> pixel_starts = {cam_from_paper};
+  const auto apart = [&](const Rigid3& pose) {
+    return pose.rotation.col(2).dot(cam_from_paper.rotation.col(2)) <
+           std::cos(options_.min_branch_angle_rad);
+  };
+  const Rigid3 other = OtherTilt(cam_from_paper);
+  if (geometry.roll_from_design && apart(other)) {
+    pixel_starts.push_back(other);
+  } else if (!geometry.roll_from_design && options_.refine && options_.photometric &&
+             apart(other)) {
+    // Two disks: the other tilt's basin, where the edge points have one and do not rule it
+    // out (2 ln Λ of the two fits, the points' RMS taken as their noise).
+    const Rigid3 refined = RefinePose(problem, other, options_.refinement).cam_from_paper;
+    size_t edge_points = 0;
+    for (const RefinementCircle& circle : problem.circles) {
+      edge_points += circle.edge_points_px.size();
+    }
+    const double rms = EdgeRmsPx(problem, cam_from_paper), other_rms = EdgeRmsPx(problem, refined);
+    const double log_ratio = edge_points * (other_rms * other_rms / (rms * rms) - 1.0);
+    if (apart(refined) && log_ratio < options_.max_other_tilt_log_ratio) {
+      pixel_starts.push_back(refined);
     }
   }
 
@@ -385,8 +421,7 @@ TrackResult CircleTracker::TrackIn(const Observation& observation,
   diagnostics_.edge_rms_px = ellipses_rms_px;
   if (options_.refine && options_.photometric && ellipses_rms_px <= options_.max_edge_rms_px) {
     const std::optional<Rigid3> direct =
-        geometry.roll_from_design ? OnDesignPixels(observation, design_starts, paper_from_marker)
-                                  : OnDiskPixels(observation, cam_from_paper * paper_from_marker);
+        OnPixels(observation, geometry.roll_from_design, pixel_starts, paper_from_marker);
     // Kept unless it leaves the edges (a fit gone astray: the pixels and the edge points
     // measure the same edges) by more than half a pixel RMS. For (e) and (f) the edge points
     // under blur are pulled by the design next to the rim (f's wedge meets it) by up to a
@@ -457,41 +492,37 @@ TrackResult CircleTracker::TrackIn(const Observation& observation,
   return result;
 }
 
-std::optional<Rigid3> CircleTracker::OnDiskPixels(const Observation& observation,
-                                                  const Rigid3& cam_from_marker) const {
-  const std::optional<PhotometricResult> direct =
-      RefinePhotometric(*observation.image,
-                        *observation.camera,
-                        *observation.marker,
-                        cam_from_marker,
-                        diagnostics_.image_blur_sigma_px,
-                        options_.photometric_refinement);
-  if (!direct) return std::nullopt;
-  return direct->fit.cam_from_marker;
-}
-
-std::optional<Rigid3> CircleTracker::OnDesignPixels(
-    const Observation& observation,
-    const std::vector<Rigid3>& cam_from_paper_starts,
-    const Rigid3& paper_from_marker) const {
-  std::vector<DesignRefinement> fits;
-  for (const Rigid3& start : cam_from_paper_starts) {
-    std::optional<DesignRefinement> fit = RefineDesign(*observation.image,
-                                                       *observation.camera,
-                                                       *observation.marker,
-                                                       start * paper_from_marker,
-                                                       diagnostics_.image_blur_sigma_px,
-                                                       diagnostics_.noise_sigma,
-                                                       options_.design_refinement);
-    if (fit) fits.push_back(std::move(*fit));
+std::optional<Rigid3> CircleTracker::OnPixels(const Observation& observation,
+                                              bool whole_design,
+                                              const std::vector<Rigid3>& cam_from_paper_starts,
+                                              const Rigid3& paper_from_marker) const {
+  const Image8& image = *observation.image;
+  const Camera& camera = *observation.camera;
+  const MarkerSpec& marker = *observation.marker;
+  const double sigma_px = diagnostics_.image_blur_sigma_px;
+  std::vector<Rigid3> starts;
+  for (const Rigid3& start : cam_from_paper_starts) starts.push_back(start * paper_from_marker);
+  if (whole_design) {
+    const DesignRefinementOptions& options = options_.design_refinement;
+    return BestFitFromStarts<DesignRefinement>(
+        starts,
+        [&](const Rigid3& start) {
+          return RefineDesign(
+              image, camera, marker, start, sigma_px, diagnostics_.noise_sigma, options);
+        },
+        [&](const std::vector<DesignRefinement>& fits) {
+          return BestDesignRefinement(image, camera, marker, fits, options);
+        });
   }
-  if (fits.empty()) return std::nullopt;
-  const size_t best = BestDesignRefinement(*observation.image,
-                                           *observation.camera,
-                                           *observation.marker,
-                                           fits,
-                                           options_.design_refinement);
-  return fits[best].fit.cam_from_marker;
+  const PhotometricOptions& options = options_.photometric_refinement;
+  return BestFitFromStarts<PhotometricResult>(
+      starts,
+      [&](const Rigid3& start) {
+        return RefinePhotometric(image, camera, marker, start, sigma_px, options);
+      },
+      [&](const std::vector<PhotometricResult>& fits) {
+        return BestPhotometricFit(image, camera, marker, fits, options);
+      });
 }
 
 std::unique_ptr<Tracker> MakeCircleTracker(const CircleTrackerOptions& options) {

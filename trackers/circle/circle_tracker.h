@@ -34,9 +34,14 @@ struct CircleTrackerOptions {
   bool photometric = true;
   PhotometricOptions photometric_refinement;
   DesignRefinementOptions design_refinement;
-  // (e, f) The design's pixels are fitted from the circle's other tilt too when its normal is
-  // this far from the chosen one's (nearer, the fit reaches it from either).
+  // The pixels are fitted from the circle's other tilt too when its normal is this far from
+  // the chosen one's (nearer, the fit reaches it from either): for (e) and (f) always, and for
+  // two disks where the edge points, refined from it, stay there and do not rule it out:
+  // 2 ln Λ = N (rms_other² / rms² - 1) over the N edge points below this (far away and under
+  // heavy blur the two disks' images from both tilts nearly coincide; at 0.6 m the edges rule
+  // the other out, 2 ln Λ > 100 on all but 5 of 100 frames at σ² 0.3).
   double min_branch_angle_rad = 0.02;
+  double max_other_tilt_log_ratio = 100.0;
   // (e, f) The circle's radius must be at least this many blur σ: below, the design (a 60°
   // wedge, a mouth) is too blurred to tell from clutter, which it then fits (on the negative
   // set, dark blobs as circles of 14.7-15.9 px at σ 2.2-3.7 px, 4.2-6.7 σ; on the paper sweeps
@@ -55,6 +60,7 @@ struct CircleTrackerOptions {
   // Reads flat keys (cost, huber_px, point_weight, max_iterations, k_normal, depth, refine,
   // photometric, tracking, roi_margin, max_prediction_error, max_edge_rms_px,
   // max_appearance_misfit, min_contrast, edge_passes, max_rays, min_branch_angle_rad,
+  // max_other_tilt_log_ratio,
   // min_design_radius_per_blur); throws ConfigError naming the file and key.
   static CircleTrackerOptions FromYaml(const YamlMap& map);
 };
@@ -95,14 +101,13 @@ class CircleTracker final : public Tracker {
                       const cv::Rect& region,
                       const std::vector<Eigen::Matrix3d>* predicted_conics_px,
                       const Rigid3* previous_cam_from_paper);
-  // The pose refined on the pixels around the disks' edges (photometric_refinement.h).
-  std::optional<Rigid3> OnDiskPixels(const Observation& observation,
-                                     const Rigid3& cam_from_marker) const;
-  // (e, f) The pose refined on the pixels around every edge of the design from each start,
-  // the one that explains them best (design_refinement.h).
-  std::optional<Rigid3> OnDesignPixels(const Observation& observation,
-                                       const std::vector<Rigid3>& cam_from_paper_starts,
-                                       const Rigid3& paper_from_marker) const;
+  // The pose refined on the pixels from each start, the one that explains them best: around
+  // the disks' edges (photometric_refinement.h), or (e, f) around every edge of the whole
+  // design (design_refinement.h).
+  std::optional<Rigid3> OnPixels(const Observation& observation,
+                                 bool whole_design,
+                                 const std::vector<Rigid3>& cam_from_paper_starts,
+                                 const Rigid3& paper_from_marker) const;
 
   CircleTrackerOptions options_;
   std::optional<Rigid3> previous_cam_from_paper_;

@@ -352,12 +352,14 @@ TEST(CircleTracker, OptionsFromYamlNameTheBadKey) {
   const std::string path = WriteTestFile("circle_options.yaml",
                                          "good: {cost: conics, huber_px: 2.0, k_normal: false,"
                                          " min_branch_angle_rad: 0.05,"
+                                         " max_other_tilt_log_ratio: 30,"
                                          " min_design_radius_per_blur: 5}\n"
                                          "bad_value: {huber_px: -1}\n"
                                          "bad_cost: {cost: sampson}\n"
                                          "unknown: {hubr_px: 1}\n"
                                          "bad_branch: {min_branch_angle_rad: 2.0}\n"
-                                         "bad_radius: {min_design_radius_per_blur: -1}\n");
+                                         "bad_radius: {min_design_radius_per_blur: -1}\n"
+                                         "bad_ratio: {max_other_tilt_log_ratio: -1}\n");
   const YamlMap root = YamlMap::LoadFile(path);
   const CircleTrackerOptions good = CircleTrackerOptions::FromYaml(root.GetMap("good"));
   EXPECT_EQ(good.refinement.cost, RefinementCost::kConics);
@@ -365,7 +367,9 @@ TEST(CircleTracker, OptionsFromYamlNameTheBadKey) {
   EXPECT_FALSE(good.analytic.k_normal);
   EXPECT_EQ(good.min_branch_angle_rad, 0.05);
   EXPECT_EQ(good.min_design_radius_per_blur, 5.0);
-  for (const char* key : {"bad_value", "bad_cost", "unknown", "bad_branch", "bad_radius"}) {
+  EXPECT_EQ(good.max_other_tilt_log_ratio, 30.0);
+  for (const char* key :
+       {"bad_value", "bad_cost", "unknown", "bad_branch", "bad_radius", "bad_ratio"}) {
     try {
       CircleTrackerOptions::FromYaml(root.GetMap(key));
       ADD_FAILURE() << key << " was accepted";

@@ -380,17 +380,22 @@ PixelSet PixelsNearEdges(const Image8& image,
   return set;
 }
 
-// One solve on the pixels near the edges at `cam_from_marker`, each tied to its edges' points.
-std::optional<PhotometricResult> RefineOnce(const Image8& image,
-                                            const Camera& camera,
-                                            const MarkerSpec& marker,
-                                            const Rigid3& cam_from_marker,
-                                            double sigma_px,
-                                            const PhotometricOptions& options) {
+// The pixels near the edges at `cam_from_marker` for σ, each tied to its edges' points, with
+// the layers they are tied to; nullopt as for RefinePhotometric.
+struct ModelledPixels {
+  std::vector<EdgeLayer> layers;
+  PixelSet pixels;
+  double sigma_px = 0.0;  // at least 0.3
+};
+std::optional<ModelledPixels> PixelsAt(const Image8& image,
+                                       const Camera& camera,
+                                       const MarkerSpec& marker,
+                                       const Rigid3& cam_from_marker,
+                                       double sigma_px,
+                                       const PhotometricOptions& options) {
   const Eigen::Matrix3d H = camera.K() * RayFromPlane(cam_from_marker);
   std::vector<Eigen::Matrix3d> conics;
-  const std::optional<std::vector<EdgeLayer>> layers =
-      EdgeLayers(marker, H, image.channels, &conics);
+  std::optional<std::vector<EdgeLayer>> layers = EdgeLayers(marker, H, image.channels, &conics);
   if (!layers) return std::nullopt;
   double largest_radius_px = 0.0;
   for (const Eigen::Matrix3d& conic : conics) {
@@ -399,21 +404,55 @@ std::optional<PhotometricResult> RefineOnce(const Image8& image,
   }
   if (!(sigma_px <= options.max_blur_per_radius * largest_radius_px)) return std::nullopt;
   const double sigma = std::max(sigma_px, 0.3);
-  const PixelSet pixels = PixelsNearEdges(image,
-                                          camera,
-                                          marker,
-                                          *layers,
-                                          conics,
-                                          H,
-                                          options.band_sigmas * sigma + 1.0,
-                                          options.max_depth_per_curvature);
+  PixelSet pixels = PixelsNearEdges(image,
+                                    camera,
+                                    marker,
+                                    *layers,
+                                    conics,
+                                    H,
+                                    options.band_sigmas * sigma + 1.0,
+                                    options.max_depth_per_curvature);
   if (pixels.pixels.size() < 20) return std::nullopt;
-  const PixelModel model(camera.K(), *layers, pixels, image.channels);
-  return PhotometricResult{FitPixels(model, cam_from_marker, sigma, options.max_iterations),
-                           static_cast<int>(pixels.pixels.size())};
+  return ModelledPixels{std::move(*layers), std::move(pixels), sigma};
+}
+
+// One solve on the pixels near the edges at `cam_from_marker`, each tied to its edges' points.
+std::optional<PhotometricResult> RefineOnce(const Image8& image,
+                                            const Camera& camera,
+                                            const MarkerSpec& marker,
+                                            const Rigid3& cam_from_marker,
+                                            double sigma_px,
+                                            const PhotometricOptions& options) {
+  const std::optional<ModelledPixels> at =
+      PixelsAt(image, camera, marker, cam_from_marker, sigma_px, options);
+  if (!at) return std::nullopt;
+  const PixelModel model(camera.K(), at->layers, at->pixels, image.channels);
+  return PhotometricResult{FitPixels(model, cam_from_marker, at->sigma_px, options.max_iterations),
+                           static_cast<int>(at->pixels.pixels.size())};
 }
 
 }  // namespace
+
+size_t BestPhotometricFit(const Image8& image,
+                          const Camera& camera,
+                          const MarkerSpec& marker,
+                          const std::vector<PhotometricResult>& fits,
+                          const PhotometricOptions& options) {
+  if (fits.size() == 1) return 0;
+  std::vector<double> costs(fits.size(), 0.0);
+  for (const PhotometricResult& at_fit : fits) {
+    const std::optional<ModelledPixels> at =
+        PixelsAt(image, camera, marker, at_fit.fit.cam_from_marker, at_fit.fit.sigma_px, options);
+    if (!at) continue;  // no fit's pixels: the same for all
+    const PixelModel model(camera.K(), at->layers, at->pixels, image.channels);
+    for (size_t i = 0; i < fits.size(); ++i) {
+      const PixelFit& fit = fits[i].fit;
+      costs[i] += model.Evaluate(
+          PixelFitParameters(fit.cam_from_marker, fit.sigma_px, fit.levels), nullptr, nullptr);
+    }
+  }
+  return static_cast<size_t>(std::min_element(costs.begin(), costs.end()) - costs.begin());
+}
 
 std::optional<PhotometricResult> RefinePhotometric(const Image8& image,
                                                    const Camera& camera,

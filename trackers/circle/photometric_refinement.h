@@ -15,6 +15,7 @@
 #pragma once
 
 #include <optional>
+#include <vector>
 
 #include "core/camera.h"
 #include "core/image.h"
@@ -55,5 +56,15 @@ std::optional<PhotometricResult> RefinePhotometric(const Image8& image,
                                                    const Rigid3& cam_from_marker,
                                                    double sigma_px,
                                                    const PhotometricOptions& options = {});
+
+// Which of several fits explains the image best: the least Σ r² over the pixels near the
+// edges at each of them in turn (each fit judged on the same pixels, its own σ and levels).
+// For the circle's two tilts, whose images nearly coincide far away or under heavy blur.
+// `fits` not empty.
+size_t BestPhotometricFit(const Image8& image,
+                          const Camera& camera,
+                          const MarkerSpec& marker,
+                          const std::vector<PhotometricResult>& fits,
+                          const PhotometricOptions& options = {});
 
 }  // namespace markerbench
