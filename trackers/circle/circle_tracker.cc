@@ -401,8 +401,8 @@ TrackResult CircleTracker::TrackIn(const Observation& observation,
     pixel_starts.push_back(other);
   } else if (!geometry.roll_from_design && options_.refine && options_.photometric &&
              apart(other)) {
-    // Two disks: the other tilt's basin, where the edge points have one and do not rule it
-    // out (2 ln Λ of the two fits, the points' RMS taken as their noise).
+    // Disks: the other tilt's basin, where the edge points have one and do not rule it out
+    // (2 ln Λ of the two fits, the points' RMS taken as their noise).
     const Rigid3 refined = RefinePose(problem, other, options_.refinement).cam_from_paper;
     size_t edge_points = 0;
     for (const RefinementCircle& circle : problem.circles) {

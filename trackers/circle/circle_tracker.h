@@ -36,10 +36,10 @@ struct CircleTrackerOptions {
   DesignRefinementOptions design_refinement;
   // The pixels are fitted from the circle's other tilt too when its normal is this far from
   // the chosen one's (nearer, the fit reaches it from either): for (e) and (f) always, and for
-  // two disks where the edge points, refined from it, stay there and do not rule it out:
+  // disks (a-d) where the edge points, refined from it, stay there and do not rule it out:
   // 2 ln Λ = N (rms_other² / rms² - 1) over the N edge points below this (far away and under
-  // heavy blur the two disks' images from both tilts nearly coincide; at 0.6 m the edges rule
-  // the other out, 2 ln Λ > 100 on all but 5 of 100 frames at σ² 0.3).
+  // heavy blur the disks' images from both tilts nearly coincide; circles_a at 0.6 m: the
+  // edges rule the other out, 2 ln Λ > 100, on all but 5 of 100 frames at σ² 0.3).
   double min_branch_angle_rad = 0.02;
   double max_other_tilt_log_ratio = 100.0;
   // (e, f) The circle's radius must be at least this many blur σ: below, the design (a 60°
