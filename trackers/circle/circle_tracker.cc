@@ -387,41 +387,15 @@ TrackResult CircleTracker::TrackIn(const Observation& observation,
     }
     cam_from_paper = aligned->cam_from_paper;
   }
-  // The circle fixes its tilt only up to the other of its two (§4.7), and so, far away or
-  // under heavy blur, do the edge points of two small disks, or (e, f) the centre point; the
-  // pixels tell the two apart, so the fit on them starts from the other too, unless the two
-  // nearly coincide (near fronto-parallel).
-  std::vector<Rigid3> pixel_starts = {cam_from_paper};
-  const auto apart = [&](const Rigid3& pose) {
-    return pose.rotation.col(2).dot(cam_from_paper.rotation.col(2)) <
-           std::cos(options_.min_branch_angle_rad);
-  };
-  const Rigid3 other = OtherTilt(cam_from_paper);
-  if (geometry.roll_from_design && apart(other)) {
-    pixel_starts.push_back(other);
-  } else if (!geometry.roll_from_design && options_.refine && options_.photometric &&
-             apart(other)) {
-    // Disks: the other tilt's basin, where the edge points have one and do not rule it out
-    // (2 ln Λ of the two fits, the points' RMS taken as their noise).
-    const Rigid3 refined = RefinePose(problem, other, options_.refinement).cam_from_paper;
-    size_t edge_points = 0;
-    for (const RefinementCircle& circle : problem.circles) {
-      edge_points += circle.edge_points_px.size();
-    }
-    const double rms = EdgeRmsPx(problem, cam_from_paper), other_rms = EdgeRmsPx(problem, refined);
-    const double log_ratio = edge_points * (other_rms * other_rms / (rms * rms) - 1.0);
-    if (apart(refined) && log_ratio < options_.max_other_tilt_log_ratio) {
-      pixel_starts.push_back(refined);
-    }
-  }
-
   // The ellipses are accepted on the edge fit (below); the pixels' fit runs only then: on
   // ellipses that do not fit (most of them clutter) it would cost its time for nothing.
   const double ellipses_rms_px = EdgeRmsPx(problem, cam_from_paper);
   diagnostics_.edge_rms_px = ellipses_rms_px;
   if (options_.refine && options_.photometric && ellipses_rms_px <= options_.max_edge_rms_px) {
+    const std::vector<Rigid3> starts =
+        PixelFitStarts(problem, geometry.roll_from_design, cam_from_paper, ellipses_rms_px);
     const std::optional<Rigid3> direct =
-        OnPixels(observation, geometry.roll_from_design, pixel_starts, paper_from_marker);
+        OnPixels(observation, geometry.roll_from_design, starts, paper_from_marker);
     // Kept unless it leaves the edges (a fit gone astray: the pixels and the edge points
     // measure the same edges) by more than half a pixel RMS. For (e) and (f) the edge points
     // under blur are pulled by the design next to the rim (f's wedge meets it) by up to a
@@ -490,6 +464,37 @@ TrackResult CircleTracker::TrackIn(const Observation& observation,
   }
   previous_cam_from_paper_ = cam_from_paper;
   return result;
+}
+
+std::vector<Rigid3> CircleTracker::PixelFitStarts(const RefinementProblem& problem,
+                                                  bool whole_design,
+                                                  const Rigid3& cam_from_paper,
+                                                  double edge_rms_px) const {
+  // The circle fixes its tilt only up to the other of its two (§4.7), and so, far away or
+  // under heavy blur, do the edge points of two small disks, or (e, f) the centre point; the
+  // pixels tell the two apart, so the fit on them starts from the other too, unless the two
+  // nearly coincide (near fronto-parallel).
+  const auto apart = [&](const Rigid3& pose) {
+    return pose.rotation.col(2).dot(cam_from_paper.rotation.col(2)) <
+           std::cos(options_.min_branch_angle_rad);
+  };
+  const Rigid3 other = OtherTilt(cam_from_paper);
+  if (!apart(other)) return {cam_from_paper};
+  if (whole_design) return {cam_from_paper, other};
+  // Disks: the other tilt's basin, where the edge points have one and do not rule it out
+  // (2 ln Λ of the two fits, the points' RMS taken as their noise).
+  const Rigid3 refined = RefinePose(problem, other, options_.refinement).cam_from_paper;
+  size_t edge_points = 0;
+  for (const RefinementCircle& circle : problem.circles) {
+    edge_points += circle.edge_points_px.size();
+  }
+  const double other_rms = EdgeRmsPx(problem, refined);
+  const double log_ratio =
+      edge_points * (other_rms * other_rms / (edge_rms_px * edge_rms_px) - 1.0);
+  if (apart(refined) && log_ratio < options_.max_other_tilt_log_ratio) {
+    return {cam_from_paper, refined};
+  }
+  return {cam_from_paper};
 }
 
 std::optional<Rigid3> CircleTracker::OnPixels(const Observation& observation,

@@ -101,6 +101,12 @@ class CircleTracker final : public Tracker {
                       const cv::Rect& region,
                       const std::vector<Eigen::Matrix3d>* predicted_conics_px,
                       const Rigid3* previous_cam_from_paper);
+  // Where the fit on the pixels starts: the refined pose (`cam_from_paper`, whose edge
+  // residual is `edge_rms_px`), and the circle's other tilt where it may be the one seen.
+  std::vector<Rigid3> PixelFitStarts(const RefinementProblem& problem,
+                                     bool whole_design,
+                                     const Rigid3& cam_from_paper,
+                                     double edge_rms_px) const;
   // The pose refined on the pixels from each start, the one that explains them best: around
   // the disks' edges (photometric_refinement.h), or (e, f) around every edge of the whole
   // design (design_refinement.h).
