@@ -523,7 +523,8 @@ std::optional<Rigid3> CircleTracker::OnPixels(const Observation& observation,
   return BestFitFromStarts<PhotometricResult>(
       starts,
       [&](const Rigid3& start) {
-        return RefinePhotometric(image, camera, marker, start, sigma_px, options);
+        return RefinePhotometric(
+            image, camera, marker, start, sigma_px, diagnostics_.noise_sigma, options);
       },
       [&](const std::vector<PhotometricResult>& fits) {
         return BestPhotometricFit(image, camera, marker, fits, options);

@@ -9,6 +9,7 @@
 #include <iterator>
 
 #include "trackers/circle/blurred_design.h"
+#include "trackers/circle/clipped_noise.h"
 #include "trackers/circle/plane_view.h"
 
 namespace markerbench {
@@ -86,31 +87,10 @@ std::vector<DesignPixel> PixelsNearDesignEdges(const Image8& image,
   return pixels;
 }
 
-// The mean of a pixel of noise-free value μ (0-1) after Gaussian noise of σ_n and clipping to
-// [0, 1], as sensors saturate (and the renderer clips): with α = -μ/σ_n, β = (1 - μ)/σ_n,
-//   E = μ (Φ(β) - Φ(α)) + σ_n (φ(α) - φ(β)) + 1 - Φ(β),   dE/dμ = Φ(β) - Φ(α).
-// Near black and white it is lifted from μ by up to 0.4 σ_n, which moves an edge between a
-// grey and black (f's wedge on its disk) by a fraction of a pixel when left out.
-struct ClippedMean {
-  double value;
-  double slope;
-};
-ClippedMean ClippedNoisyMean(double mu, double noise_sigma) {
-  const double alpha = -mu / noise_sigma, beta = (1.0 - mu) / noise_sigma;
-  const double inside = NormalCdf(beta) - NormalCdf(alpha);
-  return {mu * inside + noise_sigma * (NormalDensity(alpha) - NormalDensity(beta)) + 1.0 -
-              NormalCdf(beta),
-          inside};
-}
-
-struct ModelledPixel {
-  double residual;
-  double mean;
-};
-
-// Σ r² of the design seen through the pose in θ (pixel_fit.h, one channel: luma), with its
-// normal equations. The plane point of each pixel is differentiated by Jets in the pose; the
-// design's luma by its gradient in that point and in σ (blurred_design.h).
+// The cost of the design seen through the pose in θ (pixel_fit.h, one channel: luma; each
+// pixel's ClippedPixelTerm), with its normal equations. The plane point of each pixel is
+// differentiated by Jets in the pose; the design's luma by its gradient in that point and in σ
+// (blurred_design.h).
 class DesignModel {
  public:
   using Jet = ceres::Jet<double, 6>;
@@ -168,19 +148,19 @@ class DesignModel {
             (plane_from_px.block<2, 1>(0, j) - point * plane_from_px(2, j)) / q.z().a;
       }
       const BlurredLuma printed = design_.At(point, marker_from_px, sigma);
-      const ClippedMean mean = ClippedNoisyMean(offset + gain * printed.luma, noise_sigma_);
-      const double r = pixel.value - mean.value;
-      cost += r * r;
-      if (modelled) modelled->push_back({r, mean.value});
+      // The pixel's term at μ, the pixel clipped and rounded (clipped_noise.h).
+      const double mu = offset + gain * printed.luma;
+      const PixelTerm term = ClippedPixelTerm(pixel.value, mu, noise_sigma_);
+      cost += term.cost;
+      if (modelled) modelled->push_back({pixel.value - mu, mu});
       if (!jtj) continue;
-      Eigen::Matrix<double, 9, 1> row;  // d r / d θ
+      Eigen::Matrix<double, 9, 1> row;  // -∂μ/∂θ
       row.head<6>() = -gain * (printed.gradient.x() * x.v + printed.gradient.y() * y.v);
       row[6] = -gain * printed.d_sigma;
       row[7] = -1.0;
       row[8] = -printed.luma;
-      row *= mean.slope;
-      normal.selfadjointView<Eigen::Upper>().rankUpdate(row);
-      gradient += r * row;
+      normal.selfadjointView<Eigen::Upper>().rankUpdate(row, term.weight);
+      gradient += term.residual * row;
     }
     if (jtj) {
       *jtj = normal.selfadjointView<Eigen::Upper>();
@@ -196,30 +176,6 @@ class DesignModel {
   double noise_sigma_;
 };
 
-// The image's noise as the model takes it: at least 8-bit rounding's (0-1 units).
-double ModelNoiseSigma(double noise_sigma) {
-  return std::max(noise_sigma, 1.0 / (255.0 * std::sqrt(12.0)));
-}
-
-// The noise the residuals show: their RMS over the pixels the fit puts between 0.2 and 0.8
-// (where clipping takes little of it); nullopt with fewer than 50 of them.
-std::optional<double> MidRangeNoise(const DesignModel& model, const PixelFit& fit) {
-  std::vector<ModelledPixel> modelled;
-  model.Evaluate(PixelFitParameters(fit.cam_from_marker, fit.sigma_px, fit.levels),
-                 nullptr,
-                 nullptr,
-                 &modelled);
-  double sum = 0.0;
-  int count = 0;
-  for (const ModelledPixel& pixel : modelled) {
-    if (pixel.mean < 0.2 || pixel.mean > 0.8) continue;
-    sum += pixel.residual * pixel.residual;
-    ++count;
-  }
-  if (count < 50) return std::nullopt;
-  return std::sqrt(sum / count);
-}
-
 std::optional<DesignRefinement> RefineOnce(const Image8& image,
                                            const Camera& camera,
                                            const MarkerSpec& marker,
@@ -231,17 +187,8 @@ std::optional<DesignRefinement> RefineOnce(const Image8& image,
       PixelsNearDesignEdges(image, camera, marker, cam_from_marker, ReachPx(sigma_px, options));
   if (pixels.size() < 20) return std::nullopt;
   DesignModel model(camera, marker, pixels, ModelNoiseSigma(noise_sigma));
-  PixelFit fit = FitPixels(model, cam_from_marker, std::max(sigma_px, 0.3), options.max_iterations);
-  // The clipping the model takes depends on the noise, which an image of clipped white paper
-  // hides from a global estimate (the detector's: 0.06 for a true 0.14); the fit is done again
-  // where its residuals show a noise more than 10 % off.
-  const std::optional<double> measured = MidRangeNoise(model, fit);
-  if (measured && std::abs(*measured / model.noise_sigma() - 1.0) > 0.1) {
-    model.set_noise_sigma(ModelNoiseSigma(*measured));
-    const int iterations = fit.iterations;
-    fit = FitPixels(model, fit.cam_from_marker, fit.sigma_px, options.max_iterations);
-    fit.iterations += iterations;
-  }
+  const PixelFit fit = FitPixelsAtTheirNoise(
+      model, cam_from_marker, std::max(sigma_px, 0.3), options.max_iterations);
   return DesignRefinement{fit, static_cast<int>(pixels.size()), model.noise_sigma()};
 }
 

@@ -47,8 +47,9 @@ std::optional<DesignRefinement> RefineDesign(const Image8& image,
                                              double noise_sigma,
                                              const DesignRefinementOptions& options = {});
 
-// Which of several refinements explains the image best: the least Σ r² over the pixels near
-// the design's edges at any of them (each fit judged on the same pixels). `fits` not empty.
+// Which of several refinements explains the image best: the least cost (the clipped pixels'
+// likelihood) over the pixels near the design's edges at any of them (each fit judged on the
+// same pixels). `fits` not empty.
 size_t BestDesignRefinement(const Image8& image,
                             const Camera& camera,
                             const MarkerSpec& marker,

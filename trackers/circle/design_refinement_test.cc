@@ -16,6 +16,7 @@
 #include "core/random.h"
 #include "renderer/render_frame.h"
 #include "renderer/test_scenes.h"
+#include "testing/clipped_noise_testing.h"
 #include "testing/paired_tracking.h"
 #include "testing/square_tracker_testing.h"
 #include "trackers/circle/circle_geometry.h"
@@ -59,26 +60,17 @@ TEST(DesignRefinement, RecoversThePoseAndTheBlurFromAPerturbedStart) {
 // edge is near either level, so an edge model without the clipping sees the edges sharper
 // than they are (its σ measured 11 % low) and the wedge's sides moved. The clipping depends
 // on the noise, which a global estimate on clipped white paper puts far too low (the
-// detector's: 0.06 for these 0.14); from such a start the fit finds it from its residuals,
-// its noise within 5 % (0.135-0.141) and the σ right (1.3 % low).
+// detector's: 0.06 for these 0.14); from such a start the fit on the clipped pixels'
+// likelihood finds it from its residuals, its noise within 5 % (0.135-0.141) and the σ right
+// (1.2 % low).
 TEST(DesignRefinement, ModelsTheNoiseClippedAtBlackAndWhite) {
   const Camera camera;
   const MarkerSpec marker = Load("circle_f");
-  const double blur = 3.0, noise_var = 0.02;
-  const double edge_sigma = std::sqrt(blur * blur + 1.0 / 12.0);
-  Rng rng(5);
-  constexpr int kFrames = 8;
-  double sigma_ratio = 0.0;
-  for (int i = 0; i < kFrames; ++i) {
-    const Rigid3 truth = TiltedView(1.0, rng.Uniform(10.0, 40.0), rng.Uniform(0.0, 360.0));
-    const RenderedFrame frame = RenderMarker(marker, truth, noise_var, blur, 20 + i);
-    const std::optional<DesignRefinement> refined =
-        RefineDesign(frame.image, camera, marker, truth, blur, 0.06);
-    ASSERT_TRUE(refined);
-    EXPECT_NEAR(refined->noise_sigma, std::sqrt(noise_var), 0.1 * std::sqrt(noise_var));
-    sigma_ratio += refined->fit.sigma_px / edge_sigma / kFrames;
-  }
-  EXPECT_NEAR(sigma_ratio, 1.0, 0.03);
+  const double ratio = MeanBlurRatioUnderClippedNoise(
+      marker, 3.0, [&](const Image8& image, const Rigid3& truth, double blur, double noise) {
+        return RefineDesign(image, camera, marker, truth, blur, noise);
+      });
+  EXPECT_NEAR(ratio, 1.0, 0.03);
 }
 
 // f's circle alone is seen the same from either of its two tilts (§4.7); the design is not.
@@ -109,7 +101,7 @@ TEST(DesignRefinement, KeepsTheTiltTheDesignShows) {
 // Near fronto-parallel and far, f's design tells its two tilts apart only weakly: at 1.5 m
 // (the circle 40 px across) and 3-8° of tilt, the best fit at the mirrored pose differs from
 // the true pose's image by about one noise σ in all (0.7-1.6 σ on noise-free renders). The
-// least Σ r² between fits started at the true pose and at its mirror (no search: the best a
+// least cost between fits started at the true pose and at its mirror (no search: the best a
 // likelihood can do with the right basins) is then wrong on several frames, and the tracker,
 // which finds its starts itself, about as often. Measured: 4 of 30 from the truth, 5 ours
 // (seeds 14-18: 6, 11, 12, 4, 9 from the truth, ours the same or one more). No choice by

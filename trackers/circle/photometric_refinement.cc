@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "trackers/circle/blurred_disk_profile.h"
+#include "trackers/circle/clipped_noise.h"
 #include "trackers/circle/conic.h"
 #include "trackers/circle/pixel_fit.h"
 
@@ -61,7 +62,8 @@ double CircumRadius(const Eigen::Vector2d& a, const Eigen::Vector2d& b, const Ei
   return std::sqrt(ab.squaredNorm() * bc.squaredNorm() * ca.squaredNorm()) / (2.0 * twice_area);
 }
 
-// The least-squares problem measured - model over every pixel and channel, in the parameters
+// The fit of the model to every pixel and channel (least squares where a pixel is not clipped,
+// its likelihood where it is: clipped_noise.h), in the parameters
 // θ = (angle-axis (3), translation (3), σ, then offset and gain per channel). The edge points
 // are differentiated by Jets once per bin and the disks' scales once per disk; each pixel then
 // chains them by hand and adds its rows straight into the normal equations (a dense Jacobian
@@ -73,13 +75,25 @@ class PixelModel {
   PixelModel(const Eigen::Matrix3d& K,
              const std::vector<EdgeLayer>& layers,
              const PixelSet& pixels,
-             int channels)
-      : K_(K), layers_(layers), pixels_(pixels), channels_(channels) {}
+             int channels,
+             double noise_sigma)
+      : K_(K), layers_(layers), pixels_(pixels), channels_(channels), noise_sigma_(noise_sigma) {}
 
   int Parameters() const { return 7 + 2 * channels_; }
+  double noise_sigma() const { return noise_sigma_; }
+  void set_noise_sigma(double noise_sigma) { noise_sigma_ = noise_sigma; }
 
-  // Σ r² at θ; with jtj and jtr, also JᵀJ and Jᵀr.
+  // The cost at θ (each pixel's and channel's ClippedPixelTerm); with jtj and jtr, also JᵀJ
+  // and Jᵀr.
   double Evaluate(const Eigen::VectorXd& theta, Eigen::MatrixXd* jtj, Eigen::VectorXd* jtr) const {
+    return Evaluate(theta, jtj, jtr, nullptr);
+  }
+
+  // The same, and each pixel's and channel's residual and modelled mean if `modelled` is given.
+  double Evaluate(const Eigen::VectorXd& theta,
+                  Eigen::MatrixXd* jtj,
+                  Eigen::VectorXd* jtr,
+                  std::vector<ModelledPixel>* modelled) const {
     // Summed in fixed-size matrices (at most 3 channels), copied out at the end.
     Eigen::Matrix<double, 13, 13> normal = Eigen::Matrix<double, 13, 13>::Zero();
     Eigen::Matrix<double, 13, 1> gradient = Eigen::Matrix<double, 13, 1>::Zero();
@@ -157,38 +171,43 @@ class PixelModel {
         printed += inside(p, near, jtj ? &d_inside : nullptr) * jump;
         if (jtj) d_printed += d_inside * jump.transpose();
       }
-      double residuals[3];
+      // Each channel's term at μ_c = offset_c + gain_c printed_c, the pixel clipped and
+      // rounded (clipped_noise.h).
+      PixelTerm terms[3];
       for (int c = 0; c < channels_; ++c) {
-        residuals[c] = p.value[c] - (levels[2 * c] + levels[2 * c + 1] * printed[c]);
-        cost += residuals[c] * residuals[c];
+        const double mu = levels[2 * c] + levels[2 * c + 1] * printed[c];
+        terms[c] = ClippedPixelTerm(p.value[c], mu, noise_sigma_);
+        cost += terms[c].cost;
+        if (modelled) modelled->push_back({p.value[c] - mu, mu});
       }
       if (!jtj) continue;
-      // Channel c's row is (-gain_c ∂printed_c/∂θ, -1, -printed_c) on (θ 0-6, its offset and
-      // gain). The pose block gets Σ_c row_c row_cᵀ; with one edge the rows are one vector
-      // scaled, so the channels share one outer product. Upper triangles, written out (Eigen's
-      // products of these small blocks took twice as long here).
-      double shared_weight = 0.0;  // one edge: Σ_c (gain_c jump_c)²
+      // Channel c's row is -∂μ_c/∂θ = (-gain_c ∂printed_c/∂θ, -1, -printed_c) on (θ 0-6, its
+      // offset and gain), with its term's residual in Jᵀr and weight in JᵀJ. The pose block
+      // gets Σ_c w_c row_c row_cᵀ; with one edge the rows are one vector scaled, so the
+      // channels share one outer product. Upper triangles, written out (Eigen's products of
+      // these small blocks took twice as long here).
+      double shared_weight = 0.0;  // one edge: Σ_c w_c (gain_c jump_c)²
       for (int c = 0; c < channels_; ++c) {
         const double gain = levels[2 * c + 1];
-        const double r = residuals[c];
+        const double r = terms[c].residual, w = terms[c].weight;
         const Eigen::Matrix<double, 7, 1> row = -gain * d_printed.col(c);
         if (p.edges == 1) {
           const double scale = gain * layers_[pixels_.near_edges[p.first_edge].layer].jump[c];
-          shared_weight += scale * scale;
+          shared_weight += w * scale * scale;
         } else {
           for (int i = 0; i < 7; ++i) {
-            for (int j = 0; j <= i; ++j) normal(j, i) += row[i] * row[j];
+            for (int j = 0; j <= i; ++j) normal(j, i) += w * row[i] * row[j];
           }
         }
         const int level = 7 + 2 * c;
         for (int i = 0; i < 7; ++i) {
           gradient[i] += r * row[i];
-          normal(i, level) -= row[i];
-          normal(i, level + 1) -= row[i] * printed[c];
+          normal(i, level) -= w * row[i];
+          normal(i, level + 1) -= w * row[i] * printed[c];
         }
-        normal(level, level) += 1.0;
-        normal(level, level + 1) += printed[c];
-        normal(level + 1, level + 1) += printed[c] * printed[c];
+        normal(level, level) += w;
+        normal(level, level + 1) += w * printed[c];
+        normal(level + 1, level + 1) += w * printed[c] * printed[c];
         gradient[level] -= r;
         gradient[level + 1] -= r * printed[c];
       }
@@ -212,6 +231,7 @@ class PixelModel {
   const std::vector<EdgeLayer>& layers_;
   const PixelSet& pixels_;
   int channels_;
+  double noise_sigma_;  // the image's, 0-1 units, for the clipping
 };
 
 // The colour in the channels used: RGB, or its luma in the first for a grey image.
@@ -416,19 +436,23 @@ std::optional<ModelledPixels> PixelsAt(const Image8& image,
   return ModelledPixels{std::move(*layers), std::move(pixels), sigma};
 }
 
-// One solve on the pixels near the edges at `cam_from_marker`, each tied to its edges' points.
+// One solve on the pixels near the edges at `cam_from_marker`, each tied to its edges' points,
+// at the noise they show.
 std::optional<PhotometricResult> RefineOnce(const Image8& image,
                                             const Camera& camera,
                                             const MarkerSpec& marker,
                                             const Rigid3& cam_from_marker,
                                             double sigma_px,
+                                            double noise_sigma,
                                             const PhotometricOptions& options) {
   const std::optional<ModelledPixels> at =
       PixelsAt(image, camera, marker, cam_from_marker, sigma_px, options);
   if (!at) return std::nullopt;
-  const PixelModel model(camera.K(), at->layers, at->pixels, image.channels);
-  return PhotometricResult{FitPixels(model, cam_from_marker, at->sigma_px, options.max_iterations),
-                           static_cast<int>(at->pixels.pixels.size())};
+  PixelModel model(
+      camera.K(), at->layers, at->pixels, image.channels, ModelNoiseSigma(noise_sigma));
+  const PixelFit fit =
+      FitPixelsAtTheirNoise(model, cam_from_marker, at->sigma_px, options.max_iterations);
+  return PhotometricResult{fit, static_cast<int>(at->pixels.pixels.size()), model.noise_sigma()};
 }
 
 }  // namespace
@@ -439,12 +463,14 @@ size_t BestPhotometricFit(const Image8& image,
                           const std::vector<PhotometricResult>& fits,
                           const PhotometricOptions& options) {
   if (fits.size() == 1) return 0;
+  double noise = 0.0;
+  for (const PhotometricResult& fit : fits) noise += fit.noise_sigma / fits.size();
   std::vector<double> costs(fits.size(), 0.0);
   for (const PhotometricResult& at_fit : fits) {
     const std::optional<ModelledPixels> at =
         PixelsAt(image, camera, marker, at_fit.fit.cam_from_marker, at_fit.fit.sigma_px, options);
     if (!at) continue;  // no fit's pixels: the same for all
-    const PixelModel model(camera.K(), at->layers, at->pixels, image.channels);
+    const PixelModel model(camera.K(), at->layers, at->pixels, image.channels, noise);
     for (size_t i = 0; i < fits.size(); ++i) {
       const PixelFit& fit = fits[i].fit;
       costs[i] += model.Evaluate(
@@ -459,10 +485,16 @@ std::optional<PhotometricResult> RefinePhotometric(const Image8& image,
                                                    const MarkerSpec& marker,
                                                    const Rigid3& cam_from_marker,
                                                    double sigma_px,
+                                                   double noise_sigma,
                                                    const PhotometricOptions& options) {
+  // Each round starts from the noise the last one showed.
+  double noise = noise_sigma;
   return FitInRounds<PhotometricResult>(
       cam_from_marker, sigma_px, options.max_rounds, [&](const Rigid3& start, double sigma) {
-        return RefineOnce(image, camera, marker, start, sigma, options);
+        std::optional<PhotometricResult> refined =
+            RefineOnce(image, camera, marker, start, sigma, noise, options);
+        if (refined) noise = refined->noise_sigma;
+        return refined;
       });
 }
 

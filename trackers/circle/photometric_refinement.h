@@ -8,10 +8,14 @@
 // radius of curvature there (the osculating disk: a tilted disk's ellipse has the blurred edge
 // of that disk to first order, its midpoint shifted by σ²/2ρ) and base the background plus
 // the steps of the disks u lies deep inside. Blur is linear, so the sum holds however far the
-// blurred edges overlap. Pose, σ and each channel's gain and offset are fitted by
+// blurred edges overlap. The pixel is compared with the mean of offset_c + gain_c I_c plus
+// the image's noise clipped to [0, 1] (clipped_noise.h; the paper is white, so about half its
+// noisy pixels are clipped). Pose, σ and each channel's gain and offset are fitted by
 // Levenberg-Marquardt on every channel of every pixel within 3σ + 1 px of an edge. Under
-// Gaussian pixel noise this is the maximum-likelihood pose; the edge points (one position per
-// ray, kept from a whole profile) lose part of that information.
+// Gaussian pixel noise without clipping this is the maximum-likelihood pose (with clipping,
+// least squares on the clipped mean, unbiased but not weighted by the clipped pixels'
+// smaller variance); the edge points (one position per ray, kept from a whole profile) lose
+// part of that information.
 #pragma once
 
 #include <optional>
@@ -46,21 +50,23 @@ struct PhotometricOptions {
 struct PhotometricResult {
   PixelFit fit;  // iterations over all rounds
   int pixels = 0;
+  double noise_sigma = 0.0;  // the image's, 0-1, as its residuals show (the model's clipping)
 };
 
-// nullopt for designs with layers other than disks, blur beyond max_blur_per_radius, or too
-// few pixels.
+// `noise_sigma`: a first estimate of the image's, 0-1 units. nullopt for designs with layers
+// other than disks, blur beyond max_blur_per_radius, or too few pixels.
 std::optional<PhotometricResult> RefinePhotometric(const Image8& image,
                                                    const Camera& camera,
                                                    const MarkerSpec& marker,
                                                    const Rigid3& cam_from_marker,
                                                    double sigma_px,
+                                                   double noise_sigma,
                                                    const PhotometricOptions& options = {});
 
-// Which of several fits explains the image best: the least Σ r² over the pixels near the
-// edges at each of them in turn (each fit judged on the same pixels, its own σ and levels).
-// For the circle's two tilts, whose images nearly coincide far away or under heavy blur.
-// `fits` not empty.
+// Which of several fits explains the image best: the least cost (the clipped pixels'
+// likelihood) over the pixels near the edges at each of them in turn (each fit judged on the same
+// pixels, its own σ and levels). For the circle's two tilts, whose images nearly coincide far away
+// or under heavy blur. `fits` not empty.
 size_t BestPhotometricFit(const Image8& image,
                           const Camera& camera,
                           const MarkerSpec& marker,

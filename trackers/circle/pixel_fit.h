@@ -1,8 +1,9 @@
 // Levenberg-Marquardt for the photometric fits (photometric_refinement.h, design_refinement.h)
 // on the normal equations, with Marquardt's diagonal scaling. A model of the pixels takes
 // θ = (angle-axis (3), translation (3), blur σ in px, then an offset and a gain per channel)
-// and provides Parameters() and Evaluate(θ, JᵀJ*, Jᵀr*): Σ r² at θ and, when the pointers
-// are given, the normal equations.
+// and provides Parameters() and Evaluate(θ, JᵀJ*, Jᵀr*): the cost at θ (the pixels'
+// ClippedPixelTerm summed, Σ r² where none is clipped) and, when the pointers are given, the
+// normal equations.
 #pragma once
 
 #include <ceres/rotation.h>
@@ -22,7 +23,7 @@ struct PixelFit {
   double sigma_px = 0.0;
   Eigen::VectorXd levels;  // offset and gain per channel
   int iterations = 0;
-  double cost = 0.0;  // Σ r² at the result
+  double cost = 0.0;  // at the result
 };
 
 // θ of a pose, σ and the levels (offset and gain per channel).
@@ -38,16 +39,22 @@ inline Eigen::VectorXd PixelFitParameters(const Rigid3& cam_from_marker,
   return theta;
 }
 
-// From a pose and σ, gains 1 and offsets 0; σ kept at 0.2 px at least. Stops when a step
-// lowers the cost by less than 1e-6 of it (Ceres's function tolerance).
+// The levels a fit starts from: gains 1 and offsets 0, for a model of `parameters`.
+inline Eigen::VectorXd StartLevels(int parameters) {
+  Eigen::VectorXd levels = Eigen::VectorXd::Zero(parameters - 7);
+  for (int gain = 1; gain < levels.size(); gain += 2) levels[gain] = 1.0;
+  return levels;
+}
+
+// From a pose and σ, at StartLevels; σ kept at 0.2 px at least. Stops when a step lowers the
+// cost by less than 1e-6 of it (Ceres's function tolerance).
 template <class Model>
 PixelFit FitPixels(const Model& model,
                    const Rigid3& cam_from_marker,
                    double sigma_px,
                    int max_iterations) {
-  Eigen::VectorXd levels = Eigen::VectorXd::Zero(model.Parameters() - 7);
-  for (int gain = 1; gain < levels.size(); gain += 2) levels[gain] = 1.0;
-  Eigen::VectorXd theta = PixelFitParameters(cam_from_marker, sigma_px, levels);
+  Eigen::VectorXd theta =
+      PixelFitParameters(cam_from_marker, sigma_px, StartLevels(model.Parameters()));
   Eigen::MatrixXd jtj, trial_jtj;
   Eigen::VectorXd jtr, trial_jtr;
   double cost = model.Evaluate(theta, &jtj, &jtr);

@@ -1,0 +1,137 @@
+// Pixels after Gaussian noise, clipping to [0, 1] (as sensors saturate, and the renderer
+// clips) and 8-bit rounding: each pixel's likelihood, on which the photometric fits
+// (photometric_refinement.h, design_refinement.h) compare the model with the pixels, and how
+// they find the noise.
+#pragma once
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <optional>
+#include <vector>
+
+#include "trackers/circle/pixel_fit.h"
+
+namespace markerbench {
+
+// -log Q(z) and the inverse Mills ratio λ(z) = φ(z)/Q(z), with Q = 1 - Φ the normal tail
+// ((-log Q)' = λ, λ' = λ (λ - z)): tabulated for the fits' inner loop (about half the noisy
+// pixels of white paper are clipped, each needing both) by cubic Hermite interpolation
+// from values and derivatives at nodes 1/16 apart, below -kEnd 0, above kEnd the asymptotic
+// series of Q: within 1e-6 of both, relative where they exceed 1 (tested).
+class NormalTailTable {
+ public:
+  static constexpr double kEnd = 9.0;
+  static constexpr int kPerUnit = 16;
+  static constexpr int kNodes = 2 * static_cast<int>(kEnd) * kPerUnit + 1;
+
+  struct Values {
+    double minus_log_tail;  // -log Q(z)
+    double mills;           // λ(z)
+    double mills_excess;    // λ(z) - z
+  };
+
+  NormalTailTable();
+
+  Values At(double z) const {
+    if (!(z > -kEnd)) return {0.0, 0.0, -z};
+    if (!(z < kEnd)) {
+      // Q(z) = φ(z) S/z with S = 1 - u + 3u² - 15u³ + 105u⁴ - 945u⁵ + ..., u = 1/z².
+      const double u = 1.0 / (z * z);
+      const double one_minus_s = u * (1.0 - u * (3.0 - u * (15.0 - u * (105.0 - 945.0 * u))));
+      const double s = 1.0 - one_minus_s;
+      return {0.5 * z * z + std::log(z) + kHalfLogTwoPi - std::log(s), z / s, z * one_minus_s / s};
+    }
+    const double x = (z + kEnd) * kPerUnit;
+    const int i = std::min(static_cast<int>(x), kNodes - 2);
+    const double t = x - i, t2 = t * t, t3 = t2 * t, step = 1.0 / kPerUnit;
+    // The Hermite basis on [0, 1].
+    const double b00 = 2.0 * t3 - 3.0 * t2 + 1.0, b10 = (t3 - 2.0 * t2 + t) * step;
+    const double b01 = 1.0 - b00, b11 = (t3 - t2) * step;
+    const double mills =
+        b00 * mills_[i] + b10 * mills_slope_[i] + b01 * mills_[i + 1] + b11 * mills_slope_[i + 1];
+    return {b00 * minus_log_tail_[i] + b10 * mills_[i] + b01 * minus_log_tail_[i + 1] +
+                b11 * mills_[i + 1],
+            mills,
+            mills - z};
+  }
+
+ private:
+  static constexpr double kHalfLogTwoPi = 0.91893853320467274178;
+  std::array<double, kNodes> minus_log_tail_{}, mills_{}, mills_slope_{};
+};
+extern const NormalTailTable kNormalTailTable;
+
+// One channel of a pixel in a photometric fit: its 8-bit value y (0-1) against the noise-free
+// model value μ, under Gaussian noise of σ_n, clipping to [0, 1] and rounding (the renderer's
+// and a sensor's: a pixel reads 255 for any μ + n ≥ 254.5/255, 0 below 0.5/255). The term is
+// 2 σ_n² times its negative log-likelihood, up to a constant: (y - μ)² where y is neither 0
+// nor 1 (rounding left out); -2 σ_n² log Q(z) where it is, z = (254.5/255 - μ)/σ_n at white
+// or (μ - 0.5/255)/σ_n at black, the chance that the noise clips it. For the normal
+// equations, the residual that stands in the gradient (y - μ; σ_n λ(z) at white, -σ_n λ(z)
+// at black) and the weight of ∂μ/∂θ ∂μ/∂θᵀ (1; λ (λ - z), in (0, 1)): with these, least
+// squares becomes the maximum-likelihood fit of the clipped pixels. A model that compared
+// them with μ would see a blurred edge between white and black sharper than it is (about
+// half the noisy pixels of white paper are clipped, their mean 0.4 σ_n below it).
+struct PixelTerm {
+  double cost;
+  double residual;
+  double weight;
+};
+inline PixelTerm ClippedPixelTerm(double y, double mu, double noise_sigma) {
+  if (y > 0.0 && y < 1.0) return {(y - mu) * (y - mu), y - mu, 1.0};
+  const bool white = y >= 1.0;
+  const double z = white ? (254.5 / 255.0 - mu) / noise_sigma : (mu - 0.5 / 255.0) / noise_sigma;
+  const NormalTailTable::Values tail = kNormalTailTable.At(z);
+  const double residual = noise_sigma * tail.mills;
+  return {2.0 * noise_sigma * noise_sigma * tail.minus_log_tail,
+          white ? residual : -residual,
+          tail.mills * tail.mills_excess};
+}
+
+// The image's noise as a model takes it: at least 8-bit rounding's (0-1 units).
+double ModelNoiseSigma(double noise_sigma);
+
+// A pixel (and channel) at a fit: its residual and its modelled mean.
+struct ModelledPixel {
+  double residual;
+  double mean;
+};
+
+// The noise the residuals show: their RMS over the pixels modelled between 0.2 and 0.8
+// (where clipping takes little of it); nullopt with fewer than 50 of them.
+std::optional<double> MidRangeNoise(const std::vector<ModelledPixel>& modelled);
+
+// FitPixels on a model whose clipping takes the noise it is given (noise_sigma(),
+// set_noise_sigma(), and Evaluate(θ, JᵀJ*, Jᵀr*, modelled*) that also lists each pixel's
+// ModelledPixel), at the noise its residuals show: the model takes the noise shown at the
+// start (where the edges are near and the levels those of a white paper and black ink), and
+// the fit is done again where its own residuals show one more than 10 % off. A global
+// estimate on an image of clipped white paper puts the noise far too low (the detector's:
+// 0.06 for a true 0.14).
+template <class Model>
+PixelFit FitPixelsAtTheirNoise(Model& model,
+                               const Rigid3& cam_from_marker,
+                               double sigma_px,
+                               int max_iterations) {
+  // Whether the noise shown at θ is more than 10 % off the model's; the model then takes it.
+  const auto takes_the_noise_shown = [&](const Eigen::VectorXd& theta) {
+    std::vector<ModelledPixel> modelled;
+    model.Evaluate(theta, nullptr, nullptr, &modelled);
+    const std::optional<double> measured = MidRangeNoise(modelled);
+    if (!measured || !(std::abs(*measured / model.noise_sigma() - 1.0) > 0.1)) return false;
+    model.set_noise_sigma(ModelNoiseSigma(*measured));
+    return true;
+  };
+  takes_the_noise_shown(
+      PixelFitParameters(cam_from_marker, sigma_px, StartLevels(model.Parameters())));
+  PixelFit fit = FitPixels(model, cam_from_marker, sigma_px, max_iterations);
+  if (takes_the_noise_shown(PixelFitParameters(fit.cam_from_marker, fit.sigma_px, fit.levels))) {
+    const int iterations = fit.iterations;
+    fit = FitPixels(model, fit.cam_from_marker, fit.sigma_px, max_iterations);
+    fit.iterations += iterations;
+  }
+  return fit;
+}
+
+}  // namespace markerbench

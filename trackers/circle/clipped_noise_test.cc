@@ -1,0 +1,76 @@
+// The likelihood of a pixel clipped and rounded to 8 bits against the normal tail it is made
+// of and against finite differences, and the noise read from a fit's mid-range residuals.
+#include "trackers/circle/clipped_noise.h"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <string>
+
+#include "trackers/circle/blurred_design.h"
+
+namespace markerbench {
+namespace {
+
+TEST(NormalTailTable, MatchesTheNormalTail) {
+  for (double z = -12.0; z <= 30.0; z += 0.0371) {
+    SCOPED_TRACE("z " + std::to_string(z));
+    const double tail = 0.5 * std::erfc(z / std::sqrt(2.0));
+    const double mills = NormalDensity(z) / tail;
+    const NormalTailTable::Values values = kNormalTailTable.At(z);
+    EXPECT_NEAR(values.minus_log_tail, -std::log(tail), 1e-6 * std::max(1.0, -std::log(tail)));
+    EXPECT_NEAR(values.mills, mills, 1e-6 * std::max(1.0, mills));
+    EXPECT_NEAR(values.mills_excess, mills - z, 1e-6);
+  }
+}
+
+// The term is 2σ² times the pixel's negative log-likelihood up to a constant per kind of
+// pixel, its residual half its derivative in -μ, its weight within the Gauss-Newton
+// approximation of its second derivative; for clipped pixels, against the probability of
+// clipping by quadrature and against finite differences.
+TEST(ClippedPixelTerm, IsTheLikelihoodOfTheClippedRoundedPixel) {
+  for (double sigma : {0.003, 0.05, 0.14, 0.55}) {
+    const double step = 1e-3 * sigma;
+    for (double mu : {-0.3, -0.01, 0.0, 0.04, 0.3, 0.5, 0.93, 1.0, 1.02, 1.4}) {
+      SCOPED_TRACE("sigma " + std::to_string(sigma) + " mu " + std::to_string(mu));
+      // Neither black nor white: the squared residual.
+      const PixelTerm grey = ClippedPixelTerm(0.6, mu, sigma);
+      EXPECT_DOUBLE_EQ(grey.cost, (0.6 - mu) * (0.6 - mu));
+      EXPECT_DOUBLE_EQ(grey.residual, 0.6 - mu);
+      EXPECT_DOUBLE_EQ(grey.weight, 1.0);
+      for (const double y : {0.0, 1.0}) {
+        const double threshold = y == 1.0 ? 254.5 / 255.0 : 0.5 / 255.0;
+        const double clipped = y == 1.0
+                                   ? 0.5 * std::erfc((threshold - mu) / (sigma * std::sqrt(2.0)))
+                                   : 0.5 * std::erfc((mu - threshold) / (sigma * std::sqrt(2.0)));
+        const PixelTerm term = ClippedPixelTerm(y, mu, sigma);
+        const double scale = 2.0 * sigma * sigma;
+        if (clipped > 1e-300) {
+          EXPECT_NEAR(term.cost, -scale * std::log(clipped), 1e-6 * std::max(scale, term.cost));
+        }
+        const auto cost_at = [&](double m) { return ClippedPixelTerm(y, m, sigma).cost; };
+        const double derivative = (cost_at(mu + step) - cost_at(mu - step)) / (2.0 * step);
+        EXPECT_NEAR(term.residual, -0.5 * derivative, 1e-4 * std::max(1.0, std::abs(derivative)));
+        const double second =
+            (cost_at(mu + step) - 2.0 * term.cost + cost_at(mu - step)) / (step * step);
+        EXPECT_NEAR(term.weight, 0.5 * second, 2e-3);
+        EXPECT_GE(term.weight, 0.0);
+        EXPECT_LE(term.weight, 1.0);
+      }
+    }
+  }
+}
+
+TEST(MidRangeNoise, IsTheResidualsRmsBetweenTwoTenthsAndEightTenths) {
+  std::vector<ModelledPixel> modelled;
+  for (int i = 0; i < 49; ++i) modelled.push_back({i % 2 ? 0.1 : -0.1, 0.5});
+  EXPECT_FALSE(MidRangeNoise(modelled));  // fewer than 50 in the mid-range
+  modelled.push_back({0.1, 0.2});
+  for (int i = 0; i < 30; ++i) modelled.push_back({0.7, i % 2 ? 0.1 : 0.9});  // left out
+  ASSERT_TRUE(MidRangeNoise(modelled));
+  EXPECT_NEAR(*MidRangeNoise(modelled), 0.1, 1e-12);
+}
+
+}  // namespace
+}  // namespace markerbench
