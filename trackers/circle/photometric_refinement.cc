@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "trackers/circle/blurred_disk_profile.h"
+#include "trackers/circle/blurred_ellipse.h"
 #include "trackers/circle/clipped_noise.h"
 #include "trackers/circle/conic.h"
 #include "trackers/circle/pixel_fit.h"
@@ -28,10 +29,14 @@ struct EdgeLayer {
   std::vector<Eigen::Vector2d> start_normal;  // outward, unit
   std::vector<double> start_curvature_radius_px;
   double start_depth_m = 0.0;  // of the disk's centre
+  // Under blur of a good part of its size: modelled whole, its exact blurred ellipse
+  // (blurred_ellipse.h), on every pixel of its image and within reach of it.
+  bool whole = false;
 };
 
 // An edge within reach of a pixel: the pixel's signed distance to it is taken along the edge's
-// normal at the start pose, from the edge point nearest the pixel then.
+// normal at the start pose, from the edge point nearest the pixel then; or, for a layer
+// modelled whole, its whole disk (bin -1).
 struct NearEdge {
   int layer = 0;
   int bin = 0;
@@ -115,14 +120,23 @@ class PixelModel {
     // ρ changes with the pose by the disk's scale, 1/depth; its shape is the start pose's,
     // where the pixels are chosen again at each round.
     std::vector<std::vector<Eigen::Matrix<Jet, 2, 1>>> edges(layers_.size());
-    std::vector<Jet> size_per_sigma;  // per layer: s = start ρ · this
+    std::vector<Jet> size_per_sigma(layers_.size());  // per layer: s = start ρ · this
     std::vector<std::vector<BlurredDiskProfile>> profiles(layers_.size());
     // H = K [r1 r2 t]: plane points (X, Y, 1) to pixels.
     Eigen::Matrix<Jet, 3, 3> H;
     H << R.col(0), R.col(1), t;
     H = K_.cast<Jet>() * H;
+    // The layers modelled whole: each disk's image as the chords of its ellipse.
+    std::vector<EllipseChords<Jet>> whole(layers_.size());
     for (size_t l = 0; l < layers_.size(); ++l) {
       const EdgeLayer& layer = layers_[l];
+      if (layer.whole) {
+        const std::optional<EllipseChords<Jet>> chords =
+            ChordsOfConic(ImageOfCircle<Jet>(H, layer.disk.center, layer.disk.radius));
+        if (!chords) return std::numeric_limits<double>::infinity();  // no ellipse: a bad step
+        whole[l] = *chords;
+        continue;
+      }
       edges[l].reserve(layer.bins);
       for (const Eigen::Vector2d& X : layer.edge) {
         const Eigen::Matrix<Jet, 3, 1> p = H.col(0) * X.x() + H.col(1) * X.y() + H.col(2);
@@ -130,10 +144,10 @@ class PixelModel {
       }
       const Eigen::Matrix<Jet, 3, 1> center(
           Jet(layer.disk.center.x()), Jet(layer.disk.center.y()), Jet(0.0));
-      size_per_sigma.push_back(layer.start_depth_m / ((R * center + t).z() * sigma));
+      size_per_sigma[l] = layer.start_depth_m / ((R * center + t).z() * sigma);
       profiles[l].reserve(layer.bins);
       for (const double rho : layer.start_curvature_radius_px) {
-        profiles[l].emplace_back(rho * size_per_sigma.back().a);
+        profiles[l].emplace_back(rho * size_per_sigma[l].a);
       }
     }
     // Per pixel in doubles, for each near edge: d = n·(x - e) (px, positive outside),
@@ -143,6 +157,17 @@ class PixelModel {
     d_sigma[6] = 1.0;
     // The fraction of a near edge's disk seen at a pixel, with its gradient if asked.
     const auto inside = [&](const Pixel& p, const NearEdge& near, Eigen::Matrix<double, 7, 1>* d) {
+      if (near.bin < 0) {
+        const EllipseChords<Jet>& e = whole[near.layer];
+        const BlurredEllipseValue g = BlurredEllipseAt(
+            {e.x0.a, e.y0.a, e.slope.a, e.half_width.a, e.half_height.a}, sigma_value, p.ideal_px);
+        if (d) {
+          *d = g.gradient[0] * e.x0.v + g.gradient[1] * e.y0.v + g.gradient[2] * e.slope.v +
+               g.gradient[3] * e.half_width.v + g.gradient[4] * e.half_height.v +
+               g.gradient[5] * d_sigma;
+        }
+        return g.value;
+      }
       const Eigen::Matrix<Jet, 2, 1>& edge = edges[near.layer][near.bin];
       const EdgeLayer& layer = layers_[near.layer];
       const Eigen::Vector2d& normal = layer.start_normal[near.bin];
@@ -367,7 +392,8 @@ PixelSet PixelsNearEdges(const Image8& image,
         bool near_any = false;
         for (size_t m = 0; m < layers.size(); ++m) {
           distances[m] = PndResidual<double>(conics[m], ideal.x(), ideal.y());
-          near_any = near_any || std::abs(distances[m]) <= band;
+          near_any =
+              near_any || std::abs(distances[m]) <= band || (layers[m].whole && distances[m] < 0.0);
         }
         if (!near_any) continue;
         Pixel p;
@@ -379,7 +405,12 @@ PixelSet PixelsNearEdges(const Image8& image,
         const Eigen::Vector2d on_plane = (plane_from_px * ideal.homogeneous()).hnormalized();
         bool modelled = true;
         for (size_t m = 0; m < layers.size(); ++m) {
-          if (std::abs(distances[m]) <= band) {
+          if (layers[m].whole) {
+            if (distances[m] <= band) {
+              set.near_edges.push_back({static_cast<int>(m), -1});
+              ++p.edges;
+            }
+          } else if (std::abs(distances[m]) <= band) {
             const int bin = NearestBin(layers[m], ideal, on_plane);
             set.near_edges.push_back({static_cast<int>(m), bin});
             ++p.edges;
@@ -417,13 +448,14 @@ std::optional<ModelledPixels> PixelsAt(const Image8& image,
   std::vector<Eigen::Matrix3d> conics;
   std::optional<std::vector<EdgeLayer>> layers = EdgeLayers(marker, H, image.channels, &conics);
   if (!layers) return std::nullopt;
+  const double sigma = std::max(sigma_px, 0.3);
   double largest_radius_px = 0.0;
-  for (const Eigen::Matrix3d& conic : conics) {
-    const Ellipse e = EllipseFromConic(conic);
+  for (size_t i = 0; i < conics.size(); ++i) {
+    const Ellipse e = EllipseFromConic(conics[i]);
     largest_radius_px = std::max(largest_radius_px, std::sqrt(e.semi_major * e.semi_minor));
+    (*layers)[i].whole = sigma >= options.whole_disk_from_blur_per_axis * e.semi_minor;
   }
   if (!(sigma_px <= options.max_blur_per_radius * largest_radius_px)) return std::nullopt;
-  const double sigma = std::max(sigma_px, 0.3);
   PixelSet pixels = PixelsNearEdges(image,
                                     camera,
                                     marker,

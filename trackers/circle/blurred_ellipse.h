@@ -1,0 +1,63 @@
+// The exact image of a disk under Gaussian blur: a tilted disk's image is an ellipse E, and
+// blurred by an isotropic Gaussian of σ it is, at a pixel x,
+//   G(x) = P(x + n ∈ E),  n ~ N(0, σ² I).
+// Cut E into horizontal chords: at height y0 + v (|v| <= h) the chord is centred at x0 + k v
+// with half-width W √(1 - v²/h²). The Gaussian's two axes are independent, so with
+// v = h sin θ (which takes the square root's edge away)
+//   G = ∫_{-π/2}^{π/2} (h cos θ / σ) φ((y0 + h sin θ - y) / σ)
+//         [Φ((x0 + k h sin θ + W cos θ - x) / σ) - Φ((x0 + k h sin θ - W cos θ - x) / σ)] dθ,
+// taken by 32-point Gauss-Legendre quadrature, with its gradient in (x0, y0, k, W, h, σ).
+// Unlike the osculating disk of blurred_disk_profile.h it holds however far the blur reaches
+// across the ellipse; it costs about 150 transcendental functions a pixel.
+#pragma once
+
+#include <Eigen/Core>
+#include <cmath>
+#include <optional>
+
+namespace markerbench {
+
+template <class T>
+struct EllipseChords {
+  T x0, y0;       // centre, pixels
+  T slope;        // k: the chords' centres move by k per unit of height
+  T half_width;   // W: of the middle chord
+  T half_height;  // h
+};
+
+// The chords of the ellipse of conic C ((x, y, 1) C (x, y, 1)ᵀ = 0, any scale or sign);
+// nullopt if C is no real ellipse. T may be a ceres::Jet.
+template <class T>
+std::optional<EllipseChords<T>> ChordsOfConic(const Eigen::Matrix<T, 3, 3>& conic) {
+  using std::sqrt;
+  // A x² + 2B xy + C y² + 2D x + 2E y + F, scaled to A > 0.
+  const T sign = conic(0, 0) < T(0.0) ? T(-1.0) : T(1.0);
+  const T A = sign * conic(0, 0), B = sign * 0.5 * (conic(0, 1) + conic(1, 0));
+  const T C = sign * conic(1, 1), D = sign * 0.5 * (conic(0, 2) + conic(2, 0));
+  const T E = sign * 0.5 * (conic(1, 2) + conic(2, 1)), F = sign * conic(2, 2);
+  const T det = A * C - B * B;
+  if (!(A > T(0.0)) || !(det > T(0.0))) return std::nullopt;
+  EllipseChords<T> e;
+  e.x0 = (B * E - C * D) / det;
+  e.y0 = (B * D - A * E) / det;
+  // Around the centre: A u² + 2B uv + C v² = R.
+  const T R = -(F + D * e.x0 + E * e.y0);
+  if (!(R > T(0.0))) return std::nullopt;
+  e.slope = -B / A;
+  e.half_width = sqrt(R / A);
+  e.half_height = sqrt(A * R / det);
+  return e;
+}
+
+struct BlurredEllipseValue {
+  double value = 0.0;
+  // ∂G/∂(x0, y0, k, W, h, σ).
+  Eigen::Matrix<double, 6, 1> gradient = Eigen::Matrix<double, 6, 1>::Zero();
+};
+
+// G at pixel (x, y) for the ellipse `e` blurred by σ > 0.
+BlurredEllipseValue BlurredEllipseAt(const EllipseChords<double>& e,
+                                     double sigma,
+                                     const Eigen::Vector2d& pixel);
+
+}  // namespace markerbench

@@ -1,0 +1,127 @@
+// The exact blurred ellipse: its chords against the conic, its value against the definition
+// (a fine sum of the Gaussian over the ellipse) and against the blurred disk's tabulated exact
+// profile, and its gradient against finite differences.
+#include "trackers/circle/blurred_ellipse.h"
+
+#include <gtest/gtest.h>
+
+#include "trackers/circle/blurred_disk_profile.h"
+#include "trackers/circle/conic.h"
+
+namespace markerbench {
+namespace {
+
+Ellipse TiltedEllipse() {
+  Ellipse e;
+  e.center = {40.0, 25.0};
+  e.semi_major = 9.0;
+  e.semi_minor = 4.0;
+  e.angle_rad = 0.6;
+  return e;
+}
+
+TEST(BlurredEllipse, ChordsLieOnTheConic) {
+  const Eigen::Matrix3d conic = ConicFromEllipse(TiltedEllipse());
+  for (const double scale : {1.0, -3.0}) {
+    const std::optional<EllipseChords<double>> e = ChordsOfConic<double>(scale * conic);
+    ASSERT_TRUE(e);
+    EXPECT_NEAR(e->x0, 40.0, 1e-9);
+    EXPECT_NEAR(e->y0, 25.0, 1e-9);
+    for (const double v : {-0.99, -0.5, 0.0, 0.3, 0.9}) {
+      const double y = e->y0 + v * e->half_height;
+      const double half = e->half_width * std::sqrt(1.0 - v * v);
+      for (const double x : {e->x0 + e->slope * v * e->half_height - half,
+                             e->x0 + e->slope * v * e->half_height + half}) {
+        EXPECT_NEAR(
+            Eigen::Vector3d(x, y, 1.0).dot(conic * Eigen::Vector3d(x, y, 1.0)) / conic.norm(),
+            0.0,
+            1e-12);
+      }
+    }
+  }
+  EXPECT_FALSE(
+      ChordsOfConic<double>(Eigen::Vector3d(1.0, -1.0, -1.0).asDiagonal().toDenseMatrix()));
+  EXPECT_FALSE(ChordsOfConic<double>(Eigen::Vector3d(1.0, 1.0, 1.0).asDiagonal().toDenseMatrix()));
+}
+
+// P(x + n ∈ E) summed over a 0.02 px grid of the ellipse (midpoints).
+double BlurredByGrid(const Ellipse& ellipse, double sigma, const Eigen::Vector2d& x) {
+  const Eigen::Matrix3d conic = ConicFromEllipse(ellipse);
+  constexpr double kStep = 0.02;
+  const Eigen::Vector3d center(ellipse.center.x(), ellipse.center.y(), 1.0);
+  const double inside_sign = center.dot(conic * center);
+  const double reach = ellipse.semi_major + 0.5;
+  double sum = 0.0;
+  for (double u = -reach; u < reach; u += kStep) {
+    for (double v = -reach; v < reach; v += kStep) {
+      const Eigen::Vector3d p(
+          ellipse.center.x() + u + 0.5 * kStep, ellipse.center.y() + v + 0.5 * kStep, 1.0);
+      if (p.dot(conic * p) * inside_sign <= 0.0) continue;  // outside: not the centre's sign
+      const double r2 = (p.head<2>() - x).squaredNorm();
+      sum += std::exp(-0.5 * r2 / (sigma * sigma));
+    }
+  }
+  return sum * kStep * kStep / (2.0 * M_PI * sigma * sigma);
+}
+
+TEST(BlurredEllipse, IsTheGaussiansMassOverTheEllipse) {
+  const Ellipse ellipse = TiltedEllipse();
+  const EllipseChords<double> e = *ChordsOfConic<double>(ConicFromEllipse(ellipse));
+  for (const double sigma : {1.5, 4.0, 10.0}) {
+    for (const Eigen::Vector2d& x : {Eigen::Vector2d(40.0, 25.0),
+                                     Eigen::Vector2d(47.0, 30.0),
+                                     Eigen::Vector2d(36.0, 29.0),
+                                     Eigen::Vector2d(52.0, 20.0)}) {
+      EXPECT_NEAR(BlurredEllipseAt(e, sigma, x).value, BlurredByGrid(ellipse, sigma, x), 2e-4)
+          << "σ " << sigma << " at " << x.transpose();
+    }
+  }
+}
+
+TEST(BlurredEllipse, IsTheBlurredDisksProfileForACircle) {
+  Ellipse circle;
+  circle.center = {0.0, 0.0};
+  circle.semi_major = circle.semi_minor = 6.0;
+  const EllipseChords<double> e = *ChordsOfConic<double>(ConicFromEllipse(circle));
+  for (const double sigma : {1.0, 3.0, 6.0, 12.0}) {
+    const BlurredDiskProfile profile(6.0 / sigma);
+    for (const double r : {0.0, 3.0, 5.5, 6.0, 7.0, 10.0, 20.0}) {
+      const Eigen::Vector2d x(r * std::cos(1.0), r * std::sin(1.0));
+      // The profile's z: the distance inside the edge, in σ.
+      EXPECT_NEAR(BlurredEllipseAt(e, sigma, x).value, profile.At((6.0 - r) / sigma).value, 1e-3)
+          << "σ " << sigma << " r " << r;
+    }
+  }
+}
+
+TEST(BlurredEllipse, GradientIsTheFiniteDifferences) {
+  const EllipseChords<double> e = *ChordsOfConic<double>(ConicFromEllipse(TiltedEllipse()));
+  for (const double sigma : {2.0, 8.0}) {
+    for (const Eigen::Vector2d& x : {Eigen::Vector2d(45.0, 27.0), Eigen::Vector2d(33.0, 22.0)}) {
+      const BlurredEllipseValue at = BlurredEllipseAt(e, sigma, x);
+      constexpr double kStep = 1e-6;
+      for (int i = 0; i < 6; ++i) {
+        EllipseChords<double> up = e, down = e;
+        double* const up_params[] = {&up.x0, &up.y0, &up.slope, &up.half_width, &up.half_height};
+        double* const down_params[] = {
+            &down.x0, &down.y0, &down.slope, &down.half_width, &down.half_height};
+        double sigma_up = sigma, sigma_down = sigma;
+        if (i < 5) {
+          *up_params[i] += kStep;
+          *down_params[i] -= kStep;
+        } else {
+          sigma_up += kStep;
+          sigma_down -= kStep;
+        }
+        const double numeric = (BlurredEllipseAt(up, sigma_up, x).value -
+                                BlurredEllipseAt(down, sigma_down, x).value) /
+                               (2.0 * kStep);
+        EXPECT_NEAR(at.gradient[i], numeric, 1e-7 + 1e-5 * std::abs(numeric))
+            << "parameter " << i << " σ " << sigma;
+      }
+    }
+  }
+}
+
+}  // namespace
+}  // namespace markerbench
