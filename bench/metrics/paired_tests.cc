@@ -4,6 +4,8 @@
 #include <cmath>
 #include <numeric>
 
+#include "core/binomial_tail.h"
+
 namespace markerbench {
 namespace {
 
@@ -55,17 +57,7 @@ double ExactSignedRankTail(const std::vector<double>& ranks, double w_plus) {
 
 }  // namespace
 
-double McNemarPValue(int lost, int gained) {
-  const int n = lost + gained;
-  if (lost <= 0) return 1.0;
-  // Σ_{k >= lost} C(n, k) / 2^n, in logs to stay finite for any n.
-  double tail = 0.0;
-  for (int k = lost; k <= n; ++k) {
-    tail += std::exp(std::lgamma(n + 1.0) - std::lgamma(k + 1.0) - std::lgamma(n - k + 1.0) -
-                     n * std::log(2.0));
-  }
-  return std::min(1.0, tail);
-}
+double McNemarPValue(int lost, int gained) { return FairBinomialUpperTail(lost + gained, lost); }
 
 double WilcoxonSignedRankPValue(const std::vector<double>& differences) {
   std::vector<double> magnitudes;
