@@ -2,11 +2,11 @@
 
 #include <Eigen/Eigenvalues>
 #include <algorithm>
-#include <array>
 #include <cmath>
 #include <limits>
 #include <vector>
 
+#include "core/gauss_legendre.h"
 #include "renderer/boundary_pieces.h"
 
 namespace markerbench {
@@ -127,31 +127,6 @@ std::vector<ExposureSample> ExposureSamples(const FrameRequest& request,
   }
   return samples;
 }
-
-// Gauss-Legendre nodes and weights on [0, 1] (Newton on the Legendre polynomial).
-template <int N>
-struct GaussLegendre {
-  std::array<double, N> x{}, w{};
-  GaussLegendre() {
-    for (int i = 0; i < N; ++i) {
-      double z = std::cos(kPi * (i + 0.75) / (N + 0.5)), dp = 1.0;
-      for (int iteration = 0; iteration < 100; ++iteration) {
-        double p0 = 1.0, p1 = z;
-        for (int j = 2; j <= N; ++j) {
-          const double p2 = ((2.0 * j - 1.0) * z * p1 - (j - 1.0) * p0) / j;
-          p0 = p1;
-          p1 = p2;
-        }
-        dp = N * (z * p1 - p0) / (z * z - 1.0);
-        const double step = p1 / dp;
-        z -= step;
-        if (std::abs(step) < 1e-15) break;
-      }
-      x[static_cast<size_t>(i)] = 0.5 * (1.0 - z);
-      w[static_cast<size_t>(i)] = 1.0 / ((1.0 - z * z) * dp * dp);
-    }
-  }
-};
 
 // P(|e| <= r) for e with independent components of variances l1 >= l2 >= l3 >= 0, l1 > 0:
 // E over (z2, z3) of P(l1·z1² <= r² - l2·z2² - l3·z3²), in polar coordinates (s, a) of
