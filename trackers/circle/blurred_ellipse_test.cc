@@ -1,6 +1,6 @@
 // The exact blurred ellipse: its chords against the conic, its value against the definition
 // (a fine sum of the Gaussian over the ellipse) and against the blurred disk's tabulated exact
-// profile, and its gradient against finite differences.
+// profile, its gradient against finite differences, and the row's factors kept.
 #include "trackers/circle/blurred_ellipse.h"
 
 #include <gtest/gtest.h>
@@ -10,6 +10,15 @@
 
 namespace markerbench {
 namespace {
+
+// G with the nodes its size needs.
+BlurredEllipseValue BlurredAt(const EllipseChords<double>& e,
+                              double sigma,
+                              const Eigen::Vector2d& x) {
+  const double semi_major =
+      std::max(e.half_height, std::hypot(e.half_width, e.slope * e.half_height));
+  return BlurredEllipse(e, sigma, BlurredEllipse::NodesFor(semi_major / sigma)).At(x);
+}
 
 Ellipse TiltedEllipse() {
   Ellipse e;
@@ -72,7 +81,7 @@ TEST(BlurredEllipse, IsTheGaussiansMassOverTheEllipse) {
                                      Eigen::Vector2d(47.0, 30.0),
                                      Eigen::Vector2d(36.0, 29.0),
                                      Eigen::Vector2d(52.0, 20.0)}) {
-      EXPECT_NEAR(BlurredEllipseAt(e, sigma, x).value, BlurredByGrid(ellipse, sigma, x), 2e-4)
+      EXPECT_NEAR(BlurredAt(e, sigma, x).value, BlurredByGrid(ellipse, sigma, x), 2e-4)
           << "σ " << sigma << " at " << x.transpose();
     }
   }
@@ -88,7 +97,7 @@ TEST(BlurredEllipse, IsTheBlurredDisksProfileForACircle) {
     for (const double r : {0.0, 3.0, 5.5, 6.0, 7.0, 10.0, 20.0}) {
       const Eigen::Vector2d x(r * std::cos(1.0), r * std::sin(1.0));
       // The profile's z: the distance inside the edge, in σ.
-      EXPECT_NEAR(BlurredEllipseAt(e, sigma, x).value, profile.At((6.0 - r) / sigma).value, 1e-3)
+      EXPECT_NEAR(BlurredAt(e, sigma, x).value, profile.At((6.0 - r) / sigma).value, 1e-3)
           << "σ " << sigma << " r " << r;
     }
   }
@@ -98,7 +107,7 @@ TEST(BlurredEllipse, GradientIsTheFiniteDifferences) {
   const EllipseChords<double> e = *ChordsOfConic<double>(ConicFromEllipse(TiltedEllipse()));
   for (const double sigma : {2.0, 8.0}) {
     for (const Eigen::Vector2d& x : {Eigen::Vector2d(45.0, 27.0), Eigen::Vector2d(33.0, 22.0)}) {
-      const BlurredEllipseValue at = BlurredEllipseAt(e, sigma, x);
+      const BlurredEllipseValue at = BlurredAt(e, sigma, x);
       constexpr double kStep = 1e-6;
       for (int i = 0; i < 6; ++i) {
         EllipseChords<double> up = e, down = e;
@@ -113,13 +122,58 @@ TEST(BlurredEllipse, GradientIsTheFiniteDifferences) {
           sigma_up += kStep;
           sigma_down -= kStep;
         }
-        const double numeric = (BlurredEllipseAt(up, sigma_up, x).value -
-                                BlurredEllipseAt(down, sigma_down, x).value) /
-                               (2.0 * kStep);
+        const double numeric =
+            (BlurredAt(up, sigma_up, x).value - BlurredAt(down, sigma_down, x).value) /
+            (2.0 * kStep);
         EXPECT_NEAR(at.gradient[i], numeric, 1e-7 + 1e-5 * std::abs(numeric))
             << "parameter " << i << " σ " << sigma;
       }
     }
+  }
+}
+
+// Each size's nodes take G within 1e-7 of 64 nodes (themselves within 1e-12 to 8 σ), for
+// ellipses of its range: long ones, sheared chords, round ones at the range's end.
+TEST(BlurredEllipse, TakesEachSizeWithEnoughNodes) {
+  for (const double semi_major_per_sigma : {1.2, 1.9, 3.4, 5.2, 8.0}) {
+    for (const double ratio : {1.0, 1.6, 2.5}) {
+      for (const double angle : {0.0, 0.5, 1.2}) {
+        Ellipse ellipse;
+        ellipse.center = {0.0, 0.0};
+        ellipse.semi_major = 10.0;
+        ellipse.semi_minor = 10.0 / ratio;
+        ellipse.angle_rad = angle;
+        const EllipseChords<double> e = *ChordsOfConic<double>(ConicFromEllipse(ellipse));
+        const double sigma = 10.0 / semi_major_per_sigma;
+        const int nodes = BlurredEllipse::NodesFor(semi_major_per_sigma);
+        BlurredEllipse chosen(e, sigma, nodes), finest(e, sigma, BlurredEllipse::kMaxNodes);
+        for (double y = -14.0 - 3 * sigma; y <= 14.0 + 3 * sigma; y += 0.7) {
+          for (double x = -14.0 - 3 * sigma; x <= 14.0 + 3 * sigma; x += 0.9) {
+            ASSERT_NEAR(chosen.At({x, y}).value, finest.At({x, y}).value, 1e-7)
+                << semi_major_per_sigma << " σ, " << nodes << " nodes, ratio " << ratio << " angle "
+                << angle << " at " << x << ", " << y;
+          }
+        }
+      }
+    }
+  }
+  EXPECT_EQ(BlurredEllipse::NodesFor(0.5), 12);
+  EXPECT_EQ(BlurredEllipse::NodesFor(20.0), BlurredEllipse::kMaxNodes);
+}
+
+// The factors kept from a row give what a fresh evaluation gives, whatever the order of the
+// rows asked for.
+TEST(BlurredEllipse, KeepsTheRowsFactorsForItsPixels) {
+  const EllipseChords<double> e = *ChordsOfConic<double>(ConicFromEllipse(TiltedEllipse()));
+  BlurredEllipse kept(e, 3.0, 32);
+  for (const Eigen::Vector2d& x : {Eigen::Vector2d(33.0, 22.0),
+                                   Eigen::Vector2d(34.0, 22.0),
+                                   Eigen::Vector2d(45.0, 27.0),
+                                   Eigen::Vector2d(46.0, 27.0),
+                                   Eigen::Vector2d(35.0, 22.0)}) {
+    const BlurredEllipseValue at = kept.At(x), fresh = BlurredEllipse(e, 3.0, 32).At(x);
+    EXPECT_EQ(at.value, fresh.value) << x.transpose();
+    EXPECT_EQ(at.gradient, fresh.gradient) << x.transpose();
   }
 }
 

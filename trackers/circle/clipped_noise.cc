@@ -3,20 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
-#include "trackers/circle/blurred_design.h"
-
 namespace markerbench {
-NormalTailTable::NormalTailTable() {
-  for (int i = 0; i < kNodes; ++i) {
-    const double z = -kEnd + static_cast<double>(i) / kPerUnit;
-    const double tail = 0.5 * std::erfc(z / std::sqrt(2.0));
-    minus_log_tail_[i] = -std::log(tail);
-    mills_[i] = NormalDensity(z) / tail;
-    mills_slope_[i] = mills_[i] * (mills_[i] - z);
-  }
-}
-
-const NormalTailTable kNormalTailTable;
 
 double ModelNoiseSigma(double noise_sigma) {
   return std::max(noise_sigma, 1.0 / (255.0 * std::sqrt(12.0)));

@@ -4,63 +4,14 @@
 // they find the noise.
 #pragma once
 
-#include <algorithm>
-#include <array>
 #include <cmath>
 #include <optional>
 #include <vector>
 
+#include "trackers/circle/normal_tables.h"
 #include "trackers/circle/pixel_fit.h"
 
 namespace markerbench {
-
-// -log Q(z) and the inverse Mills ratio λ(z) = φ(z)/Q(z), with Q = 1 - Φ the normal tail
-// ((-log Q)' = λ, λ' = λ (λ - z)): tabulated for the fits' inner loop (about half the noisy
-// pixels of white paper are clipped, each needing both) by cubic Hermite interpolation
-// from values and derivatives at nodes 1/16 apart, below -kEnd 0, above kEnd the asymptotic
-// series of Q: within 1e-6 of both, relative where they exceed 1 (tested).
-class NormalTailTable {
- public:
-  static constexpr double kEnd = 9.0;
-  static constexpr int kPerUnit = 16;
-  static constexpr int kNodes = 2 * static_cast<int>(kEnd) * kPerUnit + 1;
-
-  struct Values {
-    double minus_log_tail;  // -log Q(z)
-    double mills;           // λ(z)
-    double mills_excess;    // λ(z) - z
-  };
-
-  NormalTailTable();
-
-  Values At(double z) const {
-    if (!(z > -kEnd)) return {0.0, 0.0, -z};
-    if (!(z < kEnd)) {
-      // Q(z) = φ(z) S/z with S = 1 - u + 3u² - 15u³ + 105u⁴ - 945u⁵ + ..., u = 1/z².
-      const double u = 1.0 / (z * z);
-      const double one_minus_s = u * (1.0 - u * (3.0 - u * (15.0 - u * (105.0 - 945.0 * u))));
-      const double s = 1.0 - one_minus_s;
-      return {0.5 * z * z + std::log(z) + kHalfLogTwoPi - std::log(s), z / s, z * one_minus_s / s};
-    }
-    const double x = (z + kEnd) * kPerUnit;
-    const int i = std::min(static_cast<int>(x), kNodes - 2);
-    const double t = x - i, t2 = t * t, t3 = t2 * t, step = 1.0 / kPerUnit;
-    // The Hermite basis on [0, 1].
-    const double b00 = 2.0 * t3 - 3.0 * t2 + 1.0, b10 = (t3 - 2.0 * t2 + t) * step;
-    const double b01 = 1.0 - b00, b11 = (t3 - t2) * step;
-    const double mills =
-        b00 * mills_[i] + b10 * mills_slope_[i] + b01 * mills_[i + 1] + b11 * mills_slope_[i + 1];
-    return {b00 * minus_log_tail_[i] + b10 * mills_[i] + b01 * minus_log_tail_[i + 1] +
-                b11 * mills_[i + 1],
-            mills,
-            mills - z};
-  }
-
- private:
-  static constexpr double kHalfLogTwoPi = 0.91893853320467274178;
-  std::array<double, kNodes> minus_log_tail_{}, mills_{}, mills_slope_{};
-};
-extern const NormalTailTable kNormalTailTable;
 
 // One channel of a pixel in a photometric fit: its 8-bit value y (0-1) against the noise-free
 // model value μ, under Gaussian noise of σ_n, clipping to [0, 1] and rounding (the renderer's

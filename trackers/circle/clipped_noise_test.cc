@@ -8,22 +8,8 @@
 #include <cmath>
 #include <string>
 
-#include "trackers/circle/blurred_design.h"
-
 namespace markerbench {
 namespace {
-
-TEST(NormalTailTable, MatchesTheNormalTail) {
-  for (double z = -12.0; z <= 30.0; z += 0.0371) {
-    SCOPED_TRACE("z " + std::to_string(z));
-    const double tail = 0.5 * std::erfc(z / std::sqrt(2.0));
-    const double mills = NormalDensity(z) / tail;
-    const NormalTailTable::Values values = kNormalTailTable.At(z);
-    EXPECT_NEAR(values.minus_log_tail, -std::log(tail), 1e-6 * std::max(1.0, -std::log(tail)));
-    EXPECT_NEAR(values.mills, mills, 1e-6 * std::max(1.0, mills));
-    EXPECT_NEAR(values.mills_excess, mills - z, 1e-6);
-  }
-}
 
 // The term is 2σ² times the pixel's negative log-likelihood up to a constant per kind of
 // pixel, its residual half its derivative in -μ, its weight within the Gauss-Newton

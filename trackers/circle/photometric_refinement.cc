@@ -30,8 +30,10 @@ struct EdgeLayer {
   std::vector<double> start_curvature_radius_px;
   double start_depth_m = 0.0;  // of the disk's centre
   // Under blur of a good part of its size: modelled whole, its exact blurred ellipse
-  // (blurred_ellipse.h), on every pixel of its image and within reach of it.
+  // (blurred_ellipse.h), on every pixel of its image and within reach of it, with the
+  // quadrature nodes its size in σ needs at the start pose.
   bool whole = false;
+  int whole_nodes = 0;
 };
 
 // An edge within reach of a pixel: the pixel's signed distance to it is taken along the edge's
@@ -126,8 +128,10 @@ class PixelModel {
     Eigen::Matrix<Jet, 3, 3> H;
     H << R.col(0), R.col(1), t;
     H = K_.cast<Jet>() * H;
-    // The layers modelled whole: each disk's image as the chords of its ellipse.
+    // The layers modelled whole: each disk's image as the chords of its ellipse, and that
+    // ellipse blurred.
     std::vector<EllipseChords<Jet>> whole(layers_.size());
+    std::vector<std::optional<BlurredEllipse>> blurred(layers_.size());
     for (size_t l = 0; l < layers_.size(); ++l) {
       const EdgeLayer& layer = layers_[l];
       if (layer.whole) {
@@ -135,6 +139,11 @@ class PixelModel {
             ChordsOfConic(ImageOfCircle<Jet>(H, layer.disk.center, layer.disk.radius));
         if (!chords) return std::numeric_limits<double>::infinity();  // no ellipse: a bad step
         whole[l] = *chords;
+        const EllipseChords<Jet>& e = *chords;
+        blurred[l].emplace(
+            EllipseChords<double>{e.x0.a, e.y0.a, e.slope.a, e.half_width.a, e.half_height.a},
+            sigma.a,
+            layer.whole_nodes);
         continue;
       }
       edges[l].reserve(layer.bins);
@@ -159,8 +168,7 @@ class PixelModel {
     const auto inside = [&](const Pixel& p, const NearEdge& near, Eigen::Matrix<double, 7, 1>* d) {
       if (near.bin < 0) {
         const EllipseChords<Jet>& e = whole[near.layer];
-        const BlurredEllipseValue g = BlurredEllipseAt(
-            {e.x0.a, e.y0.a, e.slope.a, e.half_width.a, e.half_height.a}, sigma_value, p.ideal_px);
+        const BlurredEllipseValue g = blurred[near.layer]->At(p.ideal_px);
         if (d) {
           *d = g.gradient[0] * e.x0.v + g.gradient[1] * e.y0.v + g.gradient[2] * e.slope.v +
                g.gradient[3] * e.half_width.v + g.gradient[4] * e.half_height.v +
@@ -454,6 +462,8 @@ std::optional<ModelledPixels> PixelsAt(const Image8& image,
     const Ellipse e = EllipseFromConic(conics[i]);
     largest_radius_px = std::max(largest_radius_px, std::sqrt(e.semi_major * e.semi_minor));
     (*layers)[i].whole = sigma >= options.whole_disk_from_blur_per_axis * e.semi_minor;
+    // A quarter more for the fit's moves of σ and the axes.
+    (*layers)[i].whole_nodes = BlurredEllipse::NodesFor(1.25 * e.semi_major / sigma);
   }
   if (!(sigma_px <= options.max_blur_per_radius * largest_radius_px)) return std::nullopt;
   PixelSet pixels = PixelsNearEdges(image,
