@@ -85,4 +85,22 @@ PixelFit FitPixelsAtTheirNoise(Model& model,
   return fit;
 }
 
+// FitInRounds (pixel_fit.h) with each round's solve at the noise the last one showed:
+// solve_once(cam_from_marker, σ, noise) gives an optional Result with a PixelFit `fit` and the
+// noise it showed, `noise_sigma`.
+template <class Result, class SolveOnce>
+std::optional<Result> FitInRoundsAtTheirNoise(const Rigid3& cam_from_marker,
+                                              double sigma_px,
+                                              double noise_sigma,
+                                              int max_rounds,
+                                              const SolveOnce& solve_once) {
+  double noise = noise_sigma;
+  return FitInRounds<Result>(
+      cam_from_marker, sigma_px, max_rounds, [&](const Rigid3& start, double sigma) {
+        std::optional<Result> solved = solve_once(start, sigma, noise);
+        if (solved) noise = solved->noise_sigma;
+        return solved;
+      });
+}
+
 }  // namespace markerbench

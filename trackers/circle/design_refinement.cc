@@ -202,14 +202,14 @@ std::optional<DesignRefinement> RefineDesign(const Image8& image,
                                              double noise_sigma,
                                              const DesignRefinementOptions& options) {
   // A solve's pixels are those near the edges at its start; from a start a few pixels off,
-  // some of the result's are missing. Each round starts from the noise the last one showed.
-  double noise = noise_sigma;
-  return FitInRounds<DesignRefinement>(
-      cam_from_marker, sigma_px, options.max_rounds, [&](const Rigid3& start, double sigma) {
-        std::optional<DesignRefinement> refined =
-            RefineOnce(image, camera, marker, start, sigma, noise, options);
-        if (refined) noise = refined->noise_sigma;
-        return refined;
+  // some of the result's are missing.
+  return FitInRoundsAtTheirNoise<DesignRefinement>(
+      cam_from_marker,
+      sigma_px,
+      noise_sigma,
+      options.max_rounds,
+      [&](const Rigid3& start, double sigma, double noise) {
+        return RefineOnce(image, camera, marker, start, sigma, noise, options);
       });
 }
 

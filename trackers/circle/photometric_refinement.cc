@@ -529,14 +529,13 @@ std::optional<PhotometricResult> RefinePhotometric(const Image8& image,
                                                    double sigma_px,
                                                    double noise_sigma,
                                                    const PhotometricOptions& options) {
-  // Each round starts from the noise the last one showed.
-  double noise = noise_sigma;
-  return FitInRounds<PhotometricResult>(
-      cam_from_marker, sigma_px, options.max_rounds, [&](const Rigid3& start, double sigma) {
-        std::optional<PhotometricResult> refined =
-            RefineOnce(image, camera, marker, start, sigma, noise, options);
-        if (refined) noise = refined->noise_sigma;
-        return refined;
+  return FitInRoundsAtTheirNoise<PhotometricResult>(
+      cam_from_marker,
+      sigma_px,
+      noise_sigma,
+      options.max_rounds,
+      [&](const Rigid3& start, double sigma, double noise) {
+        return RefineOnce(image, camera, marker, start, sigma, noise, options);
       });
 }
 
