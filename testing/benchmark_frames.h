@@ -1,5 +1,6 @@
 // Frames for tracker benchmarks: 640x480, the marker at 0.6 m (tilt 0-40°, any roll),
-// imnoise σ² = 0.02, rendered once before timing (issue 4's protocol); RGB for colour markers.
+// imnoise σ² = 0.02, rendered once before timing (issue 4's protocol; distance, blur and noise
+// can be set); RGB for colour markers.
 // And the timing loop the tracker benchmarks share, with a factory tracker on those frames.
 #pragma once
 
@@ -19,17 +20,28 @@
 
 namespace markerbench {
 
-inline std::vector<Image8> BenchmarkFrames(const MarkerSpec& marker, int count) {
+// The view and degradations of the frames: issue 4's protocol by default.
+struct BenchmarkFrameOptions {
+  double distance_m = 0.6;
+  double blur_sigma_px = 0.0;
+  double noise_var = 0.02;
+};
+
+inline std::vector<Image8> BenchmarkFrames(const MarkerSpec& marker,
+                                           int count,
+                                           const BenchmarkFrameOptions& options = {}) {
   std::vector<Image8> frames;
   const Eigen::Vector2d c = marker.InkBounds().center();
   for (int i = 0; i < count; ++i) {
     Rng rng(SeedFor(11, 0, static_cast<uint64_t>(i), SeedPurpose::kPose));
     FrameRequest request;
     request.scene.marker = &marker;
-    request.scene.cam_from_marker = TiltedView(0.6, rng.Uniform(0, 40), rng.Uniform(0, 360));
+    request.scene.cam_from_marker =
+        TiltedView(options.distance_m, rng.Uniform(0, 40), rng.Uniform(0, 360));
     request.scene.cam_from_marker.translation -=
         request.scene.cam_from_marker.rotation * Eigen::Vector3d(c.x(), c.y(), 0.0);
-    request.degradations.noise_var = 0.02;
+    request.degradations.blur_sigma_px = options.blur_sigma_px;
+    request.degradations.noise_var = options.noise_var;
     request.channels = marker.HasColor() ? 3 : 1;
     request.noise_seed = SeedFor(11, 0, static_cast<uint64_t>(i), SeedPurpose::kNoise);
     frames.push_back(RenderFrame(request).image);

@@ -2,8 +2,9 @@
 // analytic pose + refinement (with and without the refinement on the pixels), tracking mode
 // (the region predicted from the previous pose), and the check of the printed design. circles_a
 // with a 0.1 m equal-area footprint at 0.6 m, σ² = 0.02, the frames of the other tracker
-// benchmarks; and full detection of markers (e) and (f) on the same poses (issue 22: their
-// pose fitted on the pixels of the whole design). Run from the project root.
+// benchmarks; at 1 m under blur σ 2 and 8 (the whole disks' model); and full detection of
+// markers (e) and (f) on the same poses (issue 22: their pose fitted on the pixels of the
+// whole design). Run from the project root.
 #include <benchmark/benchmark.h>
 
 #include <opencv2/core.hpp>
@@ -38,6 +39,20 @@ void BM_CircleFullDetectionEdgesOnly(benchmark::State& state) {
   CircleTrackerOptions options;
   options.photometric = false;
   CircleTracker tracker(options);
+  TimeIndependentFrames(state, tracker, marker, frames);
+}
+
+// Heavy blur: at 1 m and blur σ = 8 px (the paper's blur sweep) both disks are modelled whole
+// on their pixels (the exact blurred ellipse); with the same frames at σ = 2 (osculating
+// disks) as the reference of the same run.
+void BM_CircleFullDetectionBlurred(benchmark::State& state) {
+  cv::setNumThreads(1);
+  const MarkerSpec marker = PaperMarker("circles_a");
+  BenchmarkFrameOptions options;
+  options.distance_m = 1.0;
+  options.blur_sigma_px = static_cast<double>(state.range(0));
+  const std::vector<Image8> frames = BenchmarkFrames(marker, 16, options);
+  CircleTracker tracker;
   TimeIndependentFrames(state, tracker, marker, frames);
 }
 
@@ -99,6 +114,7 @@ void BM_CircleAppearanceCheck(benchmark::State& state) {
 
 BENCHMARK(BM_CircleFullDetection)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_CircleFullDetectionEdgesOnly)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_CircleFullDetectionBlurred)->Arg(2)->Arg(8)->Unit(benchmark::kMillisecond);
 BENCHMARK_CAPTURE(BM_CircleDesignFullDetection, circle_e, std::string("circle_e"))
     ->Unit(benchmark::kMillisecond);
 BENCHMARK_CAPTURE(BM_CircleDesignFullDetection, circle_f, std::string("circle_f"))
