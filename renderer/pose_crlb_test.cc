@@ -255,10 +255,9 @@ TEST(PoseCrlbTest, FisherMatchesFiniteDifferencesOfTheRenderer) {
   }
 }
 
-// A camera moving during the exposure at constant rates: the pose at time τ is motion(τ)·T0,
-// with motion(s) a turn by s·angular_velocity (rad/s, camera frame) and a shift by
-// s·velocity (m/s). The truth T0 is at the first row's start (not mid-exposure, as in the
-// sweeps), so that the motion since it is not symmetric about the identity.
+// A camera moving during the exposure at constant rates (MoveAtConstantRates). The truth T0
+// is at the first row's start (not mid-exposure, as in the sweeps), so that the motion since
+// it is not symmetric about the identity.
 FrameRequest MovingRequest(const MarkerSpec& marker,
                            const Rigid3& truth,
                            const Eigen::Vector3d& velocity,
@@ -266,16 +265,7 @@ FrameRequest MovingRequest(const MarkerSpec& marker,
                            double exposure_s,
                            double readout_s) {
   FrameRequest request = MarkerFrameRequest(marker, truth, 0.0, 1.0, 1);
-  request.exposure_s = exposure_s;
-  request.readout_s = readout_s;
-  request.cam_from_marker_at = [=](double s) {
-    const Eigen::Vector3d turn = s * angular_velocity;
-    const double angle = turn.norm();
-    const Eigen::Matrix3d R = angle > 0.0
-                                  ? Eigen::AngleAxisd(angle, turn / angle).toRotationMatrix()
-                                  : Eigen::Matrix3d::Identity();
-    return Rigid3(R, s * velocity) * truth;
-  };
+  MoveAtConstantRates(&request, velocity, angular_velocity, exposure_s, readout_s, 0.0);
   return request;
 }
 

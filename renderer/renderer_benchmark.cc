@@ -20,17 +20,13 @@ namespace {
 // exposure, 20 ms rolling-shutter readout, 0.15 m/s sideways and 30°/s about the camera's y
 // axis, the truth at mid-exposure of the middle row.
 void MakeMoving(FrameRequest* request) {
-  request->exposure_s = 1.0 / 60.0;
-  request->readout_s = 0.02;
-  const double truth_time = 0.5 * (request->exposure_s + request->readout_s);
-  const Rigid3 truth = request->scene.cam_from_marker;
-  request->cam_from_marker_at = [truth, truth_time](double t) {
-    const double s = t - truth_time;
-    const Eigen::Matrix3d turn =
-        Eigen::AngleAxisd(s * 30.0 * 3.14159265358979323846 / 180.0, Eigen::Vector3d::UnitY())
-            .toRotationMatrix();
-    return Rigid3(turn, Eigen::Vector3d(0.15 * s, 0.0, 0.0)) * truth;
-  };
+  const double exposure_s = 1.0 / 60.0, readout_s = 0.02;
+  MoveAtConstantRates(request,
+                      Eigen::Vector3d(0.15, 0.0, 0.0),
+                      Eigen::Vector3d(0.0, 30.0 * 3.14159265358979323846 / 180.0, 0.0),
+                      exposure_s,
+                      readout_s,
+                      0.5 * (exposure_s + readout_s));
 }
 
 // Calls work(request) on a fresh paired-protocol frame of `file` per iteration (seen by a

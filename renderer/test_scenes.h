@@ -71,4 +71,26 @@ inline FrameRequest MarkerFrameRequest(const MarkerSpec& marker,
   return request;
 }
 
+// `request` seen by a camera moving during its exposure at constant rates: the pose at time t
+// is motion(t - truth_time_s)·T0, T0 the request's pose and motion(s) a turn by
+// s·angular_velocity (rad/s, camera frame) and a shift by s·velocity (m/s).
+inline void MoveAtConstantRates(FrameRequest* request,
+                                const Eigen::Vector3d& velocity,
+                                const Eigen::Vector3d& angular_velocity,
+                                double exposure_s,
+                                double readout_s,
+                                double truth_time_s) {
+  request->exposure_s = exposure_s;
+  request->readout_s = readout_s;
+  const Rigid3 truth = request->scene.cam_from_marker;
+  request->cam_from_marker_at = [=](double t) {
+    const Eigen::Vector3d turn = (t - truth_time_s) * angular_velocity;
+    const double angle = turn.norm();
+    const Eigen::Matrix3d R = angle > 0.0
+                                  ? Eigen::AngleAxisd(angle, turn / angle).toRotationMatrix()
+                                  : Eigen::Matrix3d::Identity();
+    return Rigid3(R, (t - truth_time_s) * velocity) * truth;
+  };
+}
+
 }  // namespace markerbench
