@@ -132,7 +132,7 @@ TEST(BlurredEllipse, GradientIsTheFiniteDifferences) {
   }
 }
 
-// Each size's nodes take G within 1e-7 of 64 nodes (themselves within 1e-12 to 8 σ), for
+// Each size's nodes take G within 1e-7 of 64 nodes (themselves within 1.3e-12 at 8 σ), for
 // ellipses of its range: long ones, sheared chords, round ones at the range's end.
 TEST(BlurredEllipse, TakesEachSizeWithEnoughNodes) {
   for (const double semi_major_per_sigma : {1.2, 1.9, 3.4, 5.2, 8.0}) {
