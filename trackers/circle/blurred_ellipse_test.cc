@@ -11,12 +11,11 @@
 namespace markerbench {
 namespace {
 
-// G with the nodes its size needs.
+// G with the nodes an ellipse of `semi_major` needs.
 BlurredEllipseValue BlurredAt(const EllipseChords<double>& e,
+                              double semi_major,
                               double sigma,
                               const Eigen::Vector2d& x) {
-  const double semi_major =
-      std::max(e.half_height, std::hypot(e.half_width, e.slope * e.half_height));
   return BlurredEllipse(e, sigma, BlurredEllipse::NodesFor(semi_major / sigma)).At(x);
 }
 
@@ -81,7 +80,8 @@ TEST(BlurredEllipse, IsTheGaussiansMassOverTheEllipse) {
                                      Eigen::Vector2d(47.0, 30.0),
                                      Eigen::Vector2d(36.0, 29.0),
                                      Eigen::Vector2d(52.0, 20.0)}) {
-      EXPECT_NEAR(BlurredAt(e, sigma, x).value, BlurredByGrid(ellipse, sigma, x), 2e-4)
+      EXPECT_NEAR(
+          BlurredAt(e, ellipse.semi_major, sigma, x).value, BlurredByGrid(ellipse, sigma, x), 2e-4)
           << "σ " << sigma << " at " << x.transpose();
     }
   }
@@ -97,17 +97,18 @@ TEST(BlurredEllipse, IsTheBlurredDisksProfileForACircle) {
     for (const double r : {0.0, 3.0, 5.5, 6.0, 7.0, 10.0, 20.0}) {
       const Eigen::Vector2d x(r * std::cos(1.0), r * std::sin(1.0));
       // The profile's z: the distance inside the edge, in σ.
-      EXPECT_NEAR(BlurredAt(e, sigma, x).value, profile.At((6.0 - r) / sigma).value, 1e-3)
+      EXPECT_NEAR(BlurredAt(e, 6.0, sigma, x).value, profile.At((6.0 - r) / sigma).value, 1e-3)
           << "σ " << sigma << " r " << r;
     }
   }
 }
 
 TEST(BlurredEllipse, GradientIsTheFiniteDifferences) {
-  const EllipseChords<double> e = *ChordsOfConic<double>(ConicFromEllipse(TiltedEllipse()));
+  const Ellipse ellipse = TiltedEllipse();
+  const EllipseChords<double> e = *ChordsOfConic<double>(ConicFromEllipse(ellipse));
   for (const double sigma : {2.0, 8.0}) {
     for (const Eigen::Vector2d& x : {Eigen::Vector2d(45.0, 27.0), Eigen::Vector2d(33.0, 22.0)}) {
-      const BlurredEllipseValue at = BlurredAt(e, sigma, x);
+      const BlurredEllipseValue at = BlurredAt(e, ellipse.semi_major, sigma, x);
       constexpr double kStep = 1e-6;
       for (int i = 0; i < 6; ++i) {
         EllipseChords<double> up = e, down = e;
@@ -122,9 +123,9 @@ TEST(BlurredEllipse, GradientIsTheFiniteDifferences) {
           sigma_up += kStep;
           sigma_down -= kStep;
         }
-        const double numeric =
-            (BlurredAt(up, sigma_up, x).value - BlurredAt(down, sigma_down, x).value) /
-            (2.0 * kStep);
+        const double numeric = (BlurredAt(up, ellipse.semi_major, sigma_up, x).value -
+                                BlurredAt(down, ellipse.semi_major, sigma_down, x).value) /
+                               (2.0 * kStep);
         EXPECT_NEAR(at.gradient[i], numeric, 1e-7 + 1e-5 * std::abs(numeric))
             << "parameter " << i << " σ " << sigma;
       }
