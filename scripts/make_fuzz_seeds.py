@@ -4,7 +4,8 @@
 bench/fuzz_corpus/loaders_fuzz: a selector byte (0 camera, 1 marker, 2 scenario, 3 POSES.csv,
 4 frames.csv, 5 frames.csv.zst) and a shipped file (frames.csv: the first rows of the CI
 gate's reference run, plain and compressed with the zstd command). trackers/fuzz_corpus/track_fuzz: for each tracker, a 64x48 image in the
-target's input format with a marker-like shape (a black square, or a red and a blue disk).
+target's input format with a marker-like shape (a black square, or a red and a blue disk);
+and inputs fuzzing found slow, kept so that every run replays them.
 """
 import pathlib
 import subprocess
@@ -46,3 +47,8 @@ for index, name in enumerate(trackers):
                 pixels.append(20 if inside else 235)
     header = bytes([index, width - 1, height - 1, 3 if colour else 1])
     write(root / "trackers/fuzz_corpus/track_fuzz" / name, header + bytes(pixels))
+
+# A 136x138 RGB texture of tiny quads: OpenCV's ArUco took 1.6 s on it (3.5 s with ASan)
+# before the aruco adapter's min_pixels_per_cell.
+write(root / "trackers/fuzz_corpus/track_fuzz" / "aruco_fine_texture",
+      bytes.fromhex("a487890d9f890d9f31f431f4f2"))

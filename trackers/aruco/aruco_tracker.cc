@@ -1,5 +1,6 @@
 #include "trackers/aruco/aruco_tracker.h"
 
+#include <algorithm>
 #include <array>
 #include <opencv2/aruco.hpp>
 #include <sstream>
@@ -52,6 +53,8 @@ class ArucoTracker final : public Tracker {
     parameters_->cornerRefinementMaxIterations = o.corner_refinement_max_iterations;
     parameters_->cornerRefinementMinAccuracy = o.corner_refinement_min_accuracy;
     parameters_->errorCorrectionRate = o.error_correction_rate;
+    const int cells_per_side = dictionary_->markerSize + 2 * parameters_->markerBorderBits;
+    min_perimeter_px_ = 4.0 * cells_per_side * o.min_pixels_per_cell;
   }
 
   bool CanTrack(const MarkerSpec& marker) const override {
@@ -67,6 +70,10 @@ class ArucoTracker final : public Tracker {
     TrackResult result;
     GreyImage grey(*obs.image);
     const cv::Mat image(grey.height(), grey.width(), CV_8UC1, grey.data());
+    // OpenCV scales the rate by the image's larger side.
+    parameters_->minMarkerPerimeterRate =
+        std::max(options_.min_marker_perimeter_rate,
+                 min_perimeter_px_ / std::max(grey.width(), grey.height()));
     std::vector<std::vector<cv::Point2f>> corners;
     std::vector<int> ids;
     cv::aruco::detectMarkers(image, dictionary_, corners, ids, parameters_);
@@ -98,6 +105,7 @@ class ArucoTracker final : public Tracker {
             {"adaptive_thresh_win_size_step", NumberText(o.adaptive_thresh_win_size_step)},
             {"adaptive_thresh_constant", NumberText(o.adaptive_thresh_constant)},
             {"min_marker_perimeter_rate", NumberText(o.min_marker_perimeter_rate)},
+            {"min_pixels_per_cell", NumberText(o.min_pixels_per_cell)},
             {"max_marker_perimeter_rate", NumberText(o.max_marker_perimeter_rate)},
             {"polygonal_approx_accuracy_rate", NumberText(o.polygonal_approx_accuracy_rate)},
             {"corner_refinement_win_size", NumberText(o.corner_refinement_win_size)},
@@ -111,6 +119,7 @@ class ArucoTracker final : public Tracker {
   ArucoOptions options_;
   cv::Ptr<cv::aruco::Dictionary> dictionary_;
   cv::Ptr<cv::aruco::DetectorParameters> parameters_;
+  double min_perimeter_px_ = 0.0;  // min_pixels_per_cell's floor
 };
 
 }  // namespace
@@ -130,6 +139,8 @@ bool ArucoOptions::IsValid(std::string* error) const {
                max_marker_perimeter_rate > min_marker_perimeter_rate)) {
     msg << "min_marker_perimeter_rate=" << min_marker_perimeter_rate
         << " must be > 0 and below max_marker_perimeter_rate";
+  } else if (!(min_pixels_per_cell >= 0.0 && min_pixels_per_cell <= 1000.0)) {
+    msg << "min_pixels_per_cell=" << min_pixels_per_cell << " must be in [0, 1000]";
   } else if (!(polygonal_approx_accuracy_rate > 0.0)) {
     msg << "polygonal_approx_accuracy_rate=" << polygonal_approx_accuracy_rate << " must be > 0";
   } else if (corner_refinement_win_size < 1 || corner_refinement_max_iterations < 1 ||
@@ -164,6 +175,7 @@ ArucoOptions ArucoOptions::FromYaml(const YamlMap& map) {
       map.GetOr<double>("adaptive_thresh_constant", o.adaptive_thresh_constant);
   o.min_marker_perimeter_rate =
       map.GetOr<double>("min_marker_perimeter_rate", o.min_marker_perimeter_rate);
+  o.min_pixels_per_cell = map.GetOr<double>("min_pixels_per_cell", o.min_pixels_per_cell);
   o.max_marker_perimeter_rate =
       map.GetOr<double>("max_marker_perimeter_rate", o.max_marker_perimeter_rate);
   o.polygonal_approx_accuracy_rate =

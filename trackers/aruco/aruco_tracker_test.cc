@@ -108,6 +108,21 @@ TEST_F(ArucoTrackerTest, CornersEqualADirectLibraryCall) {
   }
 }
 
+TEST_F(ArucoTrackerTest, CandidatesNeedMinPixelsPerCell) {
+  // Frontal at 1.5 m the black square is 40 px a side, a contour of about 160 px; the floor
+  // is 4 sides x 8 cells (6 bits and the border) x min_pixels_per_cell.
+  const Rigid3 truth = TiltedView(1.5, 0.0, 10.0);
+  for (const auto& [pixels_per_cell, status] :
+       {std::pair{4.0, TrackStatus::kOk}, std::pair{6.0, TrackStatus::kNotDetected}}) {
+    ArucoOptions options;
+    options.min_pixels_per_cell = pixels_per_cell;
+    auto tracker = MakeArucoTracker(options);
+    EXPECT_EQ(RenderAndTrack(tracker.get(), marker_, marker_, truth, kLowNoiseVar, 7).result.status,
+              status)
+        << pixels_per_cell;
+  }
+}
+
 TEST(ArucoOptions, RejectsBadValues) {
   ArucoOptions options;
   std::string error;
@@ -115,6 +130,10 @@ TEST(ArucoOptions, RejectsBadValues) {
   options.corner_refinement = "magic";
   EXPECT_FALSE(options.IsValid(&error));
   EXPECT_NE(error.find("corner_refinement"), std::string::npos);
+  options = ArucoOptions();
+  options.min_pixels_per_cell = -1.0;
+  EXPECT_FALSE(options.IsValid(&error));
+  EXPECT_NE(error.find("min_pixels_per_cell"), std::string::npos);
 }
 
 }  // namespace
