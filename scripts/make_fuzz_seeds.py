@@ -32,7 +32,9 @@ zstd = subprocess.run(["zstd", "-q", "-c"], input=frames, capture_output=True, c
 write(loaders / "frames_zst", b"\x05" + zstd)
 
 width, height = 64, 48
-trackers = ["apriltag", "apriltag-ippe", "artkplus", "aruco", "circle", "runetag"]
+# The tracker byte indexes TrackerNames() (trackers/tracker_factory.cc): keep this its order.
+trackers = ["apriltag", "apriltag-ippe", "artkplus", "artkplus-improved", "aruco", "circle",
+            "runetag", "runetag-improved"]
 for index, name in enumerate(trackers):
     colour = name == "circle"
     pixels = bytearray()
@@ -52,3 +54,8 @@ for index, name in enumerate(trackers):
 # before the aruco adapter's min_pixels_per_cell.
 write(root / "trackers/fuzz_corpus/track_fuzz" / "aruco_fine_texture",
       bytes.fromhex("a487890d9f890d9f31f431f4f2"))
+# A 256x256 RGB texture of some 5000 dots for runetag-improved: the RANSAC stop's iteration
+# count overflowed an int (UBSan), and the search took 1.1 s under the sanitizers.
+write(root / "trackers/fuzz_corpus/track_fuzz" / "runetag_few_inliers",
+      bytes.fromhex("ffffff3fa1ffffa1853fa1ffffa1d2d2d2d2d2d2d2d2d2d2d2d2d2d2d2d2"
+                    "d2d2d2d2d2d2d2d2d2d2d28573"))

@@ -50,6 +50,29 @@ bool Overlap(const std::vector<int>& a, const std::vector<int>& b) {
   return 2 * common.size() > std::min(a.size(), b.size());
 }
 
+// Whether dot i has another within `reach`: a scan over all dots, visiting them outwards
+// from dot i in y (below, above, in turn), so that a neighbour ends it soon and a lone dot's
+// ends at the reach in y. `by_y` lists the dots with finite centres sorted by y, and `rank[i]`
+// is dot i's place in it.
+bool HasNeighbour(const std::vector<ImagedDot>& dots,
+                  const std::vector<int>& by_y,
+                  const std::vector<size_t>& rank,
+                  int i,
+                  double reach) {
+  const Eigen::Vector2d& c = dots[i].center_px;
+  auto near = [&](size_t k) { return (dots[by_y[k]].center_px - c).squaredNorm() < reach * reach; };
+  auto in_reach_y = [&](size_t k) { return std::abs(dots[by_y[k]].center_px.y() - c.y()) < reach; };
+  size_t below = rank[i], above = rank[i] + 1;
+  bool down = below > 0 && in_reach_y(below - 1), up = above < by_y.size() && in_reach_y(above);
+  while (down || up) {
+    if (down && near(--below)) return true;
+    if (up && near(above++)) return true;
+    down = down && below > 0 && in_reach_y(below - 1);
+    up = up && above < by_y.size() && in_reach_y(above);
+  }
+  return false;
+}
+
 // RANSAC for ring conics: the inlier sets (dot centres within tolerance) of the
 // options.ring_candidates conics with the most inliers that do not overlap, most first. A
 // conic through dots of two rings (an ellipse can cross both in a tilted view) may have more
@@ -69,16 +92,21 @@ std::vector<std::vector<int>> RingCandidates(const std::vector<ImagedDot>& dots,
   // Samples come from dots with a neighbour within options.neighbour_reach of their radii: a
   // marker's dots are 2π × kRuneDotRadiusRatio / 43 = 2.6 radii apart along a ring and 3-4.4
   // across rings, while noise blobs lie scattered.
-  std::vector<int> pool;
+  std::vector<int> by_y;  // dots off the image plane have no neighbours
   for (int i = 0; i < n; ++i) {
-    const double reach = options.neighbour_reach * std::max(dots[i].semi_major_px, 1.0);
-    for (int j = 0; j < n; ++j) {
-      if (j != i && (dots[j].center_px - dots[i].center_px).squaredNorm() < reach * reach) {
-        pool.push_back(i);
-        break;
-      }
-    }
+    if (dots[i].center_px.allFinite()) by_y.push_back(i);
   }
+  std::sort(by_y.begin(), by_y.end(), [&](int a, int b) {
+    return dots[a].center_px.y() < dots[b].center_px.y();
+  });
+  std::vector<size_t> rank(n);
+  for (size_t k = 0; k < by_y.size(); ++k) rank[by_y[k]] = k;
+  std::vector<int> pool;
+  for (int i : by_y) {
+    const double reach = options.neighbour_reach * std::max(dots[i].semi_major_px, 1.0);
+    if (HasNeighbour(dots, by_y, rank, i, reach)) pool.push_back(i);
+  }
+  std::sort(pool.begin(), pool.end());  // in dot order, which the samples are drawn in
   if (static_cast<int>(pool.size()) < options.min_ring_dots) return candidates;
   Rng rng(seed);
   std::vector<int> inliers, similar;
@@ -131,8 +159,13 @@ std::vector<std::vector<int>> RingCandidates(const std::vector<ImagedDot>& dots,
     // samples are drawn from; at most 1).
     const double w = std::min(
         1.0, static_cast<double>(candidates.front().size()) / static_cast<double>(pool.size()));
-    const double needed = std::log(1e-3) / std::log(1.0 - std::pow(w, 4.0));
-    iterations = std::min(options.max_ransac_iterations, static_cast<int>(needed) + 1);
+    // Capped before the cast: a tiny w needs more than an int holds (fuzzing found 8e10; the
+    // cast's undefined result had ended the search there), and one whose fourth power rounds
+    // 1 - w^4 to 1 needs infinitely many.
+    const double miss = std::log(1.0 - std::pow(w, 4.0));
+    const double needed = miss < 0.0 ? std::log(1e-3) / miss : INFINITY;
+    iterations = static_cast<int>(
+        std::min(std::floor(needed) + 1.0, static_cast<double>(options.max_ransac_iterations)));
   }
   return candidates;
 }
