@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # Builds the libFuzzer targets with clang, AddressSanitizer (with LeakSanitizer) and UBSan
-# into build-fuzz/, then runs each for SECONDS (default 60) from its committed seed corpus.
+# into build-fuzz/, replays the inputs earlier fuzzing found (*/fuzz_regressions/<target>/),
+# then runs each target for SECONDS (default 60) from its committed seed corpus.
 # A crash, a leak, an escaped exception or an input that takes over a second fails; the
 # input is saved in build-fuzz/findings/. New corpus entries stay in build-fuzz/corpus/.
 set -euo pipefail
@@ -13,9 +14,15 @@ cmake --build build-fuzz --parallel "$(nproc)" --target loaders_fuzz track_fuzz
 mkdir -p build-fuzz/findings
 for seeds in bench/fuzz_corpus/loaders_fuzz trackers/fuzz_corpus/track_fuzz; do
   name="$(basename "$seeds")"
+  binary="build-fuzz/$(dirname "$(dirname "$seeds")")/$name"
+  regressions="$(dirname "$(dirname "$seeds")")/fuzz_regressions/$name"
+  if [ -d "$regressions" ]; then
+    echo "== replaying $regressions"
+    "$binary" -timeout=1 -rss_limit_mb=4096 "$regressions"/*
+  fi
   mkdir -p "build-fuzz/corpus/$name"
   echo "== fuzzing $name for ${seconds} s"
-  "build-fuzz/$(dirname "$(dirname "$seeds")")/$name" "build-fuzz/corpus/$name" "$seeds" \
+  "$binary" "build-fuzz/corpus/$name" "$seeds" \
     -max_total_time="$seconds" -timeout=1 -rss_limit_mb=4096 -print_final_stats=1 -print_funcs=0 \
     -artifact_prefix="build-fuzz/findings/$name-"
 done

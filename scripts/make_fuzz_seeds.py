@@ -4,8 +4,9 @@
 bench/fuzz_corpus/loaders_fuzz: a selector byte (0 camera, 1 marker, 2 scenario, 3 POSES.csv,
 4 frames.csv, 5 frames.csv.zst) and a shipped file (frames.csv: the first rows of the CI
 gate's reference run, plain and compressed with the zstd command). trackers/fuzz_corpus/track_fuzz: for each tracker, a 64x48 image in the
-target's input format with a marker-like shape (a black square, or a red and a blue disk);
-and inputs fuzzing found slow, kept so that every run replays them.
+target's input format with a marker-like shape (a black square, or a red and a blue disk).
+trackers/fuzz_regressions/track_fuzz: inputs fuzzing found slow or failing, which every fuzz
+run replays once (scripts/fuzz.sh) but does not mutate: slow seeds would slow the fuzzing.
 """
 import pathlib
 import subprocess
@@ -52,10 +53,11 @@ for index, name in enumerate(trackers):
 
 # A 136x138 RGB texture of tiny quads: OpenCV's ArUco took 1.6 s on it (3.5 s with ASan)
 # before the aruco adapter's min_pixels_per_cell.
-write(root / "trackers/fuzz_corpus/track_fuzz" / "aruco_fine_texture",
+regressions = root / "trackers/fuzz_regressions/track_fuzz"
+write(regressions / "aruco_fine_texture",
       bytes.fromhex("a487890d9f890d9f31f431f4f2"))
 # A 256x256 RGB texture of some 5000 dots for runetag-improved: the RANSAC stop's iteration
 # count overflowed an int (UBSan), and the search took 1.1 s under the sanitizers.
-write(root / "trackers/fuzz_corpus/track_fuzz" / "runetag_few_inliers",
+write(regressions / "runetag_few_inliers",
       bytes.fromhex("ffffff3fa1ffffa1853fa1ffffa1d2d2d2d2d2d2d2d2d2d2d2d2d2d2d2d2"
                     "d2d2d2d2d2d2d2d2d2d2d28573"))
