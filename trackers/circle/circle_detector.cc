@@ -191,6 +191,14 @@ bool CircleDetectorOptions::IsValid(std::string* error) const {
     msg << "min_edge_fraction=" << min_edge_fraction << " must be in (0, 1]";
   } else if (edge_passes < 1) {
     msg << "edge_passes=" << edge_passes << " must be >= 1";
+  } else if (max_blurred_dot_disks < 0) {
+    msg << "max_blurred_dot_disks=" << max_blurred_dot_disks << " must be >= 0";
+  } else if (!(max_blurred_dot_peak >= 0.0 && max_blurred_dot_peak <= 1.0)) {
+    msg << "max_blurred_dot_peak=" << max_blurred_dot_peak << " must be in [0, 1]";
+  } else if (!(min_blurred_dot_radius_px > 0.0)) {
+    msg << "min_blurred_dot_radius_px=" << min_blurred_dot_radius_px << " must be > 0";
+  } else if (!(blurred_dots.min_significance > 0.0)) {
+    msg << "blurred_dot_min_significance=" << blurred_dots.min_significance << " must be > 0";
   } else if (edges.max_rays < edges.min_rays || edges.min_rays < 8) {
     msg << "max_rays=" << edges.max_rays << " must be >= " << std::max(8, edges.min_rays);
   } else {
@@ -287,8 +295,115 @@ CircleDetector::CircleDetector(const MarkerSpec& marker,
       is_circle |= (disk->center - circle.center).norm() < 1e-12 &&
                    std::abs(disk->radius - circle.radius_m) < 1e-12;
     }
-    if (!is_circle) dot_radius_m_ = std::max(dot_radius_m_, disk->radius);
+    if (is_circle) continue;
+    dot_radius_m_ = std::max(dot_radius_m_, disk->radius);
+    // Contrasts in circle 0's channel, for the search of blurred dots.
+    const ChannelPlan& plan = plans_[0];
+    auto level = [&plan](const Rgb& c) { return plan.channel < 0 ? Luma(c) : c[plan.channel]; };
+    const Disk& circle = marker.circles[0];
+    const double ink = level(circle.color) - level(marker.background);
+    const double distance = (disk->center - circle.center).norm();
+    const Rgb& under = distance < circle.radius_m ? circle.color : marker.background;
+    const double contrast = ink != 0.0 ? (level(layer.color) - level(under)) / ink : 0.0;
+    (distance < 1e-12 ? center_dot_contrast_ : feature_dot_contrast_) = contrast;
   }
+}
+
+CircleEdges CircleDetector::EdgesOf(size_t i,
+                                    const cv::Mat& smoothed,
+                                    const Eigen::Matrix3d& hypothesis,
+                                    double sigma_start_px) const {
+  const Ellipse e = EllipseFromConic(hypothesis);
+  const double scale = PixelsPerMetre(e, geometry_.radii_m[i]);
+  const double inward = std::min(0.6 * inward_clear_m_[i] * scale, 0.8 * e.semi_minor);
+  const double outward = 0.6 * outward_clear_m_[i] * scale;
+  return FindCircleEdges(smoothed,
+                         hypothesis,
+                         std::max(1.5, inward),
+                         std::max(1.5, outward),
+                         sigma_start_px,
+                         options_.edges);
+}
+
+std::optional<CircleDetector::DiskWithDots> CircleDetector::BlurredDots(
+    const cv::Mat& raw,
+    const cv::Mat& smoothed,
+    const Eigen::Matrix3d& conic,
+    double smoothing_sigma_px,
+    double noise_sigma) const {
+  // The disk's ellipse, blur and levels from its edges, in the detector's passes.
+  DiskWithDots found;
+  found.conic = conic;
+  CircleEdges edges;
+  double sigma = smoothing_sigma_px + 1.0;
+  ConicFitOptions direct = options_.fit;
+  direct.refine_pnd = false;
+  for (int pass = 0; pass < options_.edge_passes; ++pass) {
+    edges = EdgesOf(0, smoothed, found.conic, sigma);
+    const size_t kept = edges.points_px.size();
+    if (kept < 8 || kept < options_.min_edge_fraction * edges.rays) return std::nullopt;
+    const std::optional<ConicFit> fit = FitEllipse(edges.points_px, direct);
+    if (!fit) return std::nullopt;
+    found.conic = fit->conic;
+    sigma = edges.sigma_px;
+  }
+  const Ellipse e = EllipseFromConic(found.conic);
+  const double r0 = geometry_.radii_m[0];
+  const double per_radius = std::sqrt(e.semi_major * e.semi_minor) / r0;  // px per metre
+  const double dot_px = dot_radius_m_ * per_radius;
+  if (!(dot_px >= options_.min_blurred_dot_radius_px) ||
+      !(1.0 - std::exp(-0.5 * std::pow(dot_px / sigma, 2)) < options_.max_blurred_dot_peak)) {
+    return std::nullopt;
+  }
+  BlurredDisk disk;
+  disk.conic_px = found.conic;
+  disk.sigma_px =
+      std::sqrt(std::max(0.0625, sigma * sigma - smoothing_sigma_px * smoothing_sigma_px));
+  disk.inside_level = edges.inside_level;
+  disk.outside_level = edges.outside_level;
+  // The dots' reach: the feature dot's ring at Lx (d), the disk itself (e), and the blur (the
+  // edge points' σ is low by up to a fifth under heavy blur and clipped noise).
+  const double window = dot_px + options_.blurred_dots.window_sigmas * 1.5 * disk.sigma_px;
+  const double reach =
+      (geometry_.roll_from_design ? 1.0 : geometry_.Lx / r0) * e.semi_major + window + 2.0;
+  const cv::Rect area(static_cast<int>(std::floor(e.center.x() - reach)),
+                      static_cast<int>(std::floor(e.center.y() - reach)),
+                      static_cast<int>(std::ceil(2.0 * reach)) + 1,
+                      static_cast<int>(std::ceil(2.0 * reach)) + 1);
+  BlurredDotSearch search(raw, disk, area, 255.0 * noise_sigma, options_.blurred_dots);
+  search.FitDisk();
+  // Trial positions a quarter of the blurred dot's size apart.
+  const double spacing = std::max(1.0, 0.25 * std::hypot(0.5 * dot_px, search.disk().sigma_px));
+  // m0: within 0.3 of the minor axis of the ellipse's centre, as for the threshold's holes.
+  std::vector<Eigen::Vector2d> positions;
+  const double center_reach = 0.3 * e.semi_minor;
+  for (double y = -center_reach; y <= center_reach; y += spacing) {
+    for (double x = -center_reach; x <= center_reach; x += spacing) {
+      if (x * x + y * y <= center_reach * center_reach) {
+        positions.push_back(e.center + Eigen::Vector2d(x, y));
+      }
+    }
+  }
+  const std::optional<FoundDot> center = search.Find(positions, dot_px, center_dot_contrast_);
+  if (!center) return std::nullopt;
+  found.m0_px = center->position_px;
+  if (geometry_.roll_from_design) return found;
+  // m1 (d): on the image of the ring at Lx, the ellipse scaled about m0 (to first order).
+  const double ring = geometry_.Lx / r0;
+  const Eigen::Vector2d major(std::cos(e.angle_rad), std::sin(e.angle_rad));
+  const Eigen::Vector2d minor(-major.y(), major.x());
+  const int steps =
+      std::max(16, static_cast<int>(std::ceil(2.0 * M_PI * ring * e.semi_major / spacing)));
+  positions.clear();
+  for (int k = 0; k < steps; ++k) {
+    const double theta = 2.0 * M_PI * k / steps;
+    positions.push_back(found.m0_px + ring * (e.semi_major * std::cos(theta) * major +
+                                              e.semi_minor * std::sin(theta) * minor));
+  }
+  const std::optional<FoundDot> feature = search.Find(positions, dot_px, feature_dot_contrast_);
+  if (!feature) return std::nullopt;
+  found.m1_px = feature->position_px;
+  return found;
 }
 
 std::optional<MarkerDetection> CircleDetector::Detect(
@@ -473,6 +588,20 @@ std::optional<MarkerDetection> CircleDetector::Detect(
         detection.m1_px = dot->centroid + offset;
         break;
       }
+      // Under blur the dots fall below the threshold: look for them by their blurred images.
+      for (size_t i = 0; initial.empty() && scale == 1 && i < all.size() &&
+                         i < static_cast<size_t>(options_.max_blurred_dot_disks);
+           ++i) {
+        const std::optional<DiskWithDots> disk = BlurredDots(raw[plans_[0].channel],
+                                                             search[plans_[0].channel],
+                                                             all[i].conic,
+                                                             detection.smoothing_sigma_px,
+                                                             detection.noise_sigma);
+        if (!disk) continue;
+        initial = {disk->conic};
+        detection.m0_px = disk->m0_px + offset;
+        if (disk->m1_px) detection.m1_px = *disk->m1_px + offset;
+      }
       if (initial.empty()) return fail("no disk with its centre dot and feature dot");
       break;
     }
@@ -521,16 +650,7 @@ std::optional<MarkerDetection> CircleDetector::Detect(
     Eigen::Matrix3d hypothesis = initial[i];
     double sigma = detection.smoothing_sigma_px + 1.0;
     for (int pass = 0; pass < passes; ++pass) {
-      const Ellipse e = EllipseFromConic(hypothesis);
-      const double scale = PixelsPerMetre(e, r[i]);
-      const double inward = std::min(0.6 * inward_clear_m_[i] * scale, 0.8 * e.semi_minor);
-      const double outward = 0.6 * outward_clear_m_[i] * scale;
-      circle.edges = FindCircleEdges(channel,
-                                     hypothesis,
-                                     std::max(1.5, inward),
-                                     std::max(1.5, outward),
-                                     sigma,
-                                     options_.edges);
+      circle.edges = EdgesOf(i, channel, hypothesis, sigma);
       const size_t kept = circle.edges.points_px.size();
       if (kept < 8 || kept < options_.min_edge_fraction * circle.edges.rays) {
         return fail("edges found on only " + std::to_string(kept) + " of " +

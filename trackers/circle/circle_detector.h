@@ -13,6 +13,7 @@
 
 #include "core/image.h"
 #include "core/marker_spec.h"
+#include "trackers/circle/blurred_dot_search.h"
 #include "trackers/circle/circle_geometry.h"
 #include "trackers/circle/conic_fit.h"
 #include "trackers/circle/subpixel_edges.h"
@@ -33,6 +34,16 @@ struct CircleDetectorOptions {
   double max_outline_rms_px = 1.0;  // contour-to-ellipse RMS allowed, plus 8% of the minor axis
   int edge_passes = 2;              // edge search, fit, and again from the fitted ellipse
   double min_edge_fraction = 0.7;   // of a circle's rays that must find its edge
+  // d and e: when no disk shows its dots to the threshold, the dots are looked for by their
+  // blurred images (blurred_dot_search.h) beside this many of the largest disks, where the
+  // disk's edges show a blur that leaves a dot's peak, 1 - exp(-ρ²/2σ²), below this fraction
+  // of its ink (the threshold sits at 0.5; elsewhere a dot the threshold missed is not there).
+  // Dots smaller than min_blurred_dot_radius_px are not looked for this way: on the negative
+  // set (circle_false_positives_test), blurred clutter passed as d's dots at 2.2-2.6 px.
+  int max_blurred_dot_disks = 3;
+  double max_blurred_dot_peak = 0.75;
+  double min_blurred_dot_radius_px = 3.0;
+  BlurredDotOptions blurred_dots;
   EdgeSearchOptions edges;
   ConicFitOptions fit;
 
@@ -74,6 +85,23 @@ class CircleDetector {
     bool ink_dark = true;
   };
   ChannelPlan PlanFor(const MarkerSpec& marker, size_t circle) const;
+  // Edges of circle `i` along the normals of `hypothesis`, in its ink-free margins.
+  CircleEdges EdgesOf(size_t i,
+                      const cv::Mat& smoothed,
+                      const Eigen::Matrix3d& hypothesis,
+                      double sigma_start_px) const;
+  struct DiskWithDots {
+    Eigen::Matrix3d conic = Eigen::Matrix3d::Zero();
+    Eigen::Vector2d m0_px = Eigen::Vector2d::Zero();
+    std::optional<Eigen::Vector2d> m1_px;  // d's feature dot
+  };
+  // d and e: circle 0 at `conic` with its dots found by their blurred images; `raw` and
+  // `smoothed` the ink channel of the search region, `noise_sigma` 0-1.
+  std::optional<DiskWithDots> BlurredDots(const cv::Mat& raw,
+                                          const cv::Mat& smoothed,
+                                          const Eigen::Matrix3d& conic,
+                                          double smoothing_sigma_px,
+                                          double noise_sigma) const;
 
   MarkerKind kind_;
   CircleGeometry geometry_;
@@ -83,7 +111,11 @@ class CircleDetector {
   std::vector<double> inward_clear_m_;   // per circle: ink-free margin inside its edge
   std::vector<double> outward_clear_m_;  // and outside it, in the circle's channel
   double dot_radius_m_ = 0.0;            // feature (and centre) dot radius
-  double threshold_fraction_ = 0.5;      // of the way from the paper to the darkest ink
+  // The dots' colour step over what lies under them, per unit of circle 0's ink step, in
+  // circle 0's channel: -1 for a paper-coloured dot in the disk, +1 for an ink dot beside it.
+  double center_dot_contrast_ = 0.0;
+  double feature_dot_contrast_ = 0.0;
+  double threshold_fraction_ = 0.5;  // of the way from the paper to the darkest ink
 };
 
 }  // namespace markerbench

@@ -139,6 +139,14 @@ CircleTrackerOptions CircleTrackerOptions::FromYaml(const YamlMap& map) {
   o.detector.min_contrast = map.GetOr<double>("min_contrast", o.detector.min_contrast);
   o.detector.edge_passes = map.GetOr<int>("edge_passes", o.detector.edge_passes);
   o.detector.edges.max_rays = map.GetOr<int>("max_rays", o.detector.edges.max_rays);
+  o.detector.max_blurred_dot_disks =
+      map.GetOr<int>("max_blurred_dot_disks", o.detector.max_blurred_dot_disks);
+  o.detector.max_blurred_dot_peak =
+      map.GetOr<double>("max_blurred_dot_peak", o.detector.max_blurred_dot_peak);
+  o.detector.min_blurred_dot_radius_px =
+      map.GetOr<double>("min_blurred_dot_radius_px", o.detector.min_blurred_dot_radius_px);
+  o.detector.blurred_dots.min_significance =
+      map.GetOr<double>("blurred_dot_min_significance", o.detector.blurred_dots.min_significance);
   o.min_branch_angle_rad = map.GetOr<double>("min_branch_angle_rad", o.min_branch_angle_rad);
   o.max_other_tilt_log_ratio =
       map.GetOr<double>("max_other_tilt_log_ratio", o.max_other_tilt_log_ratio);
@@ -173,6 +181,10 @@ std::vector<std::pair<std::string, std::string>> CircleTracker::Parameters() con
       {"min_contrast", NumberText(o.detector.min_contrast)},
       {"edge_passes", std::to_string(o.detector.edge_passes)},
       {"max_rays", std::to_string(o.detector.edges.max_rays)},
+      {"max_blurred_dot_disks", std::to_string(o.detector.max_blurred_dot_disks)},
+      {"max_blurred_dot_peak", NumberText(o.detector.max_blurred_dot_peak)},
+      {"min_blurred_dot_radius_px", NumberText(o.detector.min_blurred_dot_radius_px)},
+      {"blurred_dot_min_significance", NumberText(o.detector.blurred_dots.min_significance)},
       {"min_branch_angle_rad", NumberText(o.min_branch_angle_rad)},
       {"max_other_tilt_log_ratio", NumberText(o.max_other_tilt_log_ratio)},
       {"min_design_radius_per_blur", NumberText(o.min_design_radius_per_blur)},

@@ -40,6 +40,21 @@ inline PixelTerm ClippedPixelTerm(double y, double mu, double noise_sigma) {
           tail.mills * tail.mills_excess};
 }
 
+// The mean of a pixel whose noise-free value is μ after noise of σ_n and clipping to [0, 1]
+// (rounding left out), and its derivative in μ, P(0 < μ + n < 1):
+//   E = μ (Φ(b) - Φ(a)) + σ_n (φ(a) - φ(b)) + 1 - Φ(b),  a = -μ/σ_n, b = (1 - μ)/σ_n.
+// The matched filter of blurred dots (blurred_dot_search.h) compares pixels with it.
+struct ClippedMeanValue {
+  double mean;
+  double d_mu;
+};
+inline ClippedMeanValue ClippedMean(double mu, double noise_sigma) {
+  const NormalCdfTable::Values a = kNormalCdfTable.At(-mu / noise_sigma);
+  const NormalCdfTable::Values b = kNormalCdfTable.At((1.0 - mu) / noise_sigma);
+  return {mu * (b.cdf - a.cdf) + noise_sigma * (a.density - b.density) + 1.0 - b.cdf,
+          b.cdf - a.cdf};
+}
+
 // The image's noise as a model takes it: at least 8-bit rounding's (0-1 units).
 double ModelNoiseSigma(double noise_sigma);
 

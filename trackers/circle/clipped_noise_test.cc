@@ -48,6 +48,33 @@ TEST(ClippedPixelTerm, IsTheLikelihoodOfTheClippedRoundedPixel) {
   }
 }
 
+// The clipped mean against a quadrature of the clipped normal, and its derivative against
+// finite differences.
+TEST(ClippedMean, IsTheMeanOfTheClippedNormal) {
+  for (double sigma : {0.003, 0.05, 0.14, 0.55}) {
+    for (double mu : {-0.3, -0.01, 0.0, 0.04, 0.3, 0.5, 0.93, 1.0, 1.02, 1.4}) {
+      SCOPED_TRACE("sigma " + std::to_string(sigma) + " mu " + std::to_string(mu));
+      // ∫ clip(x) N(x; μ, σ²) dx by the midpoint rule over ±12 σ.
+      const int steps = 200000;
+      const double h = 24.0 * sigma / steps;
+      double quadrature = 0.0;
+      for (int i = 0; i < steps; ++i) {
+        const double x = mu - 12.0 * sigma + (i + 0.5) * h;
+        const double z = (x - mu) / sigma;
+        quadrature += std::clamp(x, 0.0, 1.0) * std::exp(-0.5 * z * z) * h;
+      }
+      quadrature /= sigma * std::sqrt(2.0 * M_PI);
+      const ClippedMeanValue value = ClippedMean(mu, sigma);
+      EXPECT_NEAR(value.mean, quadrature, 1e-7);
+      const double step = 1e-4 * sigma;
+      const double derivative =
+          (ClippedMean(mu + step, sigma).mean - ClippedMean(mu - step, sigma).mean) / (2.0 * step);
+      EXPECT_NEAR(value.d_mu, derivative, 1e-5);
+    }
+  }
+  EXPECT_NEAR(ClippedMean(0.5, 1e-3).mean, 0.5, 1e-12);  // far from the ends: μ itself
+}
+
 TEST(MidRangeNoise, IsTheResidualsRmsBetweenTwoTenthsAndEightTenths) {
   std::vector<ModelledPixel> modelled;
   for (int i = 0; i < 49; ++i) modelled.push_back({i % 2 ? 0.1 : -0.1, 0.5});

@@ -1,0 +1,101 @@
+// Finds the small dots of a circle marker (the centre and feature dots of d, the nose of e)
+// where the detector's threshold loses them: blurred by σ, a dot of radius ρ peaks at only
+// 1 - exp(-ρ²/2σ²) of its ink (0.49 for ρ = 5 px at σ = 4), below the mid-level. The dots are
+// looked for by their whole blurred images instead, beside the disk they lie in or next to.
+// Pixels are compared with their mean after the noise and its clipping, c(μ) (clipped_noise.h:
+// on black ink or white paper the clipping lifts the mean by 0.4 σ_n and makes a blurred edge
+// look sharper), μ the design as printed, blurred.
+//
+// The disk first (FitDisk): its blur σ and its levels as printed, in and out, are fitted on its
+// pixels between fit_band of its radius (around the edge, clear of the dots' bodies) by
+// Levenberg-Marquardt on y(x) = c(μ(x)), μ = out + (in - out) D_σ, D_σ the disk's exact blurred
+// image (blurred_ellipse.h; the edge points' ellipse), at the noise its residuals show (the
+// estimate from the image reads clipped paper: 14.7 of 36 levels on d's frames at σ² = 0.02).
+// The edge points' blur is low by a fifth at σ = 8 px and σ² = 0.02, their levels the clipped.
+//
+// Then a dot (Find): at each trial position p, the pixels within ρ + window_sigmas σ of p are
+// fitted by least squares with
+//   y(x) - c(μ(x)) = α + γ [c(μ(x) + Δ T_σ(x - p)) - c(μ(x))],   Δ = κ (in - out),
+// T_σ a blurred dot of radius ρ (blurred_disk_profile.h) and κ the dot's designed step in
+// units of the disk's (-1 for a paper-coloured dot in the disk, +1 for an ink dot beside it):
+// the matched filter for the designed dot, with a free offset. γ is 1 where the dot is as
+// designed and 0 where there is none; its standard error is σ_n √((AᵀA)⁻¹)_γγ, A the
+// regressors. The most significant position wins; it is the dot if γ / SE reaches
+// min_significance and |γ - 1| is at most contrast_tolerance. (Freeing the disk's blur and
+// levels in the dot's fit as well leaves γ's error too large to tell a dot at σ 6.)
+#pragma once
+
+#include <Eigen/Core>
+#include <opencv2/core.hpp>
+#include <optional>
+#include <vector>
+
+namespace markerbench {
+
+struct BlurredDotOptions {
+  double window_sigmas = 2.5;  // pixels within ρ + this many σ of a trial position
+  // γ in standard errors: dots of d at 1 m and blur σ 8 reach 18 or more, blobs of the
+  // negative set (circle_false_positives_test) beside other dark shapes up to 8.2.
+  double min_significance = 10.0;
+  double contrast_tolerance = 0.5;  // |γ - 1| allowed
+  double fit_band_inner = 0.6;      // the disk's fit: pixels between these fractions of its
+  double fit_band_outer = 1.45;     // radius (d's dots reach to 0.2 and from 1.55)
+  int fit_max_pixels = 6000;        // the band is sampled down to about this many pixels
+  int fit_iterations = 10;
+};
+
+struct BlurredDisk {
+  Eigen::Matrix3d conic_px = Eigen::Matrix3d::Zero();  // image pixels
+  double sigma_px = 0.0;                               // the image's blur (not the smoothing)
+  double inside_level = 0.0;                           // 0-255, as printed (before clipping)
+  double outside_level = 0.0;
+};
+
+struct FoundDot {
+  Eigen::Vector2d position_px = Eigen::Vector2d::Zero();
+  double significance = 0.0;  // γ / SE
+  double contrast = 0.0;      // γ times the designed contrast
+};
+
+class BlurredDotSearch {
+ public:
+  // `raw` one 8-bit channel, unsmoothed; pixels of `area` (clipped to the image) take part.
+  // `disk` the start of the disk's fit (σ, levels); `noise_sigma` the image's, 0-255.
+  BlurredDotSearch(const cv::Mat& raw,
+                   const BlurredDisk& disk,
+                   const cv::Rect& area,
+                   double noise_sigma,
+                   const BlurredDotOptions& options = {});
+
+  const BlurredDisk& disk() const { return disk_; }  // as fitted
+
+  // The disk's blur, levels and the noise, fitted on its pixels (from the start given).
+  void FitDisk();
+
+  // The best of `positions` (then
+  // refined by a pattern search around it to a quarter pixel) for a dot of radius `radius_px` and
+  // designed contrast `contrast` (+1 ink, -1 paper); nullopt unless it passes both tests.
+  std::optional<FoundDot> Find(const std::vector<Eigen::Vector2d>& positions,
+                               double radius_px,
+                               double contrast) const;
+
+ private:
+  void Paint();  // printed_ from disk_
+  bool Passes(const FoundDot& found, double contrast) const;
+  double Reach(double radius_px) const;  // of a dot's blurred image
+  // The fit for a dot at `p` on the pixels within `window_radius` of `window_center`.
+  FoundDot FitAt(const Eigen::Vector2d& p,
+                 double radius_px,
+                 double contrast,
+                 const Eigen::Vector2d& window_center,
+                 double window_radius) const;
+
+  BlurredDisk disk_;
+  cv::Rect area_;
+  double noise_sigma_;
+  BlurredDotOptions options_;
+  cv::Mat observed_;  // y over area_, CV_64F
+  cv::Mat printed_;   // μ: the disk blurred, as printed, 0-255
+};
+
+}  // namespace markerbench

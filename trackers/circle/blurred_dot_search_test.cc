@@ -1,0 +1,131 @@
+// The search of blurred dots on rendered frames of circle_d with known ground truth: given
+// the disk's true ellipse, blur and levels, it finds the centre and feature dots where the
+// print puts them at a blur that hides them from the threshold; it finds nothing on the same
+// disk printed without its dots, nor a dot of the other colour.
+#include "trackers/circle/blurred_dot_search.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "core/marker_yaml.h"
+#include "renderer/test_scenes.h"
+#include "testing/square_tracker_testing.h"
+#include "trackers/circle/conic.h"
+
+namespace markerbench {
+namespace {
+
+constexpr double kBlurPx = 6.0;
+constexpr double kNoiseVar = 0.0005;  // σ 5.7 levels: next to no clipping at the inks
+
+struct Scene {
+  MarkerSpec marker = LoadMarkerYaml("scenarios/markers/circle_d.yaml");
+  Rigid3 truth = TiltedView(1.0, 30.0, 50.0);
+  Eigen::Matrix3d K = Camera().K();
+  Eigen::Matrix3d H;  // marker plane to image
+  BlurredDisk disk;
+  Scene() {
+    H << truth.rotation.col(0), truth.rotation.col(1), truth.translation;
+    H = K * H;
+    disk.conic_px = ImageOfCircle<double>(H, marker.circles[0].center, marker.circles[0].radius_m);
+    disk.sigma_px = kBlurPx;
+    disk.inside_level = 0.0;
+    disk.outside_level = 255.0;
+  }
+  Eigen::Vector2d Project(const Eigen::Vector2d& p) const {
+    return (H * p.homogeneous()).hnormalized();
+  }
+  double DotRadiusPx() const {
+    const Ellipse e = EllipseFromConic(disk.conic_px);
+    return std::sqrt(e.semi_major * e.semi_minor) * 0.008 / marker.circles[0].radius_m;
+  }
+  // Trial positions 1 px apart within `reach` of `center`.
+  static std::vector<Eigen::Vector2d> Around(const Eigen::Vector2d& center, double reach) {
+    std::vector<Eigen::Vector2d> positions;
+    for (double y = -reach; y <= reach; y += 1.0) {
+      for (double x = -reach; x <= reach; x += 1.0)
+        positions.push_back(center + Eigen::Vector2d(x, y));
+    }
+    return positions;
+  }
+};
+
+cv::Mat Grey(const RenderedFrame& frame) {
+  return cv::Mat(frame.image.height,
+                 frame.image.width,
+                 CV_8UC1,
+                 const_cast<uint8_t*>(frame.image.pixels.data()));
+}
+
+TEST(BlurredDotSearch, FindsBothDotsWhereThePrintPutsThem) {
+  const Scene scene;
+  // The dots' blurred peak reaches 1 - exp(-ρ²/2σ²) ≈ 0.25 of the ink: far below mid-level.
+  EXPECT_LT(1.0 - std::exp(-std::pow(scene.DotRadiusPx() / kBlurPx, 2) / 2.0), 0.3);
+  const RenderedFrame frame = RenderMarker(scene.marker, scene.truth, kNoiseVar, kBlurPx, 5);
+  const cv::Mat image = Grey(frame);
+  const BlurredDotSearch search(
+      image, scene.disk, cv::Rect(0, 0, image.cols, image.rows), 255.0 * std::sqrt(kNoiseVar));
+  const Eigen::Vector2d m0 = scene.Project(Eigen::Vector2d(0.0, 0.0));
+  const Eigen::Vector2d m1 = scene.Project(Eigen::Vector2d(0.07, 0.0));
+  const double radius = scene.DotRadiusPx();
+
+  const std::optional<FoundDot> center = search.Find(Scene::Around(m0, 4.0), radius, -1.0);
+  ASSERT_TRUE(center);
+  EXPECT_LT((center->position_px - m0).norm(), 0.3);
+  EXPECT_NEAR(center->contrast, -1.0, 0.1);
+  EXPECT_GT(center->significance, 50.0);
+
+  const std::optional<FoundDot> feature = search.Find(Scene::Around(m1, 4.0), radius, 1.0);
+  ASSERT_TRUE(feature);
+  EXPECT_LT((feature->position_px - m1).norm(), 0.3);
+  EXPECT_NEAR(feature->contrast, 1.0, 0.1);
+
+  // Asked for a dot of the other colour, it finds none.
+  EXPECT_FALSE(search.Find(Scene::Around(m0, 4.0), radius, 1.0));
+  EXPECT_FALSE(search.Find(Scene::Around(m1, 4.0), radius, -1.0));
+}
+
+// From the edge points' values (blur low, levels those of the clipped noise, the noise as the
+// detector's estimate reads it on clipped paper), the disk's fit at σ² = 0.02 finds the blur
+// (with the pixel's area, variance 1/12) and the levels as printed, and the centre dot is
+// found where the print puts it, its contrast within the detector's tolerance (measured on
+// this frame: σ 6.61, in -7.5, out 258.9; the dot 0.56 px off, contrast -1.38).
+TEST(BlurredDotSearch, FitsTheDisksBlurAndLevels) {
+  Scene scene;
+  scene.disk.sigma_px = 4.5;
+  scene.disk.inside_level = 40.0;
+  scene.disk.outside_level = 230.0;
+  const RenderedFrame frame = RenderMarker(scene.marker, scene.truth, 0.02, kBlurPx, 5);
+  const cv::Mat image = Grey(frame);
+  BlurredDotSearch search(
+      image, scene.disk, cv::Rect(0, 0, image.cols, image.rows), 0.4 * 255.0 * std::sqrt(0.02));
+  search.FitDisk();
+  EXPECT_NEAR(search.disk().sigma_px, std::sqrt(kBlurPx * kBlurPx + 1.0 / 12.0), 0.9);
+  EXPECT_NEAR(search.disk().inside_level, 0.0, 15.0);
+  EXPECT_NEAR(search.disk().outside_level, 255.0, 10.0);
+  const Eigen::Vector2d m0 = scene.Project(Eigen::Vector2d(0.0, 0.0));
+  const std::optional<FoundDot> center =
+      search.Find(Scene::Around(m0, 4.0), scene.DotRadiusPx(), -1.0);
+  ASSERT_TRUE(center);
+  EXPECT_LT((center->position_px - m0).norm(), 1.0);
+  EXPECT_NEAR(center->contrast, -1.0, BlurredDotOptions().contrast_tolerance);
+}
+
+TEST(BlurredDotSearch, FindsNoDotOnADiskPrintedWithout) {
+  const Scene scene;
+  MarkerSpec plain = scene.marker;
+  plain.layers.resize(1);  // the disk alone
+  ASSERT_EQ(plain.layers.size(), 1u);
+  const RenderedFrame frame = RenderMarker(plain, scene.truth, kNoiseVar, kBlurPx, 5);
+  const cv::Mat image = Grey(frame);
+  BlurredDotSearch search(
+      image, scene.disk, cv::Rect(0, 0, image.cols, image.rows), 255.0 * std::sqrt(kNoiseVar));
+  search.FitDisk();
+  const double radius = scene.DotRadiusPx();
+  EXPECT_FALSE(search.Find(Scene::Around(scene.Project({0.0, 0.0}), 4.0), radius, -1.0));
+  EXPECT_FALSE(search.Find(Scene::Around(scene.Project({0.07, 0.0}), 4.0), radius, 1.0));
+}
+
+}  // namespace
+}  // namespace markerbench
