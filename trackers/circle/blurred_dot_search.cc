@@ -30,6 +30,9 @@ BlurredDotSearch::BlurredDotSearch(const cv::Mat& raw,
       noise_sigma_(255.0 * ModelNoiseSigma(noise_sigma / 255.0)),
       options_(options) {
   disk_.sigma_px = std::max(disk_.sigma_px, kMinSigmaPx);
+  stride_ = std::max(1,
+                     static_cast<int>(std::ceil(
+                         std::sqrt(static_cast<double>(area_.area()) / options_.max_area_pixels))));
   raw(area_).convertTo(observed_, CV_64F);
   Paint();
 }
@@ -43,8 +46,8 @@ void BlurredDotSearch::Paint() {
     blurred.emplace(
         *chords, disk_.sigma_px, BlurredEllipse::NodesFor(1.25 * semi_major / disk_.sigma_px));
   }
-  for (int y = 0; y < area_.height; ++y) {
-    for (int x = 0; x < area_.width; ++x) {
+  for (int y = 0; y < area_.height; y += stride_) {
+    for (int x = 0; x < area_.width; x += stride_) {
       const double ink =
           blurred ? blurred->At(Eigen::Vector2d(area_.x + x, area_.y + y)).value : 0.0;
       printed_.at<double>(y, x) =
@@ -162,16 +165,18 @@ FoundDot BlurredDotSearch::FitAt(const Eigen::Vector2d& p,
   const BlurredDiskProfile profile(radius_px / sigma);
   const Eigen::Vector2d& c = window_center;
   const double w = window_radius;
-  const int x0 = std::max(0, static_cast<int>(std::floor(c.x() - w)) - area_.x);
+  // The window's sampled pixels: multiples of the stride within the area.
+  auto first = [this](int from) { return std::max(0, (from + stride_ - 1) / stride_ * stride_); };
+  const int x0 = first(static_cast<int>(std::floor(c.x() - w)) - area_.x);
   const int x1 = std::min(area_.width - 1, static_cast<int>(std::ceil(c.x() + w)) - area_.x);
-  const int y0 = std::max(0, static_cast<int>(std::floor(c.y() - w)) - area_.y);
+  const int y0 = first(static_cast<int>(std::floor(c.y() - w)) - area_.y);
   const int y1 = std::min(area_.height - 1, static_cast<int>(std::ceil(c.y() + w)) - area_.y);
   double n = 0.0, sum_t = 0.0, sum_tt = 0.0, sum_r = 0.0, sum_tr = 0.0;
-  for (int y = y0; y <= y1; ++y) {
+  for (int y = y0; y <= y1; y += stride_) {
     const double* observed = observed_.ptr<double>(y);
     const double* printed = printed_.ptr<double>(y);
     const double wy = area_.y + y - c.y(), dy = area_.y + y - p.y();
-    for (int x = x0; x <= x1; ++x) {
+    for (int x = x0; x <= x1; x += stride_) {
       const double wx = area_.x + x - c.x(), dx = area_.x + x - p.x();
       if (wx * wx + wy * wy > w * w) continue;
       const double dot = profile.At((radius_px - std::sqrt(dx * dx + dy * dy)) / sigma).value;

@@ -34,14 +34,21 @@ namespace markerbench {
 
 struct BlurredDotOptions {
   double window_sigmas = 2.5;  // pixels within ρ + this many σ of a trial position
-  // γ in standard errors: dots of d at 1 m and blur σ 8 reach 18 or more, blobs of the
-  // negative set (circle_false_positives_test) beside other dark shapes up to 8.2.
-  double min_significance = 10.0;
+  // γ in standard errors. Under noise alone the best of a few hundred trial positions is about
+  // 3.5 (the largest of as many normal deviates); on d at 1 m and σ² = 0.02 (blur σ 3-10) centre
+  // dots measure 5-30 and feature dots 8.5-26 (with 10 here, 27/4/1 of 30 frames were found at blur
+  // σ 6/8/10; with 6, 30/16/5). Clutter passes too (white holes in dark disks, dark blobs beside
+  // them): the tracker's later tests reject it (circle_false_positives_test).
+  double min_significance = 6.0;
   double contrast_tolerance = 0.5;  // |γ - 1| allowed
   double fit_band_inner = 0.6;      // the disk's fit: pixels between these fractions of its
   double fit_band_outer = 1.45;     // radius (d's dots reach to 0.2 and from 1.55)
   int fit_max_pixels = 6000;        // the band is sampled down to about this many pixels
   int fit_iterations = 10;
+  // The dots' fits take every k-th pixel of the area in both directions, k the least that
+  // leaves at most this many: all of them for d at 1 m (about 20,000), a bound on the time for
+  // large disks under heavy blur.
+  int max_area_pixels = 40000;
 };
 
 struct BlurredDisk {
@@ -72,9 +79,9 @@ class BlurredDotSearch {
   // The disk's blur, levels and the noise, fitted on its pixels (from the start given).
   void FitDisk();
 
-  // The best of `positions` (then
-  // refined by a pattern search around it to a quarter pixel) for a dot of radius `radius_px` and
-  // designed contrast `contrast` (+1 ink, -1 paper); nullopt unless it passes both tests.
+  // The best of `positions`, refined by a pattern search around it to a quarter pixel, for a
+  // dot of radius `radius_px` and designed contrast `contrast` (+1 ink, -1 paper); nullopt
+  // unless it passes both tests.
   std::optional<FoundDot> Find(const std::vector<Eigen::Vector2d>& positions,
                                double radius_px,
                                double contrast) const;
@@ -94,8 +101,9 @@ class BlurredDotSearch {
   cv::Rect area_;
   double noise_sigma_;
   BlurredDotOptions options_;
+  int stride_ = 1;    // the pixels of area_ sampled, in both directions
   cv::Mat observed_;  // y over area_, CV_64F
-  cv::Mat printed_;   // μ: the disk blurred, as printed, 0-255
+  cv::Mat printed_;   // μ: the disk blurred, as printed, 0-255, at the sampled pixels
 };
 
 }  // namespace markerbench

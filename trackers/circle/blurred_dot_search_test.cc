@@ -33,6 +33,12 @@ struct Scene {
     disk.inside_level = 0.0;
     disk.outside_level = 255.0;
   }
+  // The pixels around the marker, as the detector takes them (the whole frame would be
+  // sampled every third pixel).
+  cv::Rect Area() const {
+    const Eigen::Vector2d c = Project(Eigen::Vector2d(0.0, 0.0));
+    return cv::Rect(static_cast<int>(c.x()) - 80, static_cast<int>(c.y()) - 80, 161, 161);
+  }
   Eigen::Vector2d Project(const Eigen::Vector2d& p) const {
     return (H * p.homogeneous()).hnormalized();
   }
@@ -64,8 +70,7 @@ TEST(BlurredDotSearch, FindsBothDotsWhereThePrintPutsThem) {
   EXPECT_LT(1.0 - std::exp(-std::pow(scene.DotRadiusPx() / kBlurPx, 2) / 2.0), 0.3);
   const RenderedFrame frame = RenderMarker(scene.marker, scene.truth, kNoiseVar, kBlurPx, 5);
   const cv::Mat image = Grey(frame);
-  const BlurredDotSearch search(
-      image, scene.disk, cv::Rect(0, 0, image.cols, image.rows), 255.0 * std::sqrt(kNoiseVar));
+  const BlurredDotSearch search(image, scene.disk, scene.Area(), 255.0 * std::sqrt(kNoiseVar));
   const Eigen::Vector2d m0 = scene.Project(Eigen::Vector2d(0.0, 0.0));
   const Eigen::Vector2d m1 = scene.Project(Eigen::Vector2d(0.07, 0.0));
   const double radius = scene.DotRadiusPx();
@@ -98,8 +103,7 @@ TEST(BlurredDotSearch, FitsTheDisksBlurAndLevels) {
   scene.disk.outside_level = 230.0;
   const RenderedFrame frame = RenderMarker(scene.marker, scene.truth, 0.02, kBlurPx, 5);
   const cv::Mat image = Grey(frame);
-  BlurredDotSearch search(
-      image, scene.disk, cv::Rect(0, 0, image.cols, image.rows), 0.4 * 255.0 * std::sqrt(0.02));
+  BlurredDotSearch search(image, scene.disk, scene.Area(), 0.4 * 255.0 * std::sqrt(0.02));
   search.FitDisk();
   EXPECT_NEAR(search.disk().sigma_px, std::sqrt(kBlurPx * kBlurPx + 1.0 / 12.0), 0.9);
   EXPECT_NEAR(search.disk().inside_level, 0.0, 15.0);
@@ -119,8 +123,7 @@ TEST(BlurredDotSearch, FindsNoDotOnADiskPrintedWithout) {
   ASSERT_EQ(plain.layers.size(), 1u);
   const RenderedFrame frame = RenderMarker(plain, scene.truth, kNoiseVar, kBlurPx, 5);
   const cv::Mat image = Grey(frame);
-  BlurredDotSearch search(
-      image, scene.disk, cv::Rect(0, 0, image.cols, image.rows), 255.0 * std::sqrt(kNoiseVar));
+  BlurredDotSearch search(image, scene.disk, scene.Area(), 255.0 * std::sqrt(kNoiseVar));
   search.FitDisk();
   const double radius = scene.DotRadiusPx();
   EXPECT_FALSE(search.Find(Scene::Around(scene.Project({0.0, 0.0}), 4.0), radius, -1.0));
