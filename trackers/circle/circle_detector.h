@@ -1,8 +1,9 @@
 // Finds the circles of one circle marker (paper Fig. 3 a-f) in an image region and measures
 // them: ink segmentation per channel on a noise-adapted smoothing, contour candidates with
 // ellipse hypotheses, identification of each circle (colour for a, the feature dot for b,
-// nesting for c, the centre dot for d and e, the largest ellipse for f), then sub-pixel
-// edges and a PND conic fit per circle.
+// nesting for c, the centre dot for d and e, the largest ellipse for f; d's and e's dots by
+// their blurred images where blur hides them from the threshold), then sub-pixel edges and a
+// PND conic fit per circle.
 #pragma once
 
 #include <Eigen/Core>

@@ -341,7 +341,7 @@ TEST(CircleTracker, TracksFromThePreviousPoseAndResets) {
 // 0.8 m, blur σ 5 and σ² 0.02, where the dots (4.8 and 5.3 px in radius) peak at 0.37 and 0.42
 // of their ink. The search of blurred dots finds them (without it none is detected), and the
 // camera-centre error is within twice the Cramér-Rao bound's RMS for the frame (measured:
-// 1.06-1.40 for d, 0.34-0.79 for e; d's errors are 2-6 % of the distance, its bound as large).
+// 1.06-1.39 for d, 0.34-0.79 for e; d's errors are 2-6 % of the distance, its bound as large).
 TEST(CircleTracker, FindsTheDotsOfDAndEUnderBlur) {
   const Camera camera = FrameRequest().scene.camera;
   CircleTrackerOptions without;
