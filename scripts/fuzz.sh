@@ -14,8 +14,9 @@ cmake --build build-fuzz --parallel "$(nproc)" --target loaders_fuzz track_fuzz
 mkdir -p build-fuzz/findings
 for seeds in bench/fuzz_corpus/loaders_fuzz trackers/fuzz_corpus/track_fuzz; do
   name="$(basename "$seeds")"
-  binary="build-fuzz/$(dirname "$(dirname "$seeds")")/$name"
-  regressions="$(dirname "$(dirname "$seeds")")/fuzz_regressions/$name"
+  folder="$(dirname "$(dirname "$seeds")")"  # bench or trackers
+  binary="build-fuzz/$folder/$name"
+  regressions="$folder/fuzz_regressions/$name"
   if [ -d "$regressions" ]; then
     echo "== replaying $regressions"
     "$binary" -timeout=1 -rss_limit_mb=4096 "$regressions"/*

@@ -138,7 +138,8 @@ void BlurredDotSearch::FitDisk() {
     if (!shown || std::abs(*shown / noise - 1.0) <= 0.1) break;
     noise = ModelNoiseSigma(*shown);
   }
-  if (!theta.allFinite()) return;
+  // A fit gone astray leaves the start.
+  if (!theta.allFinite() || !(theta[0] <= 2.0 * semi_major)) return;
   noise_sigma_ = 255.0 * noise;
   disk_.sigma_px = theta[0];
   disk_.inside_level = 255.0 * theta[1];

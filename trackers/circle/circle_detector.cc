@@ -348,6 +348,10 @@ std::optional<CircleDetector::DiskWithDots> CircleDetector::BlurredDots(
     sigma = edges.sigma_px;
   }
   const Ellipse e = EllipseFromConic(found.conic);
+  // A disk within the region, blurred by less than its size (this also bounds the work).
+  if (!(e.semi_major <= std::max(raw.cols, raw.rows)) || !(sigma <= e.semi_major)) {
+    return std::nullopt;
+  }
   const double r0 = geometry_.radii_m[0];
   const double per_radius = std::sqrt(e.semi_major * e.semi_minor) / r0;  // px per metre
   const double dot_px = dot_radius_m_ * per_radius;
