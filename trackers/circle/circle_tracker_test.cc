@@ -382,13 +382,17 @@ TEST(CircleTracker, OptionsFromYamlNameTheBadKey) {
                                          "good: {cost: conics, huber_px: 2.0, k_normal: false,"
                                          " min_branch_angle_rad: 0.05,"
                                          " max_other_tilt_log_ratio: 30,"
-                                         " min_design_radius_per_blur: 5}\n"
+                                         " min_design_radius_per_blur: 5,"
+                                         " max_blurred_dot_disks: 0,"
+                                         " blurred_dot_min_significance: 8}\n"
                                          "bad_value: {huber_px: -1}\n"
                                          "bad_cost: {cost: sampson}\n"
                                          "unknown: {hubr_px: 1}\n"
                                          "bad_branch: {min_branch_angle_rad: 2.0}\n"
                                          "bad_radius: {min_design_radius_per_blur: -1}\n"
-                                         "bad_ratio: {max_other_tilt_log_ratio: -1}\n");
+                                         "bad_ratio: {max_other_tilt_log_ratio: -1}\n"
+                                         "bad_peak: {max_blurred_dot_peak: 1.5}\n"
+                                         "bad_dot: {min_blurred_dot_radius_px: 0}\n");
   const YamlMap root = YamlMap::LoadFile(path);
   const CircleTrackerOptions good = CircleTrackerOptions::FromYaml(root.GetMap("good"));
   EXPECT_EQ(good.refinement.cost, RefinementCost::kConics);
@@ -397,8 +401,16 @@ TEST(CircleTracker, OptionsFromYamlNameTheBadKey) {
   EXPECT_EQ(good.min_branch_angle_rad, 0.05);
   EXPECT_EQ(good.min_design_radius_per_blur, 5.0);
   EXPECT_EQ(good.max_other_tilt_log_ratio, 30.0);
-  for (const char* key :
-       {"bad_value", "bad_cost", "unknown", "bad_branch", "bad_radius", "bad_ratio"}) {
+  EXPECT_EQ(good.detector.max_blurred_dot_disks, 0);
+  EXPECT_EQ(good.detector.blurred_dots.min_significance, 8.0);
+  for (const char* key : {"bad_value",
+                          "bad_cost",
+                          "unknown",
+                          "bad_branch",
+                          "bad_radius",
+                          "bad_ratio",
+                          "bad_peak",
+                          "bad_dot"}) {
     try {
       CircleTrackerOptions::FromYaml(root.GetMap(key));
       ADD_FAILURE() << key << " was accepted";
