@@ -39,6 +39,8 @@ BlurredDotSearch::BlurredDotSearch(const cv::Mat& raw,
 
 void BlurredDotSearch::Paint() {
   printed_.create(observed_.size(), CV_64F);
+  expected_.create(observed_.size(), CV_64F);
+  const double noise = noise_sigma_ / 255.0;
   const std::optional<EllipseChords<double>> chords = ChordsOfConic(disk_.conic_px);
   std::optional<BlurredEllipse> blurred;
   if (chords) {
@@ -50,8 +52,9 @@ void BlurredDotSearch::Paint() {
     for (int x = 0; x < area_.width; x += stride_) {
       const double ink =
           blurred ? blurred->At(Eigen::Vector2d(area_.x + x, area_.y + y)).value : 0.0;
-      printed_.at<double>(y, x) =
-          disk_.outside_level + (disk_.inside_level - disk_.outside_level) * ink;
+      const double printed = disk_.outside_level + (disk_.inside_level - disk_.outside_level) * ink;
+      printed_.at<double>(y, x) = printed;
+      expected_.at<double>(y, x) = Clipped(printed, noise);
     }
   }
 }
@@ -176,12 +179,13 @@ FoundDot BlurredDotSearch::FitAt(const Eigen::Vector2d& p,
   for (int y = y0; y <= y1; y += stride_) {
     const double* observed = observed_.ptr<double>(y);
     const double* printed = printed_.ptr<double>(y);
+    const double* expected = expected_.ptr<double>(y);
     const double wy = area_.y + y - c.y(), dy = area_.y + y - p.y();
     for (int x = x0; x <= x1; x += stride_) {
       const double wx = area_.x + x - c.x(), dx = area_.x + x - p.x();
       if (wx * wx + wy * wy > w * w) continue;
       const double dot = profile.At((radius_px - std::sqrt(dx * dx + dy * dy)) / sigma).value;
-      const double without = Clipped(printed[x], noise);
+      const double without = expected[x];
       const double t = Clipped(printed[x] + step * dot, noise) - without;
       const double r = observed[x] - without;
       n += 1.0;

@@ -104,6 +104,7 @@ class BlurredDotSearch {
   int stride_ = 1;    // the pixels of area_ sampled, in both directions
   cv::Mat observed_;  // y over area_, CV_64F
   cv::Mat printed_;   // μ: the disk blurred, as printed, 0-255, at the sampled pixels
+  cv::Mat expected_;  // c(μ) there: their mean after the noise and its clipping
 };
 
 }  // namespace markerbench
