@@ -69,6 +69,30 @@ double CircumRadius(const Eigen::Vector2d& a, const Eigen::Vector2d& b, const Ei
   return std::sqrt(ab.squaredNorm() * bc.squaredNorm() * ca.squaredNorm()) / (2.0 * twice_area);
 }
 
+// The image through H of a point X on the marker's plane with its derivatives: the Jets'
+// arithmetic written out (their temporaries took a third of the model's time, one point per
+// half pixel of every edge).
+template <class Jet>
+Eigen::Matrix<Jet, 2, 1> ProjectPlanePoint(const Eigen::Matrix<Jet, 3, 3>& H,
+                                           const Eigen::Vector2d& X) {
+  Jet p[3];
+  for (int r = 0; r < 3; ++r) {
+    p[r].a = H(r, 0).a * X.x() + H(r, 1).a * X.y() + H(r, 2).a;
+    for (int i = 0; i < p[r].v.size(); ++i) {
+      p[r].v[i] = H(r, 0).v[i] * X.x() + H(r, 1).v[i] * X.y() + H(r, 2).v[i];
+    }
+  }
+  Eigen::Matrix<Jet, 2, 1> x;
+  const double inverse_depth = 1.0 / p[2].a;
+  for (int r = 0; r < 2; ++r) {
+    x[r].a = p[r].a * inverse_depth;
+    for (int i = 0; i < p[r].v.size(); ++i) {
+      x[r].v[i] = (p[r].v[i] - x[r].a * p[2].v[i]) * inverse_depth;
+    }
+  }
+  return x;
+}
+
 // The fit of the model to every pixel and channel (least squares where a pixel is not clipped,
 // its likelihood where it is: clipped_noise.h), in the parameters
 // θ = (angle-axis (3), translation (3), σ, then offset and gain per channel). The edge points
@@ -147,10 +171,7 @@ class PixelModel {
         continue;
       }
       edges[l].reserve(layer.bins);
-      for (const Eigen::Vector2d& X : layer.edge) {
-        const Eigen::Matrix<Jet, 3, 1> p = H.col(0) * X.x() + H.col(1) * X.y() + H.col(2);
-        edges[l].emplace_back(p.x() / p.z(), p.y() / p.z());
-      }
+      for (const Eigen::Vector2d& X : layer.edge) edges[l].push_back(ProjectPlanePoint(H, X));
       const Eigen::Matrix<Jet, 3, 1> center(
           Jet(layer.disk.center.x()), Jet(layer.disk.center.y()), Jet(0.0));
       size_per_sigma[l] = layer.start_depth_m / ((R * center + t).z() * sigma);
@@ -183,26 +204,31 @@ class PixelModel {
           normal.x() * (p.ideal_px.x() - edge.x().a) + normal.y() * (p.ideal_px.y() - edge.y().a);
       const ProfileValue g = profiles[near.layer][near.bin].At(-distance / sigma_value);
       if (d) {
-        const Eigen::Matrix<double, 7, 1> d_distance =
-            -normal.x() * edge.x().v - normal.y() * edge.y().v;
-        const Eigen::Matrix<double, 7, 1> d_z =
-            -d_distance / sigma_value + (distance / (sigma_value * sigma_value)) * d_sigma;
-        *d = g.d_dz * d_z +
-             (g.d_ds * layer.start_curvature_radius_px[near.bin]) * size_per_sigma[near.layer].v;
+        // ∂G/∂θ = G_z ∂z/∂θ + G_s ρ ∂(s/ρ)/∂θ, z = -d/σ, ∂d/∂θ = -n·∂e/∂θ (and ∂σ/∂θ = e₇).
+        const double along_edge = g.d_dz / sigma_value;
+        const double along_size = g.d_ds * layer.start_curvature_radius_px[near.bin];
+        const Jet& size = size_per_sigma[near.layer];
+        for (int i = 0; i < 7; ++i) {
+          (*d)[i] = along_edge * (normal.x() * edge.x().v[i] + normal.y() * edge.y().v[i]) +
+                    along_size * size.v[i];
+        }
+        (*d)[6] += along_edge * distance / sigma_value;
       }
       return g.value;
     };
     for (const Pixel& p : pixels_.pixels) {
-      // The printed colour and its gradient, ∂printed_c/∂θ = Σ_k jump_kc ∂inside_k/∂θ.
+      // The printed colour and its gradient, ∂printed_c/∂θ = Σ_k jump_kc ∂inside_k/∂θ: with
+      // one edge (most pixels) jump_c ∂inside/∂θ, else summed in d_printed.
+      const bool one_edge = p.edges == 1;
       Eigen::Vector3d printed = p.base;
       Eigen::Matrix<double, 7, 3> d_printed;
-      Eigen::Matrix<double, 7, 1> d_inside;  // of the last edge: the only one for most pixels
-      if (jtj) d_printed.setZero();
+      Eigen::Matrix<double, 7, 1> d_inside;
+      if (jtj && !one_edge) d_printed.setZero();
       for (int k = p.first_edge; k < p.first_edge + p.edges; ++k) {
         const NearEdge& near = pixels_.near_edges[k];
         const Eigen::Vector3d& jump = layers_[near.layer].jump;
         printed += inside(p, near, jtj ? &d_inside : nullptr) * jump;
-        if (jtj) d_printed += d_inside * jump.transpose();
+        if (jtj && !one_edge) d_printed += d_inside * jump.transpose();
       }
       // Each channel's term at μ_c = offset_c + gain_c printed_c, the pixel clipped and
       // rounded (clipped_noise.h).
@@ -215,37 +241,43 @@ class PixelModel {
       }
       if (!jtj) continue;
       // Channel c's row is -∂μ_c/∂θ = (-gain_c ∂printed_c/∂θ, -1, -printed_c) on (θ 0-6, its
-      // offset and gain), with its term's residual in Jᵀr and weight in JᵀJ. The pose block
-      // gets Σ_c w_c row_c row_cᵀ; with one edge the rows are one vector scaled, so the
-      // channels share one outer product. Upper triangles, written out (Eigen's products of
-      // these small blocks took twice as long here).
-      double shared_weight = 0.0;  // one edge: Σ_c w_c (gain_c jump_c)²
+      // offset and gain), with its term's residual in Jᵀr and weight in JᵀJ. With one edge
+      // the rows' pose parts are ∂inside/∂θ scaled by -gain_c jump_c, so the channels share
+      // one outer product and one gradient, and a channel the edge does not change adds to
+      // its levels alone. Upper triangles, written out (Eigen's products of these small
+      // blocks took twice as long here).
+      double shared_weight = 0.0, shared_residual = 0.0;  // one edge: Σ_c w_c scale_c², r_c scale_c
       for (int c = 0; c < channels_; ++c) {
         const double gain = levels[2 * c + 1];
         const double r = terms[c].residual, w = terms[c].weight;
-        const Eigen::Matrix<double, 7, 1> row = -gain * d_printed.col(c);
-        if (p.edges == 1) {
-          const double scale = gain * layers_[pixels_.near_edges[p.first_edge].layer].jump[c];
-          shared_weight += w * scale * scale;
-        } else {
-          for (int i = 0; i < 7; ++i) {
-            for (int j = 0; j <= i; ++j) normal(j, i) += w * row[i] * row[j];
-          }
-        }
         const int level = 7 + 2 * c;
-        for (int i = 0; i < 7; ++i) {
-          gradient[i] += r * row[i];
-          normal(i, level) -= w * row[i];
-          normal(i, level + 1) -= w * row[i] * printed[c];
-        }
         normal(level, level) += w;
         normal(level, level + 1) += w * printed[c];
         normal(level + 1, level + 1) += w * printed[c] * printed[c];
         gradient[level] -= r;
         gradient[level + 1] -= r * printed[c];
-      }
-      if (p.edges == 1) {
+        Eigen::Matrix<double, 7, 1> row;
+        if (one_edge) {
+          const double scale = -gain * layers_[pixels_.near_edges[p.first_edge].layer].jump[c];
+          if (scale == 0.0) continue;
+          shared_weight += w * scale * scale;
+          shared_residual += r * scale;
+          row = scale * d_inside;
+        } else {
+          row = -gain * d_printed.col(c);
+          for (int i = 0; i < 7; ++i) {
+            gradient[i] += r * row[i];
+            for (int j = 0; j <= i; ++j) normal(j, i) += w * row[i] * row[j];
+          }
+        }
         for (int i = 0; i < 7; ++i) {
+          normal(i, level) -= w * row[i];
+          normal(i, level + 1) -= w * row[i] * printed[c];
+        }
+      }
+      if (one_edge) {
+        for (int i = 0; i < 7; ++i) {
+          gradient[i] += shared_residual * d_inside[i];
           for (int j = 0; j <= i; ++j) normal(j, i) += shared_weight * d_inside[i] * d_inside[j];
         }
       }
@@ -364,6 +396,14 @@ PixelSet PixelsNearEdges(const Image8& image,
     int u0, v0, u1, v1;
   };
   std::vector<Box> boxes;
+  // Each edge's ellipse: a pixel farther than its semi-major axis + band from its centre, or
+  // nearer than its semi-minor axis - band, is beyond the band (with a pixel to spare for
+  // the distance's first-order form), and needs no distance.
+  struct Annulus {
+    Eigen::Vector2d center;
+    double outer_squared, inner_squared;
+  };
+  std::vector<Annulus> annuli;
   Box all{image.width, image.height, -1, -1};
   // Pixel coordinates clamped to the image (as doubles first: an ellipse may lie far off it).
   const auto column = [&](double u) {
@@ -374,6 +414,8 @@ PixelSet PixelsNearEdges(const Image8& image,
   };
   for (const Eigen::Matrix3d& conic : conics) {
     const Ellipse e = EllipseFromConic(conic);
+    const double inner = std::max(0.0, e.semi_minor - band - 1.0);
+    annuli.push_back({e.center, std::pow(e.semi_major + band + 1.0, 2), inner * inner});
     const double reach = e.semi_major + band + 2.0;
     boxes.push_back({column(e.center.x() - reach),
                      row(e.center.y() - reach),
@@ -399,7 +441,14 @@ PixelSet PixelsNearEdges(const Image8& image,
         // Signed distance to each edge, negative inside.
         bool near_any = false;
         for (size_t m = 0; m < layers.size(); ++m) {
-          distances[m] = PndResidual<double>(conics[m], ideal.x(), ideal.y());
+          const double from_center_squared = (ideal - annuli[m].center).squaredNorm();
+          if (from_center_squared > annuli[m].outer_squared) {
+            distances[m] = std::numeric_limits<double>::infinity();
+          } else if (from_center_squared < annuli[m].inner_squared) {
+            distances[m] = -std::numeric_limits<double>::infinity();
+          } else {
+            distances[m] = PndResidual<double>(conics[m], ideal.x(), ideal.y());
+          }
           near_any =
               near_any || std::abs(distances[m]) <= band || (layers[m].whole && distances[m] < 0.0);
         }
