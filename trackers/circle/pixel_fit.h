@@ -46,8 +46,10 @@ inline Eigen::VectorXd StartLevels(int parameters) {
   return levels;
 }
 
-// From a pose and σ, at StartLevels; σ kept at 0.2 px at least. Stops when a step lowers the
-// cost by less than 1e-6 of it (Ceres's function tolerance).
+// From a pose and σ, at StartLevels; σ kept at 0.2 px at least. Stops where a step lowers the
+// cost by less than 1e-6 of it (Ceres's function tolerance), or where the normal equations
+// predict that of the next undamped step (saving the evaluation of a step that would not
+// count).
 template <class Model>
 PixelFit FitPixels(const Model& model,
                    const Rigid3& cam_from_marker,
@@ -59,16 +61,23 @@ PixelFit FitPixels(const Model& model,
   Eigen::VectorXd jtr, trial_jtr;
   double cost = model.Evaluate(theta, &jtj, &jtr);
   PixelFit fit;
-  double damping = 1e-3;
+  constexpr double kStartDamping = 1e-3;
+  double damping = kStartDamping;
+  bool after_a_step = false;  // the last trial was taken
   for (int iteration = 0; iteration < max_iterations; ++iteration) {
     Eigen::MatrixXd damped = jtj;
     damped.diagonal() += damping * jtj.diagonal();
-    Eigen::VectorXd trial = theta + damped.ldlt().solve(-jtr);
+    const Eigen::VectorXd step = damped.ldlt().solve(-jtr);
+    // The cost Σ r² changes by 2 Jᵀr·δ + δᵀ JᵀJ δ to second order.
+    const double predicted_decrease = -(2.0 * jtr.dot(step) + step.dot(jtj * step));
+    if (after_a_step && damping <= kStartDamping && predicted_decrease < 1e-6 * cost) break;
+    Eigen::VectorXd trial = theta + step;
     trial[6] = std::max(trial[6], 0.2);
     // With its normal equations: most steps are taken, and then they are the next ones.
     const double trial_cost = model.Evaluate(trial, &trial_jtj, &trial_jtr);
     ++fit.iterations;
-    if (!(trial_cost < cost)) {
+    after_a_step = trial_cost < cost;
+    if (!after_a_step) {
       damping *= 10.0;
       if (damping > 1e6) break;
       continue;
