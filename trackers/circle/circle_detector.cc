@@ -325,6 +325,37 @@ CircleEdges CircleDetector::EdgesOf(size_t i,
                          options_.edges);
 }
 
+CircleDetector::FittedEdges CircleDetector::FitEdgesInPasses(size_t i,
+                                                             const cv::Mat& smoothed,
+                                                             const Eigen::Matrix3d& start,
+                                                             double sigma_start_px,
+                                                             int passes,
+                                                             bool refine_last) const {
+  ConicFitOptions direct = options_.fit;
+  direct.refine_pnd = false;
+  FittedEdges fitted;
+  fitted.conic = start;
+  double sigma = sigma_start_px;
+  for (int pass = 0; pass < passes; ++pass) {
+    fitted.edges = EdgesOf(i, smoothed, fitted.conic, sigma);
+    const size_t kept = fitted.edges.points_px.size();
+    if (kept < 8 || kept < options_.min_edge_fraction * fitted.edges.rays) {
+      fitted.error = "edges found on only " + std::to_string(kept) + " of " +
+                     std::to_string(fitted.edges.rays) + " rays of circle " + std::to_string(i);
+      return fitted;
+    }
+    const std::optional<ConicFit> fit = FitEllipse(
+        fitted.edges.points_px, pass + 1 == passes && refine_last ? options_.fit : direct);
+    if (!fit) {
+      fitted.error = "the edge points of a circle give no ellipse";
+      return fitted;
+    }
+    fitted.conic = fit->conic;
+    sigma = fitted.edges.sigma_px;
+  }
+  return fitted;
+}
+
 std::optional<CircleDetector::DiskWithDots> CircleDetector::BlurredDots(
     const cv::Mat& raw,
     const cv::Mat& smoothed,
@@ -332,21 +363,13 @@ std::optional<CircleDetector::DiskWithDots> CircleDetector::BlurredDots(
     double smoothing_sigma_px,
     double noise_sigma) const {
   // The disk's ellipse, blur and levels from its edges, in the detector's passes.
+  const FittedEdges fitted = FitEdgesInPasses(
+      0, smoothed, conic, smoothing_sigma_px + 1.0, options_.edge_passes, false);
+  if (!fitted.error.empty()) return std::nullopt;
+  const CircleEdges& edges = fitted.edges;
+  const double sigma = edges.sigma_px;
   DiskWithDots found;
-  found.conic = conic;
-  CircleEdges edges;
-  double sigma = smoothing_sigma_px + 1.0;
-  ConicFitOptions direct = options_.fit;
-  direct.refine_pnd = false;
-  for (int pass = 0; pass < options_.edge_passes; ++pass) {
-    edges = EdgesOf(0, smoothed, found.conic, sigma);
-    const size_t kept = edges.points_px.size();
-    if (kept < 8 || kept < options_.min_edge_fraction * edges.rays) return std::nullopt;
-    const std::optional<ConicFit> fit = FitEllipse(edges.points_px, direct);
-    if (!fit) return std::nullopt;
-    found.conic = fit->conic;
-    sigma = edges.sigma_px;
-  }
+  found.conic = fitted.conic;
   const Ellipse e = EllipseFromConic(found.conic);
   // A disk within the region, blurred by less than its size (this also bounds the work).
   if (!(e.semi_major <= std::max(raw.cols, raw.rows)) || !(sigma <= e.semi_major)) {
@@ -622,8 +645,6 @@ std::optional<MarkerDetection> CircleDetector::Detect(
   // PND refinement of the conic only in the last. A prediction needs one pass, and no PND
   // refinement: the pose refinement (cost B) works on the edges themselves.
   const int passes = from_prediction ? 1 : options_.edge_passes;
-  ConicFitOptions direct = options_.fit;
-  direct.refine_pnd = false;
   // Full-resolution smoothing only around the circles, with room for rays at σ up to 12 px.
   cv::Rect patch;
   for (size_t i = 0; i < initial.size(); ++i) {
@@ -649,23 +670,15 @@ std::optional<MarkerDetection> CircleDetector::Detect(
   const Eigen::Vector2d patch_offset = offset + Eigen::Vector2d(patch.x, patch.y);
   shift.topRightCorner<2, 1>() = -patch_offset;
   for (size_t i = 0; i < initial.size(); ++i) {
-    const cv::Mat& channel = smoothed[plans_[i].channel];
+    FittedEdges fitted = FitEdgesInPasses(i,
+                                          smoothed[plans_[i].channel],
+                                          initial[i],
+                                          detection.smoothing_sigma_px + 1.0,
+                                          passes,
+                                          !from_prediction);
+    if (!fitted.error.empty()) return fail(fitted.error);
     DetectedCircle circle;
-    Eigen::Matrix3d hypothesis = initial[i];
-    double sigma = detection.smoothing_sigma_px + 1.0;
-    for (int pass = 0; pass < passes; ++pass) {
-      circle.edges = EdgesOf(i, channel, hypothesis, sigma);
-      const size_t kept = circle.edges.points_px.size();
-      if (kept < 8 || kept < options_.min_edge_fraction * circle.edges.rays) {
-        return fail("edges found on only " + std::to_string(kept) + " of " +
-                    std::to_string(circle.edges.rays) + " rays of circle " + std::to_string(i));
-      }
-      const std::optional<ConicFit> fit = FitEllipse(
-          circle.edges.points_px, pass + 1 == passes && !from_prediction ? options_.fit : direct);
-      if (!fit) return fail("the edge points of a circle give no ellipse");
-      hypothesis = fit->conic;
-      sigma = circle.edges.sigma_px;
-    }
+    circle.edges = std::move(fitted.edges);
     // The edge contrast must stand out of the noise left after smoothing (a Gaussian of σ_s
     // divides white noise by 2√π σ_s): blobs of pure noise reach about 6 of those σ.
     const double contrast =
@@ -675,7 +688,7 @@ std::optional<MarkerDetection> CircleDetector::Detect(
     if (contrast < options_.min_contrast || contrast < options_.min_contrast_snr * smoothed_noise) {
       return fail("circle " + std::to_string(i) + " has too little contrast for the noise");
     }
-    circle.conic_px = CanonicalConic(shift.transpose() * hypothesis * shift);
+    circle.conic_px = CanonicalConic(shift.transpose() * fitted.conic * shift);
     for (Eigen::Vector2d& p : circle.edges.points_px) p += patch_offset;
     detection.circles.push_back(std::move(circle));
   }

@@ -91,6 +91,20 @@ class CircleDetector {
                       const cv::Mat& smoothed,
                       const Eigen::Matrix3d& hypothesis,
                       double sigma_start_px) const;
+  struct FittedEdges {
+    CircleEdges edges;
+    Eigen::Matrix3d conic = Eigen::Matrix3d::Zero();
+    std::string error;  // empty when found
+  };
+  // Circle `i`'s edges and conic in `passes` passes of EdgesOf, each from the last pass's
+  // conic and blur; the conic's PND refinement in the last when `refine_last`. An error where
+  // too few rays find an edge or the points give no ellipse.
+  FittedEdges FitEdgesInPasses(size_t i,
+                               const cv::Mat& smoothed,
+                               const Eigen::Matrix3d& start,
+                               double sigma_start_px,
+                               int passes,
+                               bool refine_last) const;
   struct DiskWithDots {
     Eigen::Matrix3d conic = Eigen::Matrix3d::Zero();
     Eigen::Vector2d m0_px = Eigen::Vector2d::Zero();
