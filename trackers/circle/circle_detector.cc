@@ -363,8 +363,8 @@ std::optional<CircleDetector::DiskWithDots> CircleDetector::BlurredDots(
     double smoothing_sigma_px,
     double noise_sigma) const {
   // The disk's ellipse, blur and levels from its edges, in the detector's passes.
-  const FittedEdges fitted = FitEdgesInPasses(
-      0, smoothed, conic, smoothing_sigma_px + 1.0, options_.edge_passes, false);
+  const FittedEdges fitted =
+      FitEdgesInPasses(0, smoothed, conic, smoothing_sigma_px + 1.0, options_.edge_passes, false);
   if (!fitted.error.empty()) return std::nullopt;
   const CircleEdges& edges = fitted.edges;
   const double sigma = edges.sigma_px;
