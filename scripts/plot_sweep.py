@@ -52,6 +52,16 @@ def number(text):
     return float(text) if text != "" else float("nan")
 
 
+def log_scale(ax):
+    """A log y axis where the axis shows a positive value; else a linear one that says it
+    has none (a scored run without times, a tracker that failed every frame)."""
+    if any(math.isfinite(y) and y > 0 for line in ax.get_lines() for y in line.get_ydata()):
+        ax.set_yscale("log")
+    else:
+        ax.text(0.5, 0.5, "no values", transform=ax.transAxes, ha="center", va="center",
+                color="grey")
+
+
 def band(rows, column, scale):
     """A column of summary.csv scaled, NaN where empty or absent (an older summary)."""
     return [scale * number(r.get(column) or "") for r in rows]
@@ -99,7 +109,7 @@ def plot_errors(directory, scenario, series):
         at_bound = band(rows, "success_at_bound", 100)
         if any(math.isfinite(s) for s in at_bound):
             ok_ax.plot(x, at_bound, ":", color=line.get_color(), linewidth=1.0)
-    err_ax.set_yscale("log")
+    log_scale(err_ax)
     if floors:
         bottom = err_ax.get_ylim()[0]
         for x, bound, color in floors:
@@ -138,13 +148,13 @@ def plot_rotation_and_time(directory, scenario, series):
                     linewidth=1.0)
         time_ax.plot(x, band(rows, "time_median_ms", 1), "o-", color=line.get_color(),
                      markersize=4)
-    rot_ax.set_yscale("log")
+    log_scale(rot_ax)
     rot_ax.set_ylabel("rotation error (°)\nmedian (95% band), bound dotted")
     rot_ax.grid(True, which="both", alpha=0.3)
     rot_ax.legend(fontsize=8, loc="upper left", bbox_to_anchor=(1.01, 1.0), borderaxespad=0)
     rot_ax.set_title(f"{scenario}: rotation error and time per frame versus "
                      f"{LABELS.get(parameter, parameter)}")
-    time_ax.set_yscale("log")
+    log_scale(time_ax)
     time_ax.set_ylabel("time per frame (ms)\nmedian")
     time_ax.set_xlabel(LABELS.get(parameter, parameter))
     time_ax.grid(True, which="both", alpha=0.3)
@@ -284,7 +294,7 @@ def plot_error_time(directory, scenario, entry):
             )[0]
             lost = [t for t, e in points if e is None]
             ax.plot(lost, [0] * len(lost), "|", color=line.get_color(), transform=ax.get_xaxis_transform(), markersize=8)
-        ax.set_yscale("log")
+        log_scale(ax)
         ax.set_ylabel("position error (mm)")
         ax.set_title(f"{marker} (trial 0; grey: marker hidden; ticks: no pose)", fontsize=10)
         ax.legend(fontsize=8, loc="upper right")
