@@ -5,7 +5,8 @@ Each table sits in README.md (the circle accuracy table also in results/circle_a
 the paper sweeps' times in results/speed.md) between
     <!-- readme_figures.py: NAME -->   and   <!-- end NAME -->
 and is computed from results/ (summary.csv of results/circle_accuracy and results/paper,
-results/paper/breakdowns.csv, results/paper/report.md, results/speed.md, results/sequences/sequence_summary.csv).
+results/paper/breakdowns.csv, results/paper/report.md, results/speed.md, results/sequences/sequence_summary.csv,
+results/independent/*/summary.csv).
 
     readme_figures.py --check   exit 1 naming each table that differs from results/ (ctest)
     readme_figures.py --write   rewrite the tables in the documents (DOCUMENTS)
@@ -338,9 +339,30 @@ def sequences():
     return lines
 
 
+def independent_render():
+    """The circle tracker on the frames of scenarios/independent/ from both renderers
+    (scripts/independent_render.py): success and median error, markerbench's / the other's."""
+    ours = read_summary("results/independent/ours/summary.csv")
+    other = {(r["scenario"], r["sweep_value"], r["marker"]): r
+             for r in read_summary("results/independent/independent/summary.csv")}
+    labels = {"noise_var": "σ² = {}, 0.6 m", "blur_sigma_px": "blur σ = {} px, 1 m",
+              "distance_m": "{} m, σ² = 0.02"}
+    lines = ["| frames | marker | success: markerbench / other renderer | median error, mm: "
+             "markerbench / other renderer |", "|---|---|---|---|"]
+    for r in ours:
+        o = other[(r["scenario"], r["sweep_value"], r["marker"])]
+        errors = " / ".join(significant(1e3 * number(x["position_error_median_m"]))
+                            if number(x["success_rate"]) > 0 else "-" for x in (r, o))
+        lines.append(f"| {labels[r['sweep_parameter']].format(r['sweep_value'])} | "
+                     f"`{r['marker']}` | {100 * number(r['success_rate']):.0f} / "
+                     f"{100 * number(o['success_rate']):.0f} % | {errors} |")
+    return lines
+
+
 TABLES = {"circle_accuracy": circle_accuracy, "circle_markers": circle_markers, "efficiency": efficiency,
           "breakdowns": breakdowns, "baselines": baselines, "clean_accuracy": clean_accuracy,
-          "speed": speed, "paper_sweep_times": paper_sweep_times, "sequences": sequences}
+          "speed": speed, "paper_sweep_times": paper_sweep_times, "sequences": sequences,
+          "independent_render": independent_render}
 # The documents and the tables each holds.
 DOCUMENTS = {"README.md": [t for t in TABLES if t != "paper_sweep_times"],
              "results/circle_accuracy.md": ["circle_accuracy"],

@@ -48,8 +48,8 @@ inline Eigen::VectorXd StartLevels(int parameters) {
 
 // From a pose and σ, at StartLevels; σ kept at 0.2 px at least. Stops where a step lowers the
 // cost by less than 1e-6 of it (Ceres's function tolerance), or where the normal equations
-// predict that of the next undamped step (saving the evaluation of a step that would not
-// count).
+// predict that of the next step after a taken one, damped no more than the first (saving the
+// evaluation of a step that would not count).
 template <class Model>
 PixelFit FitPixels(const Model& model,
                    const Rigid3& cam_from_marker,

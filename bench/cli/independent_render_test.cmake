@@ -1,0 +1,57 @@
+# Two renderers written apart agree: markerbench's (exact areas) and
+# scripts/independent_render.py's (8x8 point samples a pixel, OpenCV's blur), on noise-free
+# frames of circles_a (RGB) and circle_d (grey), sharp and blurred. Sampling places an edge
+# crossing a pixel to 1/8 px, so a sharp frame's pixel may differ by up to 255/8 levels, a
+# blurred one by far less; a half-pixel shift or a wrong colour would differ by many more.
+# Run by ctest as bench/independent_render.
+file(REMOVE_RECURSE ${WORK_DIR})
+file(MAKE_DIRECTORY ${WORK_DIR})
+file(WRITE ${WORK_DIR}/agreement.yaml "name: agreement
+camera: ${SOURCE_DIR}/scenarios/cameras/default.yaml
+markers:
+  - ${SOURCE_DIR}/scenarios/markers/circles_a.yaml
+  - ${SOURCE_DIR}/scenarios/markers/circle_d.yaml
+equal_ink_area_m2: 0.01
+trackers:
+  - {name: circle}
+poses: {sampler: look_at, distance_m: 0.6, tilt_deg: [0, 60], azimuth_deg: [0, 360],
+        roll_deg: [0, 360], max_offset_px: 100}
+sweep: {parameter: blur_sigma_px, values: [0, 2]}
+trials: 3
+seed: 21
+")
+execute_process(COMMAND ${MARKERBENCH} render ${WORK_DIR}/agreement.yaml --out ${WORK_DIR}/frames
+                RESULT_VARIABLE status ERROR_VARIABLE err)
+if(NOT status EQUAL 0)
+  message(FATAL_ERROR "render: ${err}")
+endif()
+execute_process(COMMAND ${PYTHON} ${SOURCE_DIR}/scripts/independent_render.py
+                        --compare ${WORK_DIR}/frames
+                RESULT_VARIABLE status OUTPUT_VARIABLE out ERROR_VARIABLE err)
+if(NOT status EQUAL 0)
+  message(FATAL_ERROR "independent_render.py --compare: ${err}")
+endif()
+string(STRIP "${out}" out)
+string(REPLACE "\n" ";" lines "${out}")
+list(LENGTH lines n)
+if(NOT n EQUAL 12)
+  message(FATAL_ERROR "expected 12 frames compared (2 markers, 2 blurs, 3 trials):\n${out}")
+endif()
+foreach(line IN LISTS lines)
+  string(REPLACE " " ";" fields "${line}")
+  list(GET fields 1 blur)
+  list(GET fields 2 largest)
+  list(GET fields 3 mean)
+  if(blur EQUAL 0)
+    set(max_largest 32)
+    set(max_mean 0.01)
+  else()
+    set(max_largest 3)
+    set(max_mean 0.005)
+  endif()
+  if(largest GREATER max_largest OR mean GREATER max_mean)
+    message(FATAL_ERROR "frame, blur, largest and mean difference '${line}': allowed "
+                        "${max_largest} and ${max_mean} levels")
+  endif()
+  message(STATUS "frame, blur, largest and mean difference: ${line}")
+endforeach()
