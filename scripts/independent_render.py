@@ -180,7 +180,7 @@ def track_and_score(markerbench, tracker, dataset, run_dir):
     with open(estimates, "w", newline="") as out:
         writer = csv.writer(out)
         pose = [f"r{i}{j}" for i in (1, 2, 3) for j in (1, 2, 3)] + ["tx", "ty", "tz"]
-        writer.writerow(["frame", "status"] + pose)
+        writer.writerow(["frame", "status"] + pose + ["time_ms"])
         for marker, images in by_marker.items():
             tracked = dataset / f"tracked_{marker}.csv"
             run([markerbench, "track", "--tracker", tracker,
@@ -190,7 +190,7 @@ def track_and_score(markerbench, tracker, dataset, run_dir):
                 for row in csv.DictReader(f):
                     ok = row["status"] == "ok"
                     writer.writerow([frame_of[row["image"]], row["status"]] +
-                                    [row[k] if ok else "" for k in pose])
+                                    [row[k] if ok else "" for k in pose] + [row["time_ms"]])
     run([markerbench, "score", dataset, "--poses", estimates, "--tracker", tracker,
          "--out", run_dir])
 
