@@ -34,6 +34,7 @@ BlurredDotSearch::BlurredDotSearch(const cv::Mat& raw,
                      static_cast<int>(std::ceil(
                          std::sqrt(static_cast<double>(area_.area()) / options_.max_area_pixels))));
   raw(area_).convertTo(observed_, CV_64F);
+  if (options_.fit_disk) FitDisk();
   Paint();
 }
 
@@ -147,7 +148,6 @@ void BlurredDotSearch::FitDisk() {
   disk_.sigma_px = theta[0];
   disk_.inside_level = 255.0 * theta[1];
   disk_.outside_level = 255.0 * theta[2];
-  Paint();
 }
 
 bool BlurredDotSearch::Passes(const FoundDot& found, double contrast) const {

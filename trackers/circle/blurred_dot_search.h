@@ -6,7 +6,8 @@
 // on black ink or white paper the clipping lifts the mean by 0.4 σ_n and makes a blurred edge
 // look sharper), μ the design as printed, blurred.
 //
-// The disk first (FitDisk): its blur σ and its levels as printed, in and out, are fitted on its
+// The disk first (FitDisk, unless fit_disk is off): its blur σ and its levels as printed, in
+// and out, are fitted on its
 // pixels between fit_band of its radius (around the edge, clear of the dots' bodies) by
 // Levenberg-Marquardt on y(x) = c(μ(x)), μ = out + (in - out) D_σ, D_σ the disk's exact blurred
 // image (blurred_ellipse.h; the edge points' ellipse), at the noise its residuals show (the
@@ -45,6 +46,7 @@ struct BlurredDotOptions {
   double fit_band_outer = 1.45;     // radius (d's dots reach to 0.2 and from 1.55)
   int fit_max_pixels = 6000;        // the band is sampled down to about this many pixels
   int fit_iterations = 10;
+  bool fit_disk = true;  // false: the disk's blur and levels as given
   // The dots' fits take every k-th pixel of the area in both directions, k the least that
   // leaves at most this many: all of them for d at 1 m (about 20,000), a bound on the time for
   // large disks under heavy blur.
@@ -67,7 +69,8 @@ struct FoundDot {
 class BlurredDotSearch {
  public:
   // `raw` one 8-bit channel, unsmoothed; pixels of `area` (clipped to the image) take part.
-  // `disk` the start of the disk's fit (σ, levels); `noise_sigma` the image's, 0-255.
+  // `disk` the start of the disk's fit (σ, levels); `noise_sigma` the image's, 0-255. The disk
+  // is fitted here (options.fit_disk), then its model painted once for every Find.
   BlurredDotSearch(const cv::Mat& raw,
                    const BlurredDisk& disk,
                    const cv::Rect& area,
@@ -75,9 +78,6 @@ class BlurredDotSearch {
                    const BlurredDotOptions& options = {});
 
   const BlurredDisk& disk() const { return disk_; }  // as fitted
-
-  // The disk's blur, levels and the noise, fitted on its pixels (from the start given).
-  void FitDisk();
 
   // The best of `positions`, refined by a pattern search around it to a quarter pixel, for a
   // dot of radius `radius_px` and designed contrast `contrast` (+1 ink, -1 paper); nullopt
@@ -87,7 +87,9 @@ class BlurredDotSearch {
                                double contrast) const;
 
  private:
-  void Paint();  // printed_ from disk_
+  // The disk's blur, levels and the noise, fitted on its pixels (from the start given).
+  void FitDisk();
+  void Paint();  // printed_ and expected_ from disk_
   bool Passes(const FoundDot& found, double contrast) const;
   double Reach(double radius_px) const;  // of a dot's blurred image
   // The fit for a dot at `p` on the pixels within `window_radius` of `window_center`.

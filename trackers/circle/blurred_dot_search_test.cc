@@ -70,7 +70,10 @@ TEST(BlurredDotSearch, FindsBothDotsWhereThePrintPutsThem) {
   EXPECT_LT(1.0 - std::exp(-std::pow(scene.DotRadiusPx() / kBlurPx, 2) / 2.0), 0.3);
   const RenderedFrame frame = RenderMarker(scene.marker, scene.truth, kNoiseVar, kBlurPx, 5);
   const cv::Mat image = Grey(frame);
-  const BlurredDotSearch search(image, scene.disk, scene.Area(), 255.0 * std::sqrt(kNoiseVar));
+  BlurredDotOptions given_disk;  // the true disk, not fitted
+  given_disk.fit_disk = false;
+  const BlurredDotSearch search(
+      image, scene.disk, scene.Area(), 255.0 * std::sqrt(kNoiseVar), given_disk);
   const Eigen::Vector2d m0 = scene.Project(Eigen::Vector2d(0.0, 0.0));
   const Eigen::Vector2d m1 = scene.Project(Eigen::Vector2d(0.07, 0.0));
   const double radius = scene.DotRadiusPx();
@@ -103,8 +106,7 @@ TEST(BlurredDotSearch, FitsTheDisksBlurAndLevels) {
   scene.disk.outside_level = 230.0;
   const RenderedFrame frame = RenderMarker(scene.marker, scene.truth, 0.02, kBlurPx, 5);
   const cv::Mat image = Grey(frame);
-  BlurredDotSearch search(image, scene.disk, scene.Area(), 0.4 * 255.0 * std::sqrt(0.02));
-  search.FitDisk();
+  const BlurredDotSearch search(image, scene.disk, scene.Area(), 0.4 * 255.0 * std::sqrt(0.02));
   EXPECT_NEAR(search.disk().sigma_px, std::sqrt(kBlurPx * kBlurPx + 1.0 / 12.0), 0.9);
   EXPECT_NEAR(search.disk().inside_level, 0.0, 15.0);
   EXPECT_NEAR(search.disk().outside_level, 255.0, 10.0);
@@ -123,8 +125,7 @@ TEST(BlurredDotSearch, FindsNoDotOnADiskPrintedWithout) {
   ASSERT_EQ(plain.layers.size(), 1u);
   const RenderedFrame frame = RenderMarker(plain, scene.truth, kNoiseVar, kBlurPx, 5);
   const cv::Mat image = Grey(frame);
-  BlurredDotSearch search(image, scene.disk, scene.Area(), 255.0 * std::sqrt(kNoiseVar));
-  search.FitDisk();
+  const BlurredDotSearch search(image, scene.disk, scene.Area(), 255.0 * std::sqrt(kNoiseVar));
   const double radius = scene.DotRadiusPx();
   EXPECT_FALSE(search.Find(Scene::Around(scene.Project({0.0, 0.0}), 4.0), radius, -1.0));
   EXPECT_FALSE(search.Find(Scene::Around(scene.Project({0.07, 0.0}), 4.0), radius, 1.0));

@@ -397,8 +397,7 @@ std::optional<CircleDetector::DiskWithDots> CircleDetector::BlurredDots(
                       static_cast<int>(std::floor(e.center.y() - reach)),
                       static_cast<int>(std::ceil(2.0 * reach)) + 1,
                       static_cast<int>(std::ceil(2.0 * reach)) + 1);
-  BlurredDotSearch search(raw, disk, area, 255.0 * noise_sigma, options_.blurred_dots);
-  search.FitDisk();
+  const BlurredDotSearch search(raw, disk, area, 255.0 * noise_sigma, options_.blurred_dots);
   // Trial positions a quarter of the blurred dot's size apart.
   const double spacing = std::max(1.0, 0.25 * std::hypot(0.5 * dot_px, search.disk().sigma_px));
   // m0: within 0.3 of the minor axis of the ellipse's centre, as for the threshold's holes.
