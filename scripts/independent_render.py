@@ -169,14 +169,12 @@ def run(command):
 
 def track_and_score(markerbench, tracker, dataset, run_dir):
     """The tracker on every frame, its estimates scored into run_dir/<the scenario>."""
-    rows = groundtruth(dataset)
-    frame_of = {}
-    for row in rows:
-        frame_of[str(dataset / row["image"])] = row["frame"]
+    frame_of, by_marker = {}, {}  # per image path; the image paths per marker
+    for row in groundtruth(dataset):
+        image = str(dataset / row["image"])
+        frame_of[image] = row["frame"]
+        by_marker.setdefault(row["marker"], []).append(image)
     estimates = dataset / "estimates.csv"
-    by_marker = {}
-    for row in rows:
-        by_marker.setdefault(row["marker"], []).append(str(dataset / row["image"]))
     with open(estimates, "w", newline="") as out:
         writer = csv.writer(out)
         pose = [f"r{i}{j}" for i in (1, 2, 3) for j in (1, 2, 3)] + ["tx", "ty", "tz"]
