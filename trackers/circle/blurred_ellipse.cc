@@ -63,18 +63,36 @@ BlurredEllipse::BlurredEllipse(const EllipseChords<double>& e, double sigma, int
   }
 }
 
-BlurredEllipseValue BlurredEllipse::At(const Eigen::Vector2d& pixel) {
-  const double h = e_.half_height, k = e_.slope, per_sigma = 1.0 / sigma_;
-  if (!(pixel.y() == row_y_)) {
-    row_y_ = pixel.y();
-    const double Y = e_.y0 - pixel.y();
-    for (int i = 0; i < nodes_used_; ++i) {
-      Node& node = nodes_[i];
-      node.z_row = (Y + h * node.sin_theta) * per_sigma;
-      node.row =
-          node.weight * (h * node.cos_theta * per_sigma) * kNormalCdfTable.At(node.z_row).density;
-    }
+void BlurredEllipse::TakeRow(double y) {
+  if (y == row_y_) return;
+  row_y_ = y;
+  const double h = e_.half_height, per_sigma = 1.0 / sigma_;
+  const double Y = e_.y0 - y;
+  for (int i = 0; i < nodes_used_; ++i) {
+    Node& node = nodes_[i];
+    node.z_row = (Y + h * node.sin_theta) * per_sigma;
+    node.row =
+        node.weight * (h * node.cos_theta * per_sigma) * kNormalCdfTable.At(node.z_row).density;
   }
+}
+
+double BlurredEllipse::ValueAt(const Eigen::Vector2d& pixel) {
+  TakeRow(pixel.y());
+  const double X = e_.x0 - pixel.x(), per_sigma = 1.0 / sigma_;
+  double value = 0.0;
+  for (int i = 0; i < nodes_used_; ++i) {
+    const Node& node = nodes_[i];
+    if (node.row == 0.0) continue;
+    const double z_right = (X + node.chord_middle + node.chord_half) * per_sigma;
+    const double z_left = (X + node.chord_middle - node.chord_half) * per_sigma;
+    value += node.row * (kNormalCdfTable.Cdf(z_right) - kNormalCdfTable.Cdf(z_left));
+  }
+  return value;
+}
+
+BlurredEllipseValue BlurredEllipse::At(const Eigen::Vector2d& pixel) {
+  TakeRow(pixel.y());
+  const double h = e_.half_height, k = e_.slope, per_sigma = 1.0 / sigma_;
   const double X = e_.x0 - pixel.x();
   // Σ over the nodes of w f = w (h c / σ) φ(z_row) across and of the parts of its
   // derivatives; the gradient is assembled from these sums.

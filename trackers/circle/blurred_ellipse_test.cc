@@ -178,5 +178,20 @@ TEST(BlurredEllipse, KeepsTheRowsFactorsForItsPixels) {
   }
 }
 
+// The value alone is At's, to the bit, with the rows asked for in turn by both (a fit's costs
+// and its normal equations must agree on what they fit), inside, on and beyond the edge.
+TEST(BlurredEllipse, ValueAloneIsAtsValue) {
+  const EllipseChords<double> e = *ChordsOfConic<double>(ConicFromEllipse(TiltedEllipse()));
+  for (const double sigma : {0.7, 3.0, 9.0}) {
+    BlurredEllipse values(e, sigma, 24), with_gradients(e, sigma, 24);
+    for (double y = 0.0; y <= 60.0; y += 1.0) {
+      for (double x = 0.0; x <= 80.0; x += 1.0) {
+        ASSERT_EQ(values.ValueAt({x, y}), with_gradients.At({x, y}).value)
+            << "σ " << sigma << " at " << x << ", " << y;
+      }
+    }
+  }
+}
+
 }  // namespace
 }  // namespace markerbench

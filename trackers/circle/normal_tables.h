@@ -92,6 +92,13 @@ class NormalCdfTable {
     return {at.Of(cdf_, density_), at.Of(density_, density_slope_)};
   }
 
+  // Φ(z) alone, as At's.
+  double Cdf(double z) const {
+    if (!(z > -kEnd)) return 0.0;
+    if (!(z < kEnd)) return 1.0;
+    return HermiteWeights(z, kEnd, kPerUnit, kNodes).Of(cdf_, density_);
+  }
+
  private:
   std::array<double, kNodes> cdf_{}, density_{}, density_slope_{};
 };

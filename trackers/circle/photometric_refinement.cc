@@ -188,13 +188,12 @@ class PixelModel {
     // The fraction of a near edge's disk seen at a pixel, with its gradient if asked.
     const auto inside = [&](const Pixel& p, const NearEdge& near, Eigen::Matrix<double, 7, 1>* d) {
       if (near.bin < 0) {
+        if (!d) return blurred[near.layer]->ValueAt(p.ideal_px);
         const EllipseChords<Jet>& e = whole[near.layer];
         const BlurredEllipseValue g = blurred[near.layer]->At(p.ideal_px);
-        if (d) {
-          *d = g.gradient[0] * e.x0.v + g.gradient[1] * e.y0.v + g.gradient[2] * e.slope.v +
-               g.gradient[3] * e.half_width.v + g.gradient[4] * e.half_height.v +
-               g.gradient[5] * d_sigma;
-        }
+        *d = g.gradient[0] * e.x0.v + g.gradient[1] * e.y0.v + g.gradient[2] * e.slope.v +
+             g.gradient[3] * e.half_width.v + g.gradient[4] * e.half_height.v +
+             g.gradient[5] * d_sigma;
         return g.value;
       }
       const Eigen::Matrix<Jet, 2, 1>& edge = edges[near.layer][near.bin];
