@@ -69,20 +69,22 @@ double CircumRadius(const Eigen::Vector2d& a, const Eigen::Vector2d& b, const Ei
   return std::sqrt(ab.squaredNorm() * bc.squaredNorm() * ca.squaredNorm()) / (2.0 * twice_area);
 }
 
+// The pose (6) and σ, the parameters differentiated by Jets.
+using PoseJet = ceres::Jet<double, 7>;
+
 // The image through H of a point X on the marker's plane with its derivatives: the Jets'
 // arithmetic written out (their temporaries took a third of the model's time, one point per
 // half pixel of every edge).
-template <class Jet>
-Eigen::Matrix<Jet, 2, 1> ProjectPlanePoint(const Eigen::Matrix<Jet, 3, 3>& H,
-                                           const Eigen::Vector2d& X) {
-  Jet p[3];
+Eigen::Matrix<PoseJet, 2, 1> ProjectPlanePoint(const Eigen::Matrix<PoseJet, 3, 3>& H,
+                                               const Eigen::Vector2d& X) {
+  PoseJet p[3];
   for (int r = 0; r < 3; ++r) {
     p[r].a = H(r, 0).a * X.x() + H(r, 1).a * X.y() + H(r, 2).a;
     for (int i = 0; i < p[r].v.size(); ++i) {
       p[r].v[i] = H(r, 0).v[i] * X.x() + H(r, 1).v[i] * X.y() + H(r, 2).v[i];
     }
   }
-  Eigen::Matrix<Jet, 2, 1> x;
+  Eigen::Matrix<PoseJet, 2, 1> x;
   const double inverse_depth = 1.0 / p[2].a;
   for (int r = 0; r < 2; ++r) {
     x[r].a = p[r].a * inverse_depth;
@@ -101,7 +103,7 @@ Eigen::Matrix<Jet, 2, 1> ProjectPlanePoint(const Eigen::Matrix<Jet, 3, 3>& H,
 // of thousands of rows would cost more than the model).
 class PixelModel {
  public:
-  using Jet = ceres::Jet<double, 7>;  // the pose (6) and σ
+  using Jet = PoseJet;
 
   PixelModel(const Eigen::Matrix3d& K,
              const std::vector<EdgeLayer>& layers,
