@@ -73,8 +73,8 @@ class BlurredEllipse {
 
   // G at the pixel (x, y); the row's factors are kept for the next pixel of the same y.
   BlurredEllipseValue At(const Eigen::Vector2d& pixel);
-  // G alone, the same sum as At's value: a fit's costs without its normal equations need no
-  // gradient (one table look-up of two per chord end, and none of the gradient's sums).
+  // G alone, the same sum as At's value, to the bit: for a fit's costs without its normal
+  // equations (Φ alone at each chord end, not φ too, and none of the gradient's sums).
   double ValueAt(const Eigen::Vector2d& pixel);
 
  private:
