@@ -7,11 +7,11 @@
 // look sharper), μ the design as printed, blurred.
 //
 // The disk first (FitDisk, unless fit_disk is off): its blur σ and its levels as printed, in
-// and out, are fitted on its
-// pixels between fit_band of its radius (around the edge, clear of the dots' bodies) by
-// Levenberg-Marquardt on y(x) = c(μ(x)), μ = out + (in - out) D_σ, D_σ the disk's exact blurred
-// image (blurred_ellipse.h; the edge points' ellipse), at the noise its residuals show (the
-// estimate from the image reads clipped paper: 14.7 of 36 levels on d's frames at σ² = 0.02).
+// and out, are fitted on its pixels between fit_band of its radius (around the edge, clear of
+// the dots' bodies) by Levenberg-Marquardt on y(x) = c(μ(x)), μ = out + (in - out) D_σ, D_σ the
+// disk's exact blurred image (blurred_ellipse.h; the edge points' ellipse), at the noise its
+// residuals show (the estimate from the image reads clipped paper: 14.7 of 36 levels on d's
+// frames at σ² = 0.02).
 // The edge points' blur is low by a fifth at σ = 8 px and σ² = 0.02, their levels the clipped.
 //
 // Then a dot (Find): at each trial position p, the pixels within ρ + window_sigmas σ of p are
