@@ -431,9 +431,28 @@ PixelSet PixelsNearEdges(const Image8& image,
   std::vector<uint8_t> taken(
       static_cast<size_t>(std::max(0, all_width)) * std::max(0, all.v1 - all.v0 + 1), 0);
   std::vector<double> distances(layers.size());
+  // The columns of row v that may lie within an annulus's outer circle: without distortion a
+  // pixel's ideal coordinates are its own (to rounding; a pixel to spare each way), and
+  // beyond those circles no pixel is near; with distortion, all of them.
+  const bool ideal_is_pixel = !camera.HasDistortion();
+  const auto columns_near = [&](int v, const Box& box) {
+    if (!ideal_is_pixel) return std::make_pair(box.u0, box.u1);
+    double first = std::numeric_limits<double>::infinity();
+    double last = -first;
+    for (const Annulus& annulus : annuli) {
+      const double dy = std::max(0.0, std::abs(v - annulus.center.y()) - 1.0);
+      if (dy * dy > annulus.outer_squared) continue;
+      const double half_width = std::sqrt(annulus.outer_squared - dy * dy) + 1.0;
+      first = std::min(first, annulus.center.x() - half_width);
+      last = std::max(last, annulus.center.x() + half_width);
+    }
+    if (first > last) return std::make_pair(1, 0);
+    return std::make_pair(std::max(box.u0, column(first)), std::min(box.u1, column(last + 1.0)));
+  };
   for (const Box& box : boxes) {
     for (int v = box.v0; v <= box.v1; ++v) {
-      for (int u = box.u0; u <= box.u1; ++u) {
+      const auto [u0, u1] = columns_near(v, box);
+      for (int u = u0; u <= u1; ++u) {
         uint8_t& seen = taken[static_cast<size_t>(v - all.v0) * all_width + (u - all.u0)];
         if (seen) continue;
         seen = 1;
