@@ -608,4 +608,23 @@ std::optional<PhotometricResult> RefinePhotometric(const Image8& image,
       });
 }
 
+std::optional<PhotometricNormalEquations> PhotometricNormalEquationsAt(
+    const Image8& image,
+    const Camera& camera,
+    const MarkerSpec& marker,
+    const Rigid3& cam_from_marker,
+    double sigma_px,
+    double noise_sigma,
+    const Eigen::VectorXd& theta,
+    const PhotometricOptions& options) {
+  const std::optional<ModelledPixels> at =
+      PixelsAt(image, camera, marker, cam_from_marker, sigma_px, options);
+  if (!at) return std::nullopt;
+  const PixelModel model(
+      camera.K(), at->layers, at->pixels, image.channels, ModelNoiseSigma(noise_sigma));
+  PhotometricNormalEquations equations;
+  equations.cost = model.Evaluate(theta, &equations.jtj, &equations.jtr);
+  return equations;
+}
+
 }  // namespace markerbench

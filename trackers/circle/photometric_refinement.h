@@ -79,4 +79,24 @@ size_t BestPhotometricFit(const Image8& image,
                           const std::vector<PhotometricResult>& fits,
                           const PhotometricOptions& options = {});
 
+// The model's cost and normal equations (pixel_fit.h) at θ = (angle-axis, translation, σ,
+// then offset and gain per channel), on the pixels chosen and tied at `cam_from_marker` for
+// `sigma_px` (as a solve from there takes them), at noise `noise_sigma`: what each
+// Levenberg-Marquardt step of RefinePhotometric works from, for checks of the model's
+// derivatives. nullopt as for RefinePhotometric.
+struct PhotometricNormalEquations {
+  double cost = 0.0;
+  Eigen::MatrixXd jtj;
+  Eigen::VectorXd jtr;
+};
+std::optional<PhotometricNormalEquations> PhotometricNormalEquationsAt(
+    const Image8& image,
+    const Camera& camera,
+    const MarkerSpec& marker,
+    const Rigid3& cam_from_marker,
+    double sigma_px,
+    double noise_sigma,
+    const Eigen::VectorXd& theta,
+    const PhotometricOptions& options = {});
+
 }  // namespace markerbench
