@@ -446,7 +446,7 @@ PixelSet PixelsNearEdges(const Image8& image,
       first = std::min(first, annulus.center.x() - half_width);
       last = std::max(last, annulus.center.x() + half_width);
     }
-    if (first > last) return std::make_pair(1, 0);
+    if (first > last) return std::make_pair(1, 0);  // none
     return std::make_pair(std::max(box.u0, column(first)), std::min(box.u1, column(last + 1.0)));
   };
   for (const Box& box : boxes) {

@@ -183,7 +183,7 @@ TEST(PhotometricRefinement, NormalEquationsAreTheCostsDerivatives) {
       Eigen::VectorXd up = theta, down = theta;
       up[i] += step;
       down[i] -= step;
-      const double central = (at(up)->cost - at(down)->cost) / (2.0 * step);
+      const double central = (at(up).value().cost - at(down).value().cost) / (2.0 * step);
       // Measured: within 3e-5 of the central difference (relative) in every case.
       EXPECT_NEAR(2.0 * equations->jtr[i], central, 1e-3 * std::abs(central)) << "parameter " << i;
     }
