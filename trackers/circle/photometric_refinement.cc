@@ -95,6 +95,15 @@ Eigen::Matrix<PoseJet, 2, 1> ProjectPlanePoint(const Eigen::Matrix<PoseJet, 3, 3
   return x;
 }
 
+// Its value alone, to the bit: the same operations on the Jets' values.
+Eigen::Vector2d ProjectPlanePointValue(const Eigen::Matrix<PoseJet, 3, 3>& H,
+                                       const Eigen::Vector2d& X) {
+  double p[3];
+  for (int r = 0; r < 3; ++r) p[r] = H(r, 0).a * X.x() + H(r, 1).a * X.y() + H(r, 2).a;
+  const double inverse_depth = 1.0 / p[2];
+  return {p[0] * inverse_depth, p[1] * inverse_depth};
+}
+
 // The fit of the model to every pixel and channel (least squares where a pixel is not clipped,
 // its likelihood where it is: clipped_noise.h), in the parameters
 // θ = (angle-axis (3), translation (3), σ, then offset and gain per channel). The edge points
@@ -147,6 +156,8 @@ class PixelModel {
     // matches the osculating disk's to first order in σ/ρ (the shift σ²/2ρ of its midpoint).
     // ρ changes with the pose by the disk's scale, 1/depth; its shape is the start pose's,
     // where the pixels are chosen again at each round.
+    // Their values, and with the normal equations their derivatives too.
+    std::vector<std::vector<Eigen::Vector2d>> edges_px(layers_.size());
     std::vector<std::vector<Eigen::Matrix<Jet, 2, 1>>> edges(layers_.size());
     std::vector<Jet> size_per_sigma(layers_.size());  // per layer: s = start ρ · this
     std::vector<std::vector<BlurredDiskProfile>> profiles(layers_.size());
@@ -172,8 +183,18 @@ class PixelModel {
             layer.whole_nodes);
         continue;
       }
-      edges[l].reserve(layer.bins);
-      for (const Eigen::Vector2d& X : layer.edge) edges[l].push_back(ProjectPlanePoint(H, X));
+      edges_px[l].reserve(layer.bins);
+      if (jtj) {
+        edges[l].reserve(layer.bins);
+        for (const Eigen::Vector2d& X : layer.edge) {
+          edges[l].push_back(ProjectPlanePoint(H, X));
+          edges_px[l].emplace_back(edges[l].back().x().a, edges[l].back().y().a);
+        }
+      } else {
+        for (const Eigen::Vector2d& X : layer.edge) {
+          edges_px[l].push_back(ProjectPlanePointValue(H, X));
+        }
+      }
       const Eigen::Matrix<Jet, 3, 1> center(
           Jet(layer.disk.center.x()), Jet(layer.disk.center.y()), Jet(0.0));
       size_per_sigma[l] = layer.start_depth_m / ((R * center + t).z() * sigma);
@@ -198,13 +219,14 @@ class PixelModel {
              g.gradient[5] * d_sigma;
         return g.value;
       }
-      const Eigen::Matrix<Jet, 2, 1>& edge = edges[near.layer][near.bin];
+      const Eigen::Vector2d& edge_px = edges_px[near.layer][near.bin];
       const EdgeLayer& layer = layers_[near.layer];
       const Eigen::Vector2d& normal = layer.start_normal[near.bin];
       const double distance =
-          normal.x() * (p.ideal_px.x() - edge.x().a) + normal.y() * (p.ideal_px.y() - edge.y().a);
+          normal.x() * (p.ideal_px.x() - edge_px.x()) + normal.y() * (p.ideal_px.y() - edge_px.y());
       const ProfileValue g = profiles[near.layer][near.bin].At(-distance / sigma_value);
       if (d) {
+        const Eigen::Matrix<Jet, 2, 1>& edge = edges[near.layer][near.bin];
         // ∂G/∂θ = G_z ∂z/∂θ + G_s ρ ∂(s/ρ)/∂θ, z = -d/σ, ∂d/∂θ = -n·∂e/∂θ (and ∂σ/∂θ = e₇).
         const double along_edge = g.d_dz / sigma_value;
         const double along_size = g.d_ds * layer.start_curvature_radius_px[near.bin];
@@ -217,6 +239,7 @@ class PixelModel {
       }
       return g.value;
     };
+    if (modelled) modelled->reserve(modelled->size() + pixels_.pixels.size() * channels_);
     for (const Pixel& p : pixels_.pixels) {
       // The printed colour and its gradient, ∂printed_c/∂θ = Σ_k jump_kc ∂inside_k/∂θ: with
       // one edge (most pixels) jump_c ∂inside/∂θ, else summed in d_printed.
