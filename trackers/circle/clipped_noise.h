@@ -58,12 +58,6 @@ inline ClippedMeanValue ClippedMean(double mu, double noise_sigma) {
 // The image's noise as a model takes it: at least 8-bit rounding's (0-1 units).
 double ModelNoiseSigma(double noise_sigma);
 
-// A pixel (and channel) at a fit: its residual and its modelled mean.
-struct ModelledPixel {
-  double residual;
-  double mean;
-};
-
 // The noise the residuals show: their RMS over the pixels modelled between 0.2 and 0.8
 // (where clipping takes little of it); nullopt with fewer than 50 of them.
 std::optional<double> MidRangeNoise(const std::vector<ModelledPixel>& modelled);
@@ -80,19 +74,22 @@ PixelFit FitPixelsAtTheirNoise(Model& model,
                                const Rigid3& cam_from_marker,
                                double sigma_px,
                                int max_iterations) {
-  // Whether the noise shown at θ is more than 10 % off the model's; the model then takes it.
-  const auto takes_the_noise_shown = [&](const Eigen::VectorXd& theta) {
-    std::vector<ModelledPixel> modelled;
-    model.Evaluate(theta, nullptr, nullptr, &modelled);
+  // Whether the noise the pixels show is more than 10 % off the model's; the model then
+  // takes it.
+  const auto takes_the_noise_shown = [&](const std::vector<ModelledPixel>& modelled) {
     const std::optional<double> measured = MidRangeNoise(modelled);
     if (!measured || !(std::abs(*measured / model.noise_sigma() - 1.0) > 0.1)) return false;
     model.set_noise_sigma(ModelNoiseSigma(*measured));
     return true;
   };
-  takes_the_noise_shown(
-      PixelFitParameters(cam_from_marker, sigma_px, StartLevels(model.Parameters())));
-  PixelFit fit = FitPixels(model, cam_from_marker, sigma_px, max_iterations);
-  if (takes_the_noise_shown(PixelFitParameters(fit.cam_from_marker, fit.sigma_px, fit.levels))) {
+  std::vector<ModelledPixel> modelled;
+  model.Evaluate(PixelFitParameters(cam_from_marker, sigma_px, StartLevels(model.Parameters())),
+                 nullptr,
+                 nullptr,
+                 &modelled);
+  takes_the_noise_shown(modelled);
+  PixelFit fit = FitPixels(model, cam_from_marker, sigma_px, max_iterations, &modelled);
+  if (takes_the_noise_shown(modelled)) {
     const int iterations = fit.iterations;
     fit = FitPixels(model, fit.cam_from_marker, fit.sigma_px, max_iterations);
     fit.iterations += iterations;

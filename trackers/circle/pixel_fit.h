@@ -1,9 +1,9 @@
 // Levenberg-Marquardt for the photometric fits (photometric_refinement.h, design_refinement.h)
 // on the normal equations, with Marquardt's diagonal scaling. A model of the pixels takes
 // θ = (angle-axis (3), translation (3), blur σ in px, then an offset and a gain per channel)
-// and provides Parameters() and Evaluate(θ, JᵀJ*, Jᵀr*): the cost at θ (the pixels'
-// ClippedPixelTerm summed, Σ r² where none is clipped) and, when the pointers are given, the
-// normal equations.
+// and provides Parameters() and Evaluate(θ, JᵀJ*, Jᵀr*, modelled*): the cost at θ (the
+// pixels' ClippedPixelTerm summed, Σ r² where none is clipped), when the pointers are given
+// the normal equations, and when `modelled` is given each pixel's ModelledPixel appended to it.
 #pragma once
 
 #include <ceres/rotation.h>
@@ -13,10 +13,17 @@
 #include <algorithm>
 #include <optional>
 #include <utility>
+#include <vector>
 
 #include "core/rigid3.h"
 
 namespace markerbench {
+
+// A pixel (and channel) at a fit: its residual and its modelled mean.
+struct ModelledPixel {
+  double residual;
+  double mean;
+};
 
 struct PixelFit {
   Rigid3 cam_from_marker;
@@ -49,17 +56,26 @@ inline Eigen::VectorXd StartLevels(int parameters) {
 // From a pose and σ, at StartLevels; σ kept at 0.2 px at least. Stops where a step lowers the
 // cost by less than 1e-6 of it (Ceres's function tolerance), or where the normal equations
 // predict that of the next step after a taken one, damped no more than the first (saving the
-// evaluation of a step that would not count).
+// evaluation of a step that would not count). With `modelled_at_result`, the pixels at the
+// result are listed there (from the evaluation that found it: none is done for them).
 template <class Model>
 PixelFit FitPixels(const Model& model,
                    const Rigid3& cam_from_marker,
                    double sigma_px,
-                   int max_iterations) {
+                   int max_iterations,
+                   std::vector<ModelledPixel>* modelled_at_result = nullptr) {
   Eigen::VectorXd theta =
       PixelFitParameters(cam_from_marker, sigma_px, StartLevels(model.Parameters()));
   Eigen::MatrixXd jtj, trial_jtj;
   Eigen::VectorXd jtr, trial_jtr;
-  double cost = model.Evaluate(theta, &jtj, &jtr);
+  std::vector<ModelledPixel> trial_modelled;
+  // The list for an evaluation, emptied, if the result's is asked for.
+  const auto listing = [&](std::vector<ModelledPixel>* list) {
+    if (!modelled_at_result) return static_cast<std::vector<ModelledPixel>*>(nullptr);
+    list->clear();
+    return list;
+  };
+  double cost = model.Evaluate(theta, &jtj, &jtr, listing(modelled_at_result));
   PixelFit fit;
   constexpr double kStartDamping = 1e-3;
   double damping = kStartDamping;
@@ -74,7 +90,8 @@ PixelFit FitPixels(const Model& model,
     Eigen::VectorXd trial = theta + step;
     trial[6] = std::max(trial[6], 0.2);
     // With its normal equations: most steps are taken, and then they are the next ones.
-    const double trial_cost = model.Evaluate(trial, &trial_jtj, &trial_jtr);
+    const double trial_cost =
+        model.Evaluate(trial, &trial_jtj, &trial_jtr, listing(&trial_modelled));
     ++fit.iterations;
     after_a_step = trial_cost < cost;
     if (!after_a_step) {
@@ -87,6 +104,7 @@ PixelFit FitPixels(const Model& model,
     cost = trial_cost;
     jtj.swap(trial_jtj);
     jtr.swap(trial_jtr);
+    if (modelled_at_result) modelled_at_result->swap(trial_modelled);
     damping = std::max(damping / 10.0, 1e-9);
     if (converged) break;
   }

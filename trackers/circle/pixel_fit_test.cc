@@ -6,7 +6,9 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <vector>
 
 namespace markerbench {
 namespace {
@@ -35,12 +37,20 @@ class LinearModel {
   const Eigen::Matrix<double, 9, 1>& solution() const { return solution_; }
   int evaluations() const { return evaluations_; }
 
-  double Evaluate(const Eigen::VectorXd& theta, Eigen::MatrixXd* jtj, Eigen::VectorXd* jtr) const {
+  // Each row is a pixel whose value is b and whose modelled mean is A θ.
+  double Evaluate(const Eigen::VectorXd& theta,
+                  Eigen::MatrixXd* jtj,
+                  Eigen::VectorXd* jtr,
+                  std::vector<ModelledPixel>* modelled) const {
     ++evaluations_;
-    const Eigen::VectorXd r = a_ * theta - b_;
+    const Eigen::VectorXd mean = a_ * theta;
+    const Eigen::VectorXd r = mean - b_;
     if (jtj) {
       *jtj = a_.transpose() * a_;
       *jtr = a_.transpose() * r;
+    }
+    for (int row = 0; modelled && row < r.size(); ++row) {
+      modelled->push_back({b_[row] - mean[row], mean[row]});
     }
     return r.squaredNorm();
   }
@@ -64,6 +74,36 @@ TEST(FitPixels, StopsAtTheMinimumOfAQuadraticCostWithoutASecondStep) {
   EXPECT_EQ(model.evaluations(), 2);
   const Eigen::VectorXd theta = PixelFitParameters(fit.cam_from_marker, fit.sigma_px, fit.levels);
   EXPECT_LT((theta - model.solution()).norm(), 1e-3 * model.solution().norm());
+}
+
+// The pixels listed at the result are those of the result (its step's evaluation), not the
+// start's: the same as the model lists at the fit's θ. A list given non-empty is replaced.
+TEST(FitPixels, ListsThePixelsAtItsResult) {
+  const LinearModel model;
+  Rigid3 start;
+  start.translation = Eigen::Vector3d(0.0, 0.0, 0.5);
+  std::vector<ModelledPixel> listed(3, ModelledPixel{1.0, 1.0});
+  const PixelFit fit = FitPixels(model, start, 1.0, 15, &listed);
+  std::vector<ModelledPixel> at_result;
+  model.Evaluate(PixelFitParameters(fit.cam_from_marker, fit.sigma_px, fit.levels),
+                 nullptr,
+                 nullptr,
+                 &at_result);
+  ASSERT_EQ(listed.size(), at_result.size());
+  for (size_t i = 0; i < listed.size(); ++i) {
+    EXPECT_NEAR(listed[i].residual, at_result[i].residual, 1e-12) << "pixel " << i;
+    EXPECT_NEAR(listed[i].mean, at_result[i].mean, 1e-12) << "pixel " << i;
+  }
+  // The start's differ: the fit moved the means by more than 1e-3.
+  std::vector<ModelledPixel> at_start;
+  model.Evaluate(
+      PixelFitParameters(start, 1.0, StartLevels(model.Parameters())), nullptr, nullptr, &at_start);
+  ASSERT_EQ(at_start.size(), listed.size());
+  double largest_move = 0.0;
+  for (size_t i = 0; i < listed.size(); ++i) {
+    largest_move = std::max(largest_move, std::abs(listed[i].mean - at_start[i].mean));
+  }
+  EXPECT_GT(largest_move, 1e-3);
 }
 
 }  // namespace
