@@ -23,6 +23,8 @@ namespace {
 struct EdgeLayer {
   DiskShape disk;
   Eigen::Vector3d jump;
+  Eigen::Matrix3d start_conic;  // its image at the start pose (canonical)
+  Ellipse start_ellipse;        // the same as an ellipse
   int bins = 0;
   std::vector<Eigen::Vector2d> edge;  // the bins' points on the circle, marker plane
   std::vector<Eigen::Vector2d> start_px;
@@ -328,12 +330,10 @@ Eigen::Vector3d InChannels(const Rgb& color, int channels) {
   return channels == 3 ? color : Eigen::Vector3d(Luma(color), 0.0, 0.0);
 }
 
-// The marker's disks as edges seen through H (nullopt for other shapes), with their image
-// conics.
+// The marker's disks as edges seen through H (nullopt for other shapes).
 std::optional<std::vector<EdgeLayer>> EdgeLayers(const MarkerSpec& marker,
                                                  const Eigen::Matrix3d& H,
-                                                 int channels,
-                                                 std::vector<Eigen::Matrix3d>* conics) {
+                                                 int channels) {
   std::vector<EdgeLayer> layers;
   for (size_t i = 0; i < marker.layers.size(); ++i) {
     const auto* disk = std::get_if<DiskShape>(&marker.layers[i].shape);
@@ -343,8 +343,10 @@ std::optional<std::vector<EdgeLayer>> EdgeLayers(const MarkerSpec& marker,
       const PaintSample under = PaintAt(marker.layers[j], disk->center);
       if (under.color) below = *under.color;
     }
-    conics->push_back(CanonicalConic(ImageOfCircle<double>(H, disk->center, disk->radius)));
-    const Ellipse e = EllipseFromConic(conics->back());
+    EdgeLayer layer;
+    layer.start_conic = CanonicalConic(ImageOfCircle<double>(H, disk->center, disk->radius));
+    layer.start_ellipse = EllipseFromConic(layer.start_conic);
+    const Ellipse& e = layer.start_ellipse;
     // An image that is no finite ellipse (a disk across the horizon) cannot be modelled.
     if (!(e.semi_minor > 0.0 && e.semi_major < 1e5 && e.center.allFinite() &&
           e.center.cwiseAbs().maxCoeff() < 1e6)) {
@@ -352,7 +354,6 @@ std::optional<std::vector<EdgeLayer>> EdgeLayers(const MarkerSpec& marker,
     }
     // Edge points about half a pixel apart.
     const int bins = std::max(32, static_cast<int>(std::ceil(4.0 * M_PI * e.semi_major)));
-    EdgeLayer layer;
     layer.disk = *disk;
     layer.jump = InChannels(marker.layers[i].color - below, channels);
     layer.bins = bins;
@@ -365,7 +366,7 @@ std::optional<std::vector<EdgeLayer>> EdgeLayers(const MarkerSpec& marker,
       const Eigen::Vector2d outward_px =
           (H * (layer.edge.back() + 1e-3 * disk->radius * radial).homogeneous()).hnormalized() -
           layer.start_px.back();
-      Eigen::Vector2d normal = (conics->back() * layer.start_px.back().homogeneous()).head<2>();
+      Eigen::Vector2d normal = (layer.start_conic * layer.start_px.back().homogeneous()).head<2>();
       layer.start_normal.push_back(normal.dot(outward_px) < 0.0 ? -normal.normalized()
                                                                 : normal.normalized());
     }
@@ -407,7 +408,6 @@ PixelSet PixelsNearEdges(const Image8& image,
                          const Camera& camera,
                          const MarkerSpec& marker,
                          const std::vector<EdgeLayer>& layers,
-                         const std::vector<Eigen::Matrix3d>& conics,
                          const Eigen::Matrix3d& H,
                          double band,
                          double max_depth_per_curvature) {
@@ -436,8 +436,8 @@ PixelSet PixelsNearEdges(const Image8& image,
   const auto row = [&](double v) {
     return static_cast<int>(std::clamp(std::floor(v), 0.0, image.height - 1.0));
   };
-  for (const Eigen::Matrix3d& conic : conics) {
-    const Ellipse e = EllipseFromConic(conic);
+  for (const EdgeLayer& layer : layers) {
+    const Ellipse& e = layer.start_ellipse;
     const double inner = std::max(0.0, e.semi_minor - band - 1.0);
     annuli.push_back({e.center, std::pow(e.semi_major + band + 1.0, 2), inner * inner});
     const double reach = e.semi_major + band + 2.0;
@@ -490,7 +490,7 @@ PixelSet PixelsNearEdges(const Image8& image,
           } else if (from_center_squared < annuli[m].inner_squared) {
             distances[m] = -std::numeric_limits<double>::infinity();
           } else {
-            distances[m] = PndResidual<double>(conics[m], ideal.x(), ideal.y());
+            distances[m] = PndResidual<double>(layers[m].start_conic, ideal.x(), ideal.y());
           }
           near_any =
               near_any || std::abs(distances[m]) <= band || (layers[m].whole && distances[m] < 0.0);
@@ -545,24 +545,22 @@ std::optional<ModelledPixels> PixelsAt(const Image8& image,
                                        double sigma_px,
                                        const PhotometricOptions& options) {
   const Eigen::Matrix3d H = camera.K() * RayFromPlane(cam_from_marker);
-  std::vector<Eigen::Matrix3d> conics;
-  std::optional<std::vector<EdgeLayer>> layers = EdgeLayers(marker, H, image.channels, &conics);
+  std::optional<std::vector<EdgeLayer>> layers = EdgeLayers(marker, H, image.channels);
   if (!layers) return std::nullopt;
   const double sigma = std::max(sigma_px, 0.3);
   double largest_radius_px = 0.0;
-  for (size_t i = 0; i < conics.size(); ++i) {
-    const Ellipse e = EllipseFromConic(conics[i]);
+  for (EdgeLayer& layer : *layers) {
+    const Ellipse& e = layer.start_ellipse;
     largest_radius_px = std::max(largest_radius_px, std::sqrt(e.semi_major * e.semi_minor));
-    (*layers)[i].whole = sigma >= options.whole_disk_from_blur_per_axis * e.semi_minor;
+    layer.whole = sigma >= options.whole_disk_from_blur_per_axis * e.semi_minor;
     // A quarter more for the fit's moves of σ and the axes.
-    (*layers)[i].whole_nodes = BlurredEllipse::NodesFor(1.25 * e.semi_major / sigma);
+    layer.whole_nodes = BlurredEllipse::NodesFor(1.25 * e.semi_major / sigma);
   }
   if (!(sigma_px <= options.max_blur_per_radius * largest_radius_px)) return std::nullopt;
   PixelSet pixels = PixelsNearEdges(image,
                                     camera,
                                     marker,
                                     *layers,
-                                    conics,
                                     H,
                                     options.band_sigmas * sigma + 1.0,
                                     options.max_depth_per_curvature);
