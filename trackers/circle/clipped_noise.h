@@ -62,18 +62,18 @@ double ModelNoiseSigma(double noise_sigma);
 // (where clipping takes little of it); nullopt with fewer than 50 of them.
 std::optional<double> MidRangeNoise(const std::vector<ModelledPixel>& modelled);
 
-// FitPixels on a model whose clipping takes the noise it is given (noise_sigma(),
-// set_noise_sigma(), and Evaluate(θ, JᵀJ*, Jᵀr*, modelled*) that also lists each pixel's
-// ModelledPixel), at the noise its residuals show: the model takes the noise shown at the
-// start (where the edges are near and the levels those of a white paper and black ink), and
-// the fit is done again where its own residuals show one more than 10 % off. A global
-// estimate on an image of clipped white paper puts the noise far too low (the detector's:
-// 0.06 for a true 0.14).
+// FitPixels (to `function_tolerance`) on a model whose clipping takes the noise it is given
+// (noise_sigma(), set_noise_sigma(), and Evaluate(θ, JᵀJ*, Jᵀr*, modelled*) that also lists
+// each pixel's ModelledPixel), at the noise its residuals show: the model takes the noise shown at
+// the start (where the edges are near and the levels those of a white paper and black ink), and the
+// fit is done again where its own residuals show one more than 10 % off. A global estimate on an
+// image of clipped white paper puts the noise far too low (the detector's: 0.06 for a true 0.14).
 template <class Model>
 PixelFit FitPixelsAtTheirNoise(Model& model,
                                const Rigid3& cam_from_marker,
                                double sigma_px,
-                               int max_iterations) {
+                               int max_iterations,
+                               double function_tolerance) {
   // Whether the noise the pixels show is more than 10 % off the model's; the model then
   // takes it.
   const auto takes_the_noise_shown = [&](const std::vector<ModelledPixel>& modelled) {
@@ -88,18 +88,19 @@ PixelFit FitPixelsAtTheirNoise(Model& model,
                  nullptr,
                  &modelled);
   takes_the_noise_shown(modelled);
-  PixelFit fit = FitPixels(model, cam_from_marker, sigma_px, max_iterations, &modelled);
+  PixelFit fit =
+      FitPixels(model, cam_from_marker, sigma_px, max_iterations, function_tolerance, &modelled);
   if (takes_the_noise_shown(modelled)) {
     const int iterations = fit.iterations;
-    fit = FitPixels(model, fit.cam_from_marker, fit.sigma_px, max_iterations);
+    fit = FitPixels(model, fit.cam_from_marker, fit.sigma_px, max_iterations, function_tolerance);
     fit.iterations += iterations;
   }
   return fit;
 }
 
 // FitInRounds (pixel_fit.h) with each round's solve at the noise the last one showed:
-// solve_once(cam_from_marker, σ, noise) gives an optional Result with a PixelFit `fit` and the
-// noise it showed, `noise_sigma`.
+// solve_once(cam_from_marker, σ, noise, function_tolerance) gives an optional Result with a
+// PixelFit `fit` and the noise it showed, `noise_sigma`.
 template <class Result, class SolveOnce>
 std::optional<Result> FitInRoundsAtTheirNoise(const Rigid3& cam_from_marker,
                                               double sigma_px,
@@ -107,12 +108,15 @@ std::optional<Result> FitInRoundsAtTheirNoise(const Rigid3& cam_from_marker,
                                               int max_rounds,
                                               const SolveOnce& solve_once) {
   double noise = noise_sigma;
-  return FitInRounds<Result>(
-      cam_from_marker, sigma_px, max_rounds, [&](const Rigid3& start, double sigma) {
-        std::optional<Result> solved = solve_once(start, sigma, noise);
-        if (solved) noise = solved->noise_sigma;
-        return solved;
-      });
+  return FitInRounds<Result>(cam_from_marker,
+                             sigma_px,
+                             max_rounds,
+                             [&](const Rigid3& start, double sigma, double function_tolerance) {
+                               std::optional<Result> solved =
+                                   solve_once(start, sigma, noise, function_tolerance);
+                               if (solved) noise = solved->noise_sigma;
+                               return solved;
+                             });
 }
 
 }  // namespace markerbench

@@ -182,13 +182,14 @@ std::optional<DesignRefinement> RefineOnce(const Image8& image,
                                            const Rigid3& cam_from_marker,
                                            double sigma_px,
                                            double noise_sigma,
+                                           double function_tolerance,
                                            const DesignRefinementOptions& options) {
   const std::vector<DesignPixel> pixels =
       PixelsNearDesignEdges(image, camera, marker, cam_from_marker, ReachPx(sigma_px, options));
   if (pixels.size() < 20) return std::nullopt;
   DesignModel model(camera, marker, pixels, ModelNoiseSigma(noise_sigma));
   const PixelFit fit = FitPixelsAtTheirNoise(
-      model, cam_from_marker, std::max(sigma_px, 0.3), options.max_iterations);
+      model, cam_from_marker, std::max(sigma_px, 0.3), options.max_iterations, function_tolerance);
   return DesignRefinement{fit, static_cast<int>(pixels.size()), model.noise_sigma()};
 }
 
@@ -208,8 +209,8 @@ std::optional<DesignRefinement> RefineDesign(const Image8& image,
       sigma_px,
       noise_sigma,
       options.max_rounds,
-      [&](const Rigid3& start, double sigma, double noise) {
-        return RefineOnce(image, camera, marker, start, sigma, noise, options);
+      [&](const Rigid3& start, double sigma, double noise, double function_tolerance) {
+        return RefineOnce(image, camera, marker, start, sigma, noise, function_tolerance, options);
       });
 }
 

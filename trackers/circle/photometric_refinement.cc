@@ -569,21 +569,22 @@ std::optional<ModelledPixels> PixelsAt(const Image8& image,
 }
 
 // One solve on the pixels near the edges at `cam_from_marker`, each tied to its edges' points,
-// at the noise they show.
+// at the noise they show, to `function_tolerance` (pixel_fit.h).
 std::optional<PhotometricResult> RefineOnce(const Image8& image,
                                             const Camera& camera,
                                             const MarkerSpec& marker,
                                             const Rigid3& cam_from_marker,
                                             double sigma_px,
                                             double noise_sigma,
+                                            double function_tolerance,
                                             const PhotometricOptions& options) {
   const std::optional<ModelledPixels> at =
       PixelsAt(image, camera, marker, cam_from_marker, sigma_px, options);
   if (!at) return std::nullopt;
   PixelModel model(
       camera.K(), at->layers, at->pixels, image.channels, ModelNoiseSigma(noise_sigma));
-  const PixelFit fit =
-      FitPixelsAtTheirNoise(model, cam_from_marker, at->sigma_px, options.max_iterations);
+  const PixelFit fit = FitPixelsAtTheirNoise(
+      model, cam_from_marker, at->sigma_px, options.max_iterations, function_tolerance);
   return PhotometricResult{fit, static_cast<int>(at->pixels.pixels.size()), model.noise_sigma()};
 }
 
@@ -624,8 +625,8 @@ std::optional<PhotometricResult> RefinePhotometric(const Image8& image,
       sigma_px,
       noise_sigma,
       options.max_rounds,
-      [&](const Rigid3& start, double sigma, double noise) {
-        return RefineOnce(image, camera, marker, start, sigma, noise, options);
+      [&](const Rigid3& start, double sigma, double noise, double function_tolerance) {
+        return RefineOnce(image, camera, marker, start, sigma, noise, function_tolerance, options);
       });
 }
 

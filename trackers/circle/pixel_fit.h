@@ -53,20 +53,32 @@ inline Eigen::VectorXd StartLevels(int parameters) {
   return levels;
 }
 
+// A fit stops where a step lowers the cost by less than this fraction of it. The cost is
+// about N σ_n² for N residuals, so on a fit's thousands of them this is a change of
+// χ² = cost/σ_n² under one (one standard error of the pose; 0.05 on the 5,400 of the speed
+// benchmark's frames). 1e-6 (Ceres's function tolerance) took 5-8 % more time, and paired
+// frame by frame on the circle markers' paper sweeps it was better in none of the 144 cells
+// and worse in four (sign tests, Holm; results/speed.md).
+constexpr double kFunctionTolerance = 1e-5;
+// The same for a first round that another follows (FitInRounds): its result only places the
+// next round's pixels, and that round fits the levels and the pose again on them from there.
+// On the speed benchmark's frames one evaluation with the normal equations less a frame (6 ->
+// 5), full detection and tracking mode about 5 % faster; paired frame by frame on the circle
+// markers' paper sweeps no cell worse (sign tests, Holm), one better (circle_f without noise),
+// 4 of 14,400 frames' success changed (results/speed.md).
+constexpr double kFirstRoundFunctionTolerance = 1e-4;
+
 // From a pose and σ, at StartLevels; σ kept at 0.2 px at least. Stops where a step lowers the
-// cost by less than 1e-5 of it, or where the normal equations predict that of the next step
-// after a taken one, damped no more than the first (saving the evaluation of a step that would
-// not count). The cost is about N σ_n² for N residuals, so on a fit's thousands of them that
-// is a change of χ² = cost/σ_n² under one (one standard error of the pose). 1e-6 (Ceres's
-// function tolerance) took 5-8 % more time, and paired frame by frame on the circle markers'
-// paper sweeps it was better in none of the 144 cells and worse in four (sign tests, Holm;
-// results/speed.md). With `modelled_at_result`, the pixels at the result are listed there
-// (from the evaluation that found it: none is done for them).
+// cost by less than `function_tolerance` of it, or where the normal equations predict that of
+// the next step after a taken one, damped no more than the first (saving the evaluation of a
+// step that would not count). With `modelled_at_result`, the pixels at the result are listed
+// there (from the evaluation that found it: none is done for them).
 template <class Model>
 PixelFit FitPixels(const Model& model,
                    const Rigid3& cam_from_marker,
                    double sigma_px,
                    int max_iterations,
+                   double function_tolerance = kFunctionTolerance,
                    std::vector<ModelledPixel>* modelled_at_result = nullptr) {
   Eigen::VectorXd theta =
       PixelFitParameters(cam_from_marker, sigma_px, StartLevels(model.Parameters()));
@@ -82,7 +94,6 @@ PixelFit FitPixels(const Model& model,
   double cost = model.Evaluate(theta, &jtj, &jtr, listing(modelled_at_result));
   PixelFit fit;
   constexpr double kStartDamping = 1e-3;
-  constexpr double kFunctionTolerance = 1e-5;
   double damping = kStartDamping;
   bool after_a_step = false;  // the last trial was taken
   for (int iteration = 0; iteration < max_iterations; ++iteration) {
@@ -91,7 +102,7 @@ PixelFit FitPixels(const Model& model,
     const Eigen::VectorXd step = damped.ldlt().solve(-jtr);
     // The cost Σ r² changes by 2 Jᵀr·δ + δᵀ JᵀJ δ to second order.
     const double predicted_decrease = -(2.0 * jtr.dot(step) + step.dot(jtj * step));
-    if (after_a_step && damping <= kStartDamping && predicted_decrease < kFunctionTolerance * cost)
+    if (after_a_step && damping <= kStartDamping && predicted_decrease < function_tolerance * cost)
       break;
     Eigen::VectorXd trial = theta + step;
     trial[6] = std::max(trial[6], 0.2);
@@ -105,7 +116,7 @@ PixelFit FitPixels(const Model& model,
       if (damping > 1e6) break;
       continue;
     }
-    const bool converged = cost - trial_cost < kFunctionTolerance * cost;
+    const bool converged = cost - trial_cost < function_tolerance * cost;
     theta = trial;
     cost = trial_cost;
     jtj.swap(trial_jtj);
@@ -125,7 +136,9 @@ PixelFit FitPixels(const Model& model,
 
 // A fit in rounds, each on the pixels chosen at the last result (a solve ties its pixels to
 // the start's edges), until the translation moves by less than 1e-4 of its length:
-// solve_once(cam_from_marker, σ) gives an optional Result with a PixelFit `fit`. A solve that
+// solve_once(cam_from_marker, σ, function_tolerance) gives an optional Result with a PixelFit
+// `fit`. The first of several rounds stops at kFirstRoundFunctionTolerance, the others at
+// kFunctionTolerance (a first round is the result only where the second fails). A solve that
 // ends with the marker behind the camera (the plane's mirror image, FacesTheCamera) gives
 // none: the rounds stop at the last result before it.
 template <class Result, class SolveOnce>
@@ -133,14 +146,18 @@ std::optional<Result> FitInRounds(const Rigid3& cam_from_marker,
                                   double sigma_px,
                                   int max_rounds,
                                   const SolveOnce& solve_once) {
-  const auto solve = [&](const Rigid3& start, double sigma) {
-    std::optional<Result> solved = solve_once(start, sigma);
+  const auto solve = [&](const Rigid3& start, double sigma, double function_tolerance) {
+    std::optional<Result> solved = solve_once(start, sigma, function_tolerance);
     if (solved && !FacesTheCamera(solved->fit.cam_from_marker)) solved.reset();
     return solved;
   };
-  std::optional<Result> result = solve(cam_from_marker, sigma_px);
+  std::optional<Result> result =
+      solve(cam_from_marker,
+            sigma_px,
+            max_rounds > 1 ? kFirstRoundFunctionTolerance : kFunctionTolerance);
   for (int round = 1; result && round < max_rounds; ++round) {
-    std::optional<Result> next = solve(result->fit.cam_from_marker, result->fit.sigma_px);
+    std::optional<Result> next =
+        solve(result->fit.cam_from_marker, result->fit.sigma_px, kFunctionTolerance);
     if (!next) break;
     const Eigen::Vector3d& last = result->fit.cam_from_marker.translation;
     const double moved_m = (next->fit.cam_from_marker.translation - last).norm();

@@ -83,7 +83,7 @@ TEST(FitPixels, ListsThePixelsAtItsResult) {
   Rigid3 start;
   start.translation = Eigen::Vector3d(0.0, 0.0, 0.5);
   std::vector<ModelledPixel> listed(3, ModelledPixel{1.0, 1.0});
-  const PixelFit fit = FitPixels(model, start, 1.0, 15, &listed);
+  const PixelFit fit = FitPixels(model, start, 1.0, 15, kFunctionTolerance, &listed);
   std::vector<ModelledPixel> at_result;
   model.Evaluate(PixelFitParameters(fit.cam_from_marker, fit.sigma_px, fit.levels),
                  nullptr,
@@ -104,6 +104,34 @@ TEST(FitPixels, ListsThePixelsAtItsResult) {
     largest_move = std::max(largest_move, std::abs(listed[i].mean - at_start[i].mean));
   }
   EXPECT_GT(largest_move, 1e-3);
+}
+
+// The first of several rounds is solved to the looser tolerance (the next round fits again
+// from its result); every later round, and a fit of one round, to the fit's own.
+TEST(FitInRounds, SolvesOnlyAFirstRoundThatAnotherFollowsToTheLooserTolerance) {
+  struct Solved {
+    PixelFit fit;
+  };
+  std::vector<double> tolerances;
+  // Each solve moves the marker 1 mm sideways in its first two rounds, then not at all.
+  const auto solve_once = [&](const Rigid3& start, double sigma_px, double function_tolerance) {
+    tolerances.push_back(function_tolerance);
+    Solved solved;
+    solved.fit.cam_from_marker = start;
+    if (tolerances.size() <= 2) solved.fit.cam_from_marker.translation.x() += 1e-3;
+    solved.fit.sigma_px = sigma_px;
+    return std::optional<Solved>(solved);
+  };
+  Rigid3 start;  // 0.5 m in front of the camera, facing it
+  start.rotation = Eigen::Vector3d(1.0, -1.0, -1.0).asDiagonal();
+  start.translation = Eigen::Vector3d(0.0, 0.0, 0.5);
+  ASSERT_TRUE(FitInRounds<Solved>(start, 1.0, 5, solve_once));
+  EXPECT_EQ(
+      tolerances,
+      (std::vector<double>{kFirstRoundFunctionTolerance, kFunctionTolerance, kFunctionTolerance}));
+  tolerances.clear();
+  ASSERT_TRUE(FitInRounds<Solved>(start, 1.0, 1, solve_once));
+  EXPECT_EQ(tolerances, std::vector<double>{kFunctionTolerance});
 }
 
 }  // namespace
