@@ -62,10 +62,10 @@ inline Eigen::VectorXd StartLevels(int parameters) {
 constexpr double kFunctionTolerance = 1e-5;
 // The same for a first round that another follows (FitInRounds): its result only places the
 // next round's pixels, and that round fits the levels and the pose again on them from there.
-// On the speed benchmark's frames one evaluation with the normal equations less a frame (6 ->
-// 5), full detection and tracking mode about 5 % faster; paired frame by frame on the circle
-// markers' paper sweeps no cell worse (sign tests, Holm), one better (circle_f without noise),
-// 4 of 14,400 frames' success changed (results/speed.md).
+// On the speed benchmark's frames 0.8 evaluations with the normal equations less a frame
+// (6.1 -> 5.3), full detection and tracking mode about 5 % faster; paired frame by frame on the
+// circle markers' paper sweeps no cell worse (sign tests, Holm), one better (circle_f without
+// noise), 4 of 14,400 frames' success changed (results/speed.md).
 constexpr double kFirstRoundFunctionTolerance = 1e-4;
 
 // From a pose and σ, at StartLevels; σ kept at 0.2 px at least. Stops where a step lowers the
