@@ -100,6 +100,8 @@ bool CircleTrackerOptions::IsValid(std::string* error) const {
     msg << "max_other_tilt_log_ratio=" << max_other_tilt_log_ratio << " must be >= 0";
   } else if (!(min_design_radius_per_blur >= 0.0)) {
     msg << "min_design_radius_per_blur=" << min_design_radius_per_blur << " must be >= 0";
+  } else if (!(photometric_refinement.band_sigmas > 0.0)) {
+    msg << "pixel_band_sigmas=" << photometric_refinement.band_sigmas << " must be > 0";
   } else {
     return true;
   }
@@ -152,6 +154,8 @@ CircleTrackerOptions CircleTrackerOptions::FromYaml(const YamlMap& map) {
       map.GetOr<double>("max_other_tilt_log_ratio", o.max_other_tilt_log_ratio);
   o.min_design_radius_per_blur =
       map.GetOr<double>("min_design_radius_per_blur", o.min_design_radius_per_blur);
+  o.photometric_refinement.band_sigmas =
+      map.GetOr<double>("pixel_band_sigmas", o.photometric_refinement.band_sigmas);
   FinishOptions(map, o);
   return o;
 }
@@ -188,6 +192,7 @@ std::vector<std::pair<std::string, std::string>> CircleTracker::Parameters() con
       {"min_branch_angle_rad", NumberText(o.min_branch_angle_rad)},
       {"max_other_tilt_log_ratio", NumberText(o.max_other_tilt_log_ratio)},
       {"min_design_radius_per_blur", NumberText(o.min_design_radius_per_blur)},
+      {"pixel_band_sigmas", NumberText(o.photometric_refinement.band_sigmas)},
   };
 }
 

@@ -60,8 +60,8 @@ struct CircleTrackerOptions {
   // Reads flat keys (cost, huber_px, point_weight, max_iterations, k_normal, depth, refine,
   // photometric, tracking, roi_margin, max_prediction_error, max_edge_rms_px,
   // max_appearance_misfit, min_contrast, edge_passes, max_rays, min_branch_angle_rad,
-  // max_other_tilt_log_ratio,
-  // min_design_radius_per_blur); throws ConfigError naming the file and key.
+  // max_other_tilt_log_ratio, min_design_radius_per_blur, pixel_band_sigmas: the disks' fit's
+  // band_sigmas); throws ConfigError naming the file and key.
   static CircleTrackerOptions FromYaml(const YamlMap& map);
 };
 

@@ -384,7 +384,8 @@ TEST(CircleTracker, OptionsFromYamlNameTheBadKey) {
                                          " max_other_tilt_log_ratio: 30,"
                                          " min_design_radius_per_blur: 5,"
                                          " max_blurred_dot_disks: 0,"
-                                         " blurred_dot_min_significance: 8}\n"
+                                         " blurred_dot_min_significance: 8,"
+                                         " pixel_band_sigmas: 3}\n"
                                          "bad_value: {huber_px: -1}\n"
                                          "bad_cost: {cost: sampson}\n"
                                          "unknown: {hubr_px: 1}\n"
@@ -392,7 +393,8 @@ TEST(CircleTracker, OptionsFromYamlNameTheBadKey) {
                                          "bad_radius: {min_design_radius_per_blur: -1}\n"
                                          "bad_ratio: {max_other_tilt_log_ratio: -1}\n"
                                          "bad_peak: {max_blurred_dot_peak: 1.5}\n"
-                                         "bad_dot: {min_blurred_dot_radius_px: 0}\n");
+                                         "bad_dot: {min_blurred_dot_radius_px: 0}\n"
+                                         "bad_band: {pixel_band_sigmas: 0}\n");
   const YamlMap root = YamlMap::LoadFile(path);
   const CircleTrackerOptions good = CircleTrackerOptions::FromYaml(root.GetMap("good"));
   EXPECT_EQ(good.refinement.cost, RefinementCost::kConics);
@@ -403,6 +405,7 @@ TEST(CircleTracker, OptionsFromYamlNameTheBadKey) {
   EXPECT_EQ(good.max_other_tilt_log_ratio, 30.0);
   EXPECT_EQ(good.detector.max_blurred_dot_disks, 0);
   EXPECT_EQ(good.detector.blurred_dots.min_significance, 8.0);
+  EXPECT_EQ(good.photometric_refinement.band_sigmas, 3.0);
   for (const char* key : {"bad_value",
                           "bad_cost",
                           "unknown",
@@ -410,7 +413,8 @@ TEST(CircleTracker, OptionsFromYamlNameTheBadKey) {
                           "bad_radius",
                           "bad_ratio",
                           "bad_peak",
-                          "bad_dot"}) {
+                          "bad_dot",
+                          "bad_band"}) {
     try {
       CircleTrackerOptions::FromYaml(root.GetMap(key));
       ADD_FAILURE() << key << " was accepted";
