@@ -35,7 +35,7 @@ def significant(value, digits=3):
     1000 on; '-' for NaN."""
     if math.isnan(value):
         return "-"
-    if abs(value) >= 10 ** digits:
+    if abs(float(f"{value:.{digits}g}")) >= 10 ** digits:  # also where rounding reaches it
         return f"{value:.0f}"
     return f"{value:#.{digits}g}".rstrip(".")
 

@@ -99,7 +99,7 @@ PixelFit FitPixelsAtTheirNoise(Model& model,
 }
 
 // FitInRounds (pixel_fit.h) with each round's solve at the noise the last one showed:
-// solve_once(cam_from_marker, σ, noise, function_tolerance) gives an optional Result with a
+// solve_once(cam_from_marker, σ, noise, FitRound) gives an optional Result with a
 // PixelFit `fit` and the noise it showed, `noise_sigma`.
 template <class Result, class SolveOnce>
 std::optional<Result> FitInRoundsAtTheirNoise(const Rigid3& cam_from_marker,
@@ -111,9 +111,9 @@ std::optional<Result> FitInRoundsAtTheirNoise(const Rigid3& cam_from_marker,
   return FitInRounds<Result>(cam_from_marker,
                              sigma_px,
                              max_rounds,
-                             [&](const Rigid3& start, double sigma, double function_tolerance) {
+                             [&](const Rigid3& start, double sigma, const FitRound& round) {
                                std::optional<Result> solved =
-                                   solve_once(start, sigma, noise, function_tolerance);
+                                   solve_once(start, sigma, noise, round);
                                if (solved) noise = solved->noise_sigma;
                                return solved;
                              });

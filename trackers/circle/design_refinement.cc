@@ -182,14 +182,17 @@ std::optional<DesignRefinement> RefineOnce(const Image8& image,
                                            const Rigid3& cam_from_marker,
                                            double sigma_px,
                                            double noise_sigma,
-                                           double function_tolerance,
+                                           const FitRound& round,
                                            const DesignRefinementOptions& options) {
   const std::vector<DesignPixel> pixels =
       PixelsNearDesignEdges(image, camera, marker, cam_from_marker, ReachPx(sigma_px, options));
   if (pixels.size() < 20) return std::nullopt;
   DesignModel model(camera, marker, pixels, ModelNoiseSigma(noise_sigma));
-  const PixelFit fit = FitPixelsAtTheirNoise(
-      model, cam_from_marker, std::max(sigma_px, 0.3), options.max_iterations, function_tolerance);
+  const PixelFit fit = FitPixelsAtTheirNoise(model,
+                                             cam_from_marker,
+                                             std::max(sigma_px, 0.3),
+                                             options.max_iterations,
+                                             round.function_tolerance());
   return DesignRefinement{fit, static_cast<int>(pixels.size()), model.noise_sigma()};
 }
 
@@ -209,8 +212,8 @@ std::optional<DesignRefinement> RefineDesign(const Image8& image,
       sigma_px,
       noise_sigma,
       options.max_rounds,
-      [&](const Rigid3& start, double sigma, double noise, double function_tolerance) {
-        return RefineOnce(image, camera, marker, start, sigma, noise, function_tolerance, options);
+      [&](const Rigid3& start, double sigma, double noise, const FitRound& round) {
+        return RefineOnce(image, camera, marker, start, sigma, noise, round, options);
       });
 }
 

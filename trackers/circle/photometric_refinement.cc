@@ -569,22 +569,24 @@ std::optional<ModelledPixels> PixelsAt(const Image8& image,
 }
 
 // One solve on the pixels near the edges at `cam_from_marker`, each tied to its edges' points,
-// at the noise they show, to `function_tolerance` (pixel_fit.h).
+// at the noise they show, as `round` of a fit in rounds (pixel_fit.h).
 std::optional<PhotometricResult> RefineOnce(const Image8& image,
                                             const Camera& camera,
                                             const MarkerSpec& marker,
                                             const Rigid3& cam_from_marker,
                                             double sigma_px,
                                             double noise_sigma,
-                                            double function_tolerance,
+                                            const FitRound& round,
                                             const PhotometricOptions& options) {
+  PhotometricOptions round_options = options;
+  if (round.first_of_several) round_options.band_sigmas = options.first_round_band_sigmas;
   const std::optional<ModelledPixels> at =
-      PixelsAt(image, camera, marker, cam_from_marker, sigma_px, options);
+      PixelsAt(image, camera, marker, cam_from_marker, sigma_px, round_options);
   if (!at) return std::nullopt;
   PixelModel model(
       camera.K(), at->layers, at->pixels, image.channels, ModelNoiseSigma(noise_sigma));
   const PixelFit fit = FitPixelsAtTheirNoise(
-      model, cam_from_marker, at->sigma_px, options.max_iterations, function_tolerance);
+      model, cam_from_marker, at->sigma_px, options.max_iterations, round.function_tolerance());
   return PhotometricResult{fit, static_cast<int>(at->pixels.pixels.size()), model.noise_sigma()};
 }
 
@@ -625,8 +627,8 @@ std::optional<PhotometricResult> RefinePhotometric(const Image8& image,
       sigma_px,
       noise_sigma,
       options.max_rounds,
-      [&](const Rigid3& start, double sigma, double noise, double function_tolerance) {
-        return RefineOnce(image, camera, marker, start, sigma, noise, function_tolerance, options);
+      [&](const Rigid3& start, double sigma, double noise, const FitRound& round) {
+        return RefineOnce(image, camera, marker, start, sigma, noise, round, options);
       });
 }
 

@@ -38,6 +38,13 @@ struct PhotometricOptions {
   // errors differed by a sign test after Holm, and over circles_a's blur sweep they grew 0.9 %
   // (geometric mean, 95 % interval -0.4..+2.1 %; results/speed.md).
   double band_sigmas = 2.0;
+  // The same for the first of several rounds (FitRound, pixel_fit.h), whose result only places
+  // the next round's pixels. Against 2: 8-9 % less time for full detection at 0.6 m, 3-5 % in
+  // tracking mode, 6-9 % at blur σ 8; paired on the circle markers' paper sweeps no cell's
+  // errors differed by a sign test after Holm, the geometric mean of the error ratios
+  // 0.999-1.002 per sweep and marker, 1.005 on circles_a's blur sweep (95 % interval
+  // 1.000-1.010; results/speed.md).
+  double first_round_band_sigmas = 1.0;
   // A tilted disk's image is an ellipse, modelled at each pixel as the disk osculating its
   // edge at the pixel's foot point; deep inside, where the blur reaches the far edges, that
   // fails (on circles_a at 1 m and blur 10: the pose off by 130 mm from the truth without

@@ -134,30 +134,37 @@ PixelFit FitPixels(const Model& model,
   return fit;
 }
 
+// A solve of a fit in rounds (FitInRounds). The first of several only places the next
+// round's pixels, and that round fits the levels and the pose again on them from its result:
+// it stops at kFirstRoundFunctionTolerance, and a model may take fewer pixels for it; every
+// later round, and a fit of one round, stops at kFunctionTolerance.
+struct FitRound {
+  bool first_of_several = false;
+  double function_tolerance() const {
+    return first_of_several ? kFirstRoundFunctionTolerance : kFunctionTolerance;
+  }
+};
+
 // A fit in rounds, each on the pixels chosen at the last result (a solve ties its pixels to
 // the start's edges), until the translation moves by less than 1e-4 of its length:
-// solve_once(cam_from_marker, σ, function_tolerance) gives an optional Result with a PixelFit
-// `fit`. The first of several rounds stops at kFirstRoundFunctionTolerance, the others at
-// kFunctionTolerance (a first round is the result only where the second fails). A solve that
-// ends with the marker behind the camera (the plane's mirror image, FacesTheCamera) gives
-// none: the rounds stop at the last result before it.
+// solve_once(cam_from_marker, σ, FitRound) gives an optional Result with a PixelFit `fit` (a
+// first round is the result only where the second fails). A solve that ends with the marker
+// behind the camera (the plane's mirror image, FacesTheCamera) gives none: the rounds stop at
+// the last result before it.
 template <class Result, class SolveOnce>
 std::optional<Result> FitInRounds(const Rigid3& cam_from_marker,
                                   double sigma_px,
                                   int max_rounds,
                                   const SolveOnce& solve_once) {
-  const auto solve = [&](const Rigid3& start, double sigma, double function_tolerance) {
-    std::optional<Result> solved = solve_once(start, sigma, function_tolerance);
+  const auto solve = [&](const Rigid3& start, double sigma, const FitRound& round) {
+    std::optional<Result> solved = solve_once(start, sigma, round);
     if (solved && !FacesTheCamera(solved->fit.cam_from_marker)) solved.reset();
     return solved;
   };
-  std::optional<Result> result =
-      solve(cam_from_marker,
-            sigma_px,
-            max_rounds > 1 ? kFirstRoundFunctionTolerance : kFunctionTolerance);
+  std::optional<Result> result = solve(cam_from_marker, sigma_px, FitRound{max_rounds > 1});
   for (int round = 1; result && round < max_rounds; ++round) {
     std::optional<Result> next =
-        solve(result->fit.cam_from_marker, result->fit.sigma_px, kFunctionTolerance);
+        solve(result->fit.cam_from_marker, result->fit.sigma_px, FitRound{false});
     if (!next) break;
     const Eigen::Vector3d& last = result->fit.cam_from_marker.translation;
     const double moved_m = (next->fit.cam_from_marker.translation - last).norm();

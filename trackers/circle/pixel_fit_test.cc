@@ -106,16 +106,19 @@ TEST(FitPixels, ListsThePixelsAtItsResult) {
   EXPECT_GT(largest_move, 1e-3);
 }
 
-// The first of several rounds is solved to the looser tolerance (the next round fits again
-// from its result); every later round, and a fit of one round, to the fit's own.
+// Only the first of several rounds is solved as one (FitRound::first_of_several: to the looser
+// tolerance, the next round fitting again from its result); every later round, and a fit of
+// one round, to the fit's own tolerance.
 TEST(FitInRounds, SolvesOnlyAFirstRoundThatAnotherFollowsToTheLooserTolerance) {
   struct Solved {
     PixelFit fit;
   };
+  std::vector<bool> firsts;
   std::vector<double> tolerances;
   // Each solve moves the marker 1 mm sideways in its first two rounds, then not at all.
-  const auto solve_once = [&](const Rigid3& start, double sigma_px, double function_tolerance) {
-    tolerances.push_back(function_tolerance);
+  const auto solve_once = [&](const Rigid3& start, double sigma_px, const FitRound& round) {
+    firsts.push_back(round.first_of_several);
+    tolerances.push_back(round.function_tolerance());
     Solved solved;
     solved.fit.cam_from_marker = start;
     if (tolerances.size() <= 2) solved.fit.cam_from_marker.translation.x() += 1e-3;
@@ -126,11 +129,14 @@ TEST(FitInRounds, SolvesOnlyAFirstRoundThatAnotherFollowsToTheLooserTolerance) {
   start.rotation = Eigen::Vector3d(1.0, -1.0, -1.0).asDiagonal();
   start.translation = Eigen::Vector3d(0.0, 0.0, 0.5);
   ASSERT_TRUE(FitInRounds<Solved>(start, 1.0, 5, solve_once));
+  EXPECT_EQ(firsts, (std::vector<bool>{true, false, false}));
   EXPECT_EQ(
       tolerances,
       (std::vector<double>{kFirstRoundFunctionTolerance, kFunctionTolerance, kFunctionTolerance}));
+  firsts.clear();
   tolerances.clear();
   ASSERT_TRUE(FitInRounds<Solved>(start, 1.0, 1, solve_once));
+  EXPECT_EQ(firsts, std::vector<bool>{false});
   EXPECT_EQ(tolerances, std::vector<double>{kFunctionTolerance});
 }
 
