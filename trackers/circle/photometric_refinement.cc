@@ -160,7 +160,9 @@ class PixelModel {
     // where the pixels are chosen again at each round.
     // Their values, and with the normal equations their derivatives too.
     std::vector<std::vector<Eigen::Vector2d>> edges_px(layers_.size());
-    std::vector<std::vector<Eigen::Matrix<Jet, 2, 1>>> edges(layers_.size());
+    // n·∂e/∂θ per edge point e, n its normal at the start pose: all a pixel's distance to it,
+    // d = n·(x - e), takes of its derivatives.
+    std::vector<std::vector<Eigen::Matrix<double, 7, 1>>> edges_along_normal(layers_.size());
     std::vector<Jet> size_per_sigma(layers_.size());  // per layer: s = start ρ · this
     std::vector<std::vector<BlurredDiskProfile>> profiles(layers_.size());
     // H = K [r1 r2 t]: plane points (X, Y, 1) to pixels.
@@ -187,10 +189,14 @@ class PixelModel {
       }
       edges_px[l].reserve(layer.bins);
       if (jtj) {
-        edges[l].reserve(layer.bins);
-        for (const Eigen::Vector2d& X : layer.edge) {
-          edges[l].push_back(ProjectPlanePoint(H, X));
-          edges_px[l].emplace_back(edges[l].back().x().a, edges[l].back().y().a);
+        edges_along_normal[l].resize(layer.bins);
+        for (int bin = 0; bin < layer.bins; ++bin) {
+          const Eigen::Matrix<Jet, 2, 1> edge = ProjectPlanePoint(H, layer.edge[bin]);
+          const Eigen::Vector2d& normal = layer.start_normal[bin];
+          for (int i = 0; i < 7; ++i) {
+            edges_along_normal[l][bin][i] = normal.x() * edge.x().v[i] + normal.y() * edge.y().v[i];
+          }
+          edges_px[l].emplace_back(edge.x().a, edge.y().a);
         }
       } else {
         for (const Eigen::Vector2d& X : layer.edge) {
@@ -228,14 +234,14 @@ class PixelModel {
           normal.x() * (p.ideal_px.x() - edge_px.x()) + normal.y() * (p.ideal_px.y() - edge_px.y());
       const ProfileValue g = profiles[near.layer][near.bin].At(-distance / sigma_value);
       if (d) {
-        const Eigen::Matrix<Jet, 2, 1>& edge = edges[near.layer][near.bin];
+        const Eigen::Matrix<double, 7, 1>& edge_along_normal =
+            edges_along_normal[near.layer][near.bin];
         // ∂G/∂θ = G_z ∂z/∂θ + G_s ρ ∂(s/ρ)/∂θ, z = -d/σ, ∂d/∂θ = -n·∂e/∂θ (and ∂σ/∂θ = e₇).
         const double along_edge = g.d_dz / sigma_value;
         const double along_size = g.d_ds * layer.start_curvature_radius_px[near.bin];
         const Jet& size = size_per_sigma[near.layer];
         for (int i = 0; i < 7; ++i) {
-          (*d)[i] = along_edge * (normal.x() * edge.x().v[i] + normal.y() * edge.y().v[i]) +
-                    along_size * size.v[i];
+          (*d)[i] = along_edge * edge_along_normal[i] + along_size * size.v[i];
         }
         (*d)[6] += along_edge * distance / sigma_value;
       }
@@ -454,77 +460,107 @@ PixelSet PixelsNearEdges(const Image8& image,
   std::vector<uint8_t> taken(
       static_cast<size_t>(std::max(0, all_width)) * std::max(0, all.v1 - all.v0 + 1), 0);
   std::vector<double> distances(layers.size());
-  // The columns of row v that may lie within an annulus's outer circle: without distortion a
-  // pixel's ideal coordinates are its own (to rounding; a pixel to spare each way), and
-  // beyond those circles no pixel is near; with distortion, all of them.
+  // The columns of row v that may lie within an annulus: without distortion a pixel's ideal
+  // coordinates are its own (to rounding; a pixel to spare each way), and outside the outer
+  // circles or (but for a disk modelled whole) inside an inner one no pixel is near; with
+  // distortion, all of them. As spans of columns, in order and apart.
   const bool ideal_is_pixel = !camera.HasDistortion();
+  std::vector<std::pair<int, int>> spans;
   const auto columns_near = [&](int v, const Box& box) {
-    if (!ideal_is_pixel) return std::make_pair(box.u0, box.u1);
-    double first = std::numeric_limits<double>::infinity();
-    double last = -first;
-    for (const Annulus& annulus : annuli) {
+    spans.clear();
+    if (!ideal_is_pixel) {
+      spans.emplace_back(box.u0, box.u1);
+      return;
+    }
+    for (size_t m = 0; m < annuli.size(); ++m) {
+      const Annulus& annulus = annuli[m];
       const double dy = std::max(0.0, std::abs(v - annulus.center.y()) - 1.0);
       if (dy * dy > annulus.outer_squared) continue;
       const double half_width = std::sqrt(annulus.outer_squared - dy * dy) + 1.0;
-      first = std::min(first, annulus.center.x() - half_width);
-      last = std::max(last, annulus.center.x() + half_width);
+      const int first = column(annulus.center.x() - half_width);
+      const int last = column(annulus.center.x() + half_width + 1.0);
+      const double dy_inner = std::abs(v - annulus.center.y()) + 1.0;
+      const double inner_half_width =
+          layers[m].whole || dy_inner * dy_inner >= annulus.inner_squared
+              ? 0.0
+              : std::sqrt(annulus.inner_squared - dy_inner * dy_inner) - 1.0;
+      if (inner_half_width < 1.0) {
+        spans.emplace_back(first, last);
+      } else {
+        spans.emplace_back(first, column(annulus.center.x() - inner_half_width));
+        spans.emplace_back(column(annulus.center.x() + inner_half_width), last);
+      }
     }
-    if (first > last) return std::make_pair(1, 0);  // none
-    return std::make_pair(std::max(box.u0, column(first)), std::min(box.u1, column(last + 1.0)));
+    std::sort(spans.begin(), spans.end());
+    size_t merged = 0;
+    for (const auto& [first, last] : spans) {
+      const int u0 = std::max(box.u0, first), u1 = std::min(box.u1, last);
+      if (u0 > u1) continue;
+      if (merged > 0 && u0 <= spans[merged - 1].second + 1) {
+        spans[merged - 1].second = std::max(spans[merged - 1].second, u1);
+      } else {
+        spans[merged++] = {u0, u1};
+      }
+    }
+    spans.resize(merged);
+  };
+  // A pixel in a span: taken once, with its edges, if it is near one.
+  const auto consider = [&](int u, int v) {
+    uint8_t& seen = taken[static_cast<size_t>(v - all.v0) * all_width + (u - all.u0)];
+    if (seen) return;
+    seen = 1;
+    const Eigen::Vector3d ray = camera.CamFromImg(Eigen::Vector2d(u, v));
+    const Eigen::Vector2d ideal(K(0, 0) * ray.x() + K(0, 2), K(1, 1) * ray.y() + K(1, 2));
+    // Signed distance to each edge, negative inside.
+    bool near_any = false;
+    for (size_t m = 0; m < layers.size(); ++m) {
+      const double from_center_squared = (ideal - annuli[m].center).squaredNorm();
+      if (from_center_squared > annuli[m].outer_squared) {
+        distances[m] = std::numeric_limits<double>::infinity();
+      } else if (from_center_squared < annuli[m].inner_squared) {
+        distances[m] = -std::numeric_limits<double>::infinity();
+      } else {
+        distances[m] = PndResidual<double>(layers[m].start_conic, ideal.x(), ideal.y());
+      }
+      near_any =
+          near_any || std::abs(distances[m]) <= band || (layers[m].whole && distances[m] < 0.0);
+    }
+    if (!near_any) return;
+    Pixel p;
+    p.ideal_px = ideal;
+    p.value = Eigen::Vector3d::Zero();
+    for (int c = 0; c < image.channels; ++c) p.value[c] = image.at(u, v, c) / 255.0;
+    p.base = background;
+    p.first_edge = static_cast<int>(set.near_edges.size());
+    const Eigen::Vector2d on_plane = (plane_from_px * ideal.homogeneous()).hnormalized();
+    bool modelled = true;
+    for (size_t m = 0; m < layers.size(); ++m) {
+      if (layers[m].whole) {
+        if (distances[m] <= band) {
+          set.near_edges.push_back({static_cast<int>(m), -1});
+          ++p.edges;
+        }
+      } else if (std::abs(distances[m]) <= band) {
+        const int bin = NearestBin(layers[m], ideal, on_plane);
+        set.near_edges.push_back({static_cast<int>(m), bin});
+        ++p.edges;
+        modelled = modelled && distances[m] >= -max_depth_per_curvature *
+                                                   layers[m].start_curvature_radius_px[bin];
+      } else if (distances[m] < 0.0) {
+        p.base += layers[m].jump;
+      }
+    }
+    if (modelled) {
+      set.pixels.push_back(p);
+    } else {
+      set.near_edges.resize(p.first_edge);
+    }
   };
   for (const Box& box : boxes) {
     for (int v = box.v0; v <= box.v1; ++v) {
-      const auto [u0, u1] = columns_near(v, box);
-      for (int u = u0; u <= u1; ++u) {
-        uint8_t& seen = taken[static_cast<size_t>(v - all.v0) * all_width + (u - all.u0)];
-        if (seen) continue;
-        seen = 1;
-        const Eigen::Vector3d ray = camera.CamFromImg(Eigen::Vector2d(u, v));
-        const Eigen::Vector2d ideal(K(0, 0) * ray.x() + K(0, 2), K(1, 1) * ray.y() + K(1, 2));
-        // Signed distance to each edge, negative inside.
-        bool near_any = false;
-        for (size_t m = 0; m < layers.size(); ++m) {
-          const double from_center_squared = (ideal - annuli[m].center).squaredNorm();
-          if (from_center_squared > annuli[m].outer_squared) {
-            distances[m] = std::numeric_limits<double>::infinity();
-          } else if (from_center_squared < annuli[m].inner_squared) {
-            distances[m] = -std::numeric_limits<double>::infinity();
-          } else {
-            distances[m] = PndResidual<double>(layers[m].start_conic, ideal.x(), ideal.y());
-          }
-          near_any =
-              near_any || std::abs(distances[m]) <= band || (layers[m].whole && distances[m] < 0.0);
-        }
-        if (!near_any) continue;
-        Pixel p;
-        p.ideal_px = ideal;
-        p.value = Eigen::Vector3d::Zero();
-        for (int c = 0; c < image.channels; ++c) p.value[c] = image.at(u, v, c) / 255.0;
-        p.base = background;
-        p.first_edge = static_cast<int>(set.near_edges.size());
-        const Eigen::Vector2d on_plane = (plane_from_px * ideal.homogeneous()).hnormalized();
-        bool modelled = true;
-        for (size_t m = 0; m < layers.size(); ++m) {
-          if (layers[m].whole) {
-            if (distances[m] <= band) {
-              set.near_edges.push_back({static_cast<int>(m), -1});
-              ++p.edges;
-            }
-          } else if (std::abs(distances[m]) <= band) {
-            const int bin = NearestBin(layers[m], ideal, on_plane);
-            set.near_edges.push_back({static_cast<int>(m), bin});
-            ++p.edges;
-            modelled = modelled && distances[m] >= -max_depth_per_curvature *
-                                                       layers[m].start_curvature_radius_px[bin];
-          } else if (distances[m] < 0.0) {
-            p.base += layers[m].jump;
-          }
-        }
-        if (modelled) {
-          set.pixels.push_back(p);
-        } else {
-          set.near_edges.resize(p.first_edge);
-        }
+      columns_near(v, box);
+      for (const auto& [u0, u1] : spans) {
+        for (int u = u0; u <= u1; ++u) consider(u, v);
       }
     }
   }
