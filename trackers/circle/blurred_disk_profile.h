@@ -6,6 +6,8 @@
 // Tabulated once over t = 1/s in [1/40, 2] and z in [-7, 7]; bilinear, with its gradient.
 #pragma once
 
+#include <Eigen/Core>
+
 namespace markerbench {
 
 struct ProfileValue {
@@ -27,5 +29,26 @@ class BlurredDiskProfile {
   double weight_ = 0.0;  // of row1_
   double d_weight_ds_ = 0.0;
 };
+
+// A point's signed distance (px, positive outside) from an edge near its point e, n the
+// edge's outward unit normal there and ρ its radius of curvature (infinite: a straight edge):
+// the edge falls behind its tangent by a²/2ρ at a = t·(x − e) along it, t = (−n_y, n_x), so
+//   d = n·(x − e) + a²/2ρ,
+// exact on the edge to second order in a (a circle's is off by a⁴/8ρ³ there), and off it by
+// a² d/2ρ(ρ + d), which scales the distances on both sides about alike and moves no edge.
+// Its derivative in e is −(n + (a/ρ) t).
+struct EdgeOffset {
+  double distance;
+  double along;  // a
+};
+inline EdgeOffset OffsetFromCurvedEdge(const Eigen::Vector2d& point,
+                                       const Eigen::Vector2d& edge_point,
+                                       const Eigen::Vector2d& normal,
+                                       double radius) {
+  const Eigen::Vector2d offset = point - edge_point;
+  const double along = normal.x() * offset.y() - normal.y() * offset.x();
+  return {normal.x() * offset.x() + normal.y() * offset.y() + along * along / (2.0 * radius),
+          along};
+}
 
 }  // namespace markerbench

@@ -62,18 +62,20 @@ double ModelNoiseSigma(double noise_sigma);
 // (where clipping takes little of it); nullopt with fewer than 50 of them.
 std::optional<double> MidRangeNoise(const std::vector<ModelledPixel>& modelled);
 
-// FitPixels (to `function_tolerance`) on a model whose clipping takes the noise it is given
+// FitPixels (to `round`'s tolerance) on a model whose clipping takes the noise it is given
 // (noise_sigma(), set_noise_sigma(), and Evaluate(θ, JᵀJ*, Jᵀr*, modelled*) that also lists
 // each pixel's ModelledPixel), at the noise its residuals show: the model takes the noise shown at
 // the start (where the edges are near and the levels those of a white paper and black ink), and the
 // fit is done again where its own residuals show one more than 10 % off. A global estimate on an
 // image of clipped white paper puts the noise far too low (the detector's: 0.06 for a true 0.14).
+// A round that follows another starts from the noise that one showed at its result, which the
+// model has, and is not measured at the start.
 template <class Model>
 PixelFit FitPixelsAtTheirNoise(Model& model,
                                const Rigid3& cam_from_marker,
                                double sigma_px,
                                int max_iterations,
-                               double function_tolerance) {
+                               const FitRound& round) {
   // Whether the noise the pixels show is more than 10 % off the model's; the model then
   // takes it.
   const auto takes_the_noise_shown = [&](const std::vector<ModelledPixel>& modelled) {
@@ -82,12 +84,15 @@ PixelFit FitPixelsAtTheirNoise(Model& model,
     model.set_noise_sigma(ModelNoiseSigma(*measured));
     return true;
   };
+  const double function_tolerance = round.function_tolerance();
   std::vector<ModelledPixel> modelled;
-  model.Evaluate(PixelFitParameters(cam_from_marker, sigma_px, StartLevels(model.Parameters())),
-                 nullptr,
-                 nullptr,
-                 &modelled);
-  takes_the_noise_shown(modelled);
+  if (!round.follows_another) {
+    model.Evaluate(PixelFitParameters(cam_from_marker, sigma_px, StartLevels(model.Parameters())),
+                   nullptr,
+                   nullptr,
+                   &modelled);
+    takes_the_noise_shown(modelled);
+  }
   PixelFit fit =
       FitPixels(model, cam_from_marker, sigma_px, max_iterations, function_tolerance, &modelled);
   if (takes_the_noise_shown(modelled)) {

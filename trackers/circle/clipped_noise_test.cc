@@ -7,6 +7,10 @@
 #include <algorithm>
 #include <cmath>
 #include <string>
+#include <vector>
+
+#include "core/rigid3.h"
+#include "testing/linear_pixel_model.h"
 
 namespace markerbench {
 namespace {
@@ -83,6 +87,31 @@ TEST(MidRangeNoise, IsTheResidualsRmsBetweenTwoTenthsAndEightTenths) {
   for (int i = 0; i < 30; ++i) modelled.push_back({0.7, i % 2 ? 0.1 : 0.9});  // left out
   ASSERT_TRUE(MidRangeNoise(modelled));
   EXPECT_NEAR(*MidRangeNoise(modelled), 0.1, 1e-12);
+}
+
+// 100 mid-range pixels whose residuals at the least-squares θ show a noise of 0.05.
+const LinearPixelModel::Shape kNoisyPixels{100, 0.01, 0.0, 0.5, 0.05 * std::sqrt(100.0)};
+
+// A round of its own measures the noise at its start (one evaluation without the normal
+// equations) and takes it; a round that follows another starts from the noise it is given,
+// and takes the one its result shows only where that is more than 10 % off (fitting again).
+TEST(FitPixelsAtTheirNoise, MeasuresTheNoiseAtTheStartUnlessARoundBeforeDid) {
+  Rigid3 start;
+  start.translation = Eigen::Vector3d(0.0, 0.0, 0.5);
+  LinearPixelModel alone(kNoisyPixels, 0.02);
+  FitPixelsAtTheirNoise(alone, start, 1.0, 15, FitRound{});
+  EXPECT_EQ(alone.evaluations_without_normal_equations(), 1);
+  EXPECT_NEAR(alone.noise_sigma(), 0.05, 0.005);
+
+  LinearPixelModel after_a_good_round(kNoisyPixels, 0.05);
+  FitPixelsAtTheirNoise(after_a_good_round, start, 1.0, 15, FitRound{false, true});
+  EXPECT_EQ(after_a_good_round.evaluations_without_normal_equations(), 0);
+  EXPECT_EQ(after_a_good_round.noise_sigma(), 0.05);
+
+  LinearPixelModel after_a_bad_round(kNoisyPixels, 0.02);
+  FitPixelsAtTheirNoise(after_a_bad_round, start, 1.0, 15, FitRound{false, true});
+  EXPECT_EQ(after_a_bad_round.evaluations_without_normal_equations(), 0);
+  EXPECT_NEAR(after_a_bad_round.noise_sigma(), 0.05, 0.005);
 }
 
 }  // namespace

@@ -4,7 +4,8 @@
 //   I_c(u) = offset_c + gain_c (base_c + Σ_k jump_kc G(ρ_k/σ, -d_k(u)/σ)),
 // summed over the disks whose edge is within reach of u, with G the exact blurred-disk profile
 // (blurred_disk_profile.h), d_k the pixel's signed distance to the disk's projected edge
-// (along the edge's normal at its point nearest the pixel, at the start pose), ρ_k the edge's
+// (from its edge point nearest the pixel, to second order along the edge, with the normal and
+// curvature there at the start pose: OffsetFromCurvedEdge), ρ_k the edge's
 // radius of curvature there (the osculating disk: a tilted disk's ellipse has the blurred edge
 // of that disk to first order, its midpoint shifted by σ²/2ρ) and base the background plus
 // the steps of the disks u lies deep inside. A disk blurred by a good part of its size (σ at

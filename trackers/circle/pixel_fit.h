@@ -137,9 +137,11 @@ PixelFit FitPixels(const Model& model,
 // A solve of a fit in rounds (FitInRounds). The first of several only places the next
 // round's pixels, and that round fits the levels and the pose again on them from its result:
 // it stops at kFirstRoundFunctionTolerance, and a model may take fewer pixels for it; every
-// later round, and a fit of one round, stops at kFunctionTolerance.
+// later round, and a fit of one round, stops at kFunctionTolerance. A round that follows
+// another starts from the noise that one's pixels showed at its result.
 struct FitRound {
   bool first_of_several = false;
+  bool follows_another = false;
   double function_tolerance() const {
     return first_of_several ? kFirstRoundFunctionTolerance : kFunctionTolerance;
   }
@@ -161,10 +163,10 @@ std::optional<Result> FitInRounds(const Rigid3& cam_from_marker,
     if (solved && !FacesTheCamera(solved->fit.cam_from_marker)) solved.reset();
     return solved;
   };
-  std::optional<Result> result = solve(cam_from_marker, sigma_px, FitRound{max_rounds > 1});
+  std::optional<Result> result = solve(cam_from_marker, sigma_px, FitRound{max_rounds > 1, false});
   for (int round = 1; result && round < max_rounds; ++round) {
     std::optional<Result> next =
-        solve(result->fit.cam_from_marker, result->fit.sigma_px, FitRound{false});
+        solve(result->fit.cam_from_marker, result->fit.sigma_px, FitRound{false, true});
     if (!next) break;
     const Eigen::Vector3d& last = result->fit.cam_from_marker.translation;
     const double moved_m = (next->fit.cam_from_marker.translation - last).norm();

@@ -10,60 +10,17 @@
 #include <cmath>
 #include <vector>
 
+#include "testing/linear_pixel_model.h"
+
 namespace markerbench {
 namespace {
 
-// r = A θ - b over 12 rows, θ = (angle-axis, translation, σ, offset, gain), b off the range
-// of A (a cost at the minimum of 1, about 10× what the start adds to it); counts its
-// evaluations.
-class LinearModel {
- public:
-  LinearModel() : a_(Eigen::MatrixXd::Zero(12, 9)), b_(12) {
-    for (int row = 0; row < 12; ++row) {
-      for (int column = 0; column < 9; ++column) {
-        a_(row, column) = std::sin(1.0 + row * 9 + column * 0.7) + (row % 9 == column ? 3.0 : 0.0);
-      }
-    }
-    solution_ << 0.002, -0.001, 0.001, 0.003, -0.002, 0.52, 1.05, 0.01, 0.98;
-    // A misfit off the range of A leaves the minimum at solution_ with a cost of about 1.
-    Eigen::VectorXd misfit(12);
-    for (int row = 0; row < 12; ++row) misfit[row] = 0.5 * std::cos(1.3 * row);
-    misfit -= a_ * (a_.transpose() * a_).ldlt().solve(a_.transpose() * misfit);
-    misfit /= misfit.norm();
-    b_ = a_ * solution_ + misfit;
-  }
-
-  int Parameters() const { return 9; }
-  const Eigen::Matrix<double, 9, 1>& solution() const { return solution_; }
-  int evaluations() const { return evaluations_; }
-
-  // Each row is a pixel whose value is b and whose modelled mean is A θ.
-  double Evaluate(const Eigen::VectorXd& theta,
-                  Eigen::MatrixXd* jtj,
-                  Eigen::VectorXd* jtr,
-                  std::vector<ModelledPixel>* modelled) const {
-    ++evaluations_;
-    const Eigen::VectorXd mean = a_ * theta;
-    const Eigen::VectorXd r = mean - b_;
-    if (jtj) {
-      *jtj = a_.transpose() * a_;
-      *jtr = a_.transpose() * r;
-    }
-    for (int row = 0; modelled && row < r.size(); ++row) {
-      modelled->push_back({b_[row] - mean[row], mean[row]});
-    }
-    return r.squaredNorm();
-  }
-
- private:
-  Eigen::MatrixXd a_;
-  Eigen::VectorXd b_;
-  Eigen::Matrix<double, 9, 1> solution_;
-  mutable int evaluations_ = 0;
-};
+// r = A θ - b over 12 pixels, b off the range of A (a cost at the minimum of 1, about 10×
+// what the start adds to it).
+const LinearPixelModel::Shape kTwelvePixels{};
 
 TEST(FitPixels, StopsAtTheMinimumOfAQuadraticCostWithoutASecondStep) {
-  const LinearModel model;
+  const LinearPixelModel model(kTwelvePixels);
   Rigid3 start;
   start.translation = Eigen::Vector3d(0.0, 0.0, 0.5);
   const PixelFit fit = FitPixels(model, start, 1.0, 15);
@@ -79,7 +36,7 @@ TEST(FitPixels, StopsAtTheMinimumOfAQuadraticCostWithoutASecondStep) {
 // The pixels listed at the result are those of the result (its step's evaluation), not the
 // start's: the same as the model lists at the fit's θ. A list given non-empty is replaced.
 TEST(FitPixels, ListsThePixelsAtItsResult) {
-  const LinearModel model;
+  const LinearPixelModel model(kTwelvePixels);
   Rigid3 start;
   start.translation = Eigen::Vector3d(0.0, 0.0, 0.5);
   std::vector<ModelledPixel> listed(3, ModelledPixel{1.0, 1.0});
@@ -108,16 +65,17 @@ TEST(FitPixels, ListsThePixelsAtItsResult) {
 
 // Only the first of several rounds is solved as one (FitRound::first_of_several: to the looser
 // tolerance, the next round fitting again from its result); every later round, and a fit of
-// one round, to the fit's own tolerance.
+// one round, to the fit's own tolerance. Every round but the first follows another.
 TEST(FitInRounds, SolvesOnlyAFirstRoundThatAnotherFollowsToTheLooserTolerance) {
   struct Solved {
     PixelFit fit;
   };
-  std::vector<bool> firsts;
+  std::vector<bool> firsts, follows;
   std::vector<double> tolerances;
   // Each solve moves the marker 1 mm sideways in its first two rounds, then not at all.
   const auto solve_once = [&](const Rigid3& start, double sigma_px, const FitRound& round) {
     firsts.push_back(round.first_of_several);
+    follows.push_back(round.follows_another);
     tolerances.push_back(round.function_tolerance());
     Solved solved;
     solved.fit.cam_from_marker = start;
@@ -130,13 +88,16 @@ TEST(FitInRounds, SolvesOnlyAFirstRoundThatAnotherFollowsToTheLooserTolerance) {
   start.translation = Eigen::Vector3d(0.0, 0.0, 0.5);
   ASSERT_TRUE(FitInRounds<Solved>(start, 1.0, 5, solve_once));
   EXPECT_EQ(firsts, (std::vector<bool>{true, false, false}));
+  EXPECT_EQ(follows, (std::vector<bool>{false, true, true}));
   EXPECT_EQ(
       tolerances,
       (std::vector<double>{kFirstRoundFunctionTolerance, kFunctionTolerance, kFunctionTolerance}));
   firsts.clear();
+  follows.clear();
   tolerances.clear();
   ASSERT_TRUE(FitInRounds<Solved>(start, 1.0, 1, solve_once));
   EXPECT_EQ(firsts, std::vector<bool>{false});
+  EXPECT_EQ(follows, std::vector<bool>{false});
   EXPECT_EQ(tolerances, std::vector<double>{kFunctionTolerance});
 }
 
