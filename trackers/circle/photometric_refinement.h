@@ -5,10 +5,10 @@
 // summed over the disks whose edge is within reach of u, with G the exact blurred-disk profile
 // (blurred_disk_profile.h), d_k the pixel's signed distance to the disk's projected edge
 // (from its edge point nearest the pixel, to second order along the edge, with the normal and
-// curvature there at the start pose: OffsetFromCurvedEdge), ρ_k the edge's
-// radius of curvature there (the osculating disk: a tilted disk's ellipse has the blurred edge
-// of that disk to first order, its midpoint shifted by σ²/2ρ) and base the background plus
-// the steps of the disks u lies deep inside. A disk blurred by a good part of its size (σ at
+// curvature there at the start pose: OffsetFromCurvedEdge), ρ_k the edge's radius of
+// curvature there (the osculating disk: a tilted disk's ellipse has the blurred edge of that
+// disk to first order, its midpoint shifted by σ²/2ρ) and base the background plus the steps
+// of the disks u lies deep inside. A disk blurred by a good part of its size (σ at
 // least 0.25 of its semi-minor axis) is modelled whole instead, its exact blurred ellipse
 // (blurred_ellipse.h) on every pixel of its image and within reach of it. Blur is linear, so
 // the sum holds however far the blurred edges overlap. Each pixel is compared with the model
