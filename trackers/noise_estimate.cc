@@ -19,8 +19,9 @@ double EstimateNoiseSigma(const cv::Mat& channel) {
   int count = 0;
   for (int y = 0; y < channel.rows; y += 2) {
     const uint8_t* row = channel.ptr<uint8_t>(y);
-    for (int x = 0; x < n; ++x)
+    for (int x = 0; x < n; ++x) {
       differences[x] = static_cast<uint8_t>(std::abs(row[x + 1] - row[x]));
+    }
     int x = 0;
     for (; x + 1 < n; x += 2) {
       ++even[differences[x]];

@@ -196,8 +196,7 @@ TEST(BlurredEllipse, ValueAloneIsAtsValue) {
 // The distance from a curved edge near its point: on a circle through that point, with its
 // normal and radius, within a⁴/8ρ³ at a along it (the leading terms, with a tenth to spare),
 // where the tangent's is a²/2ρ off; off the circle a² |d|/2ρ(ρ + d) more; its derivative in
-// the edge point is
-// -(n + (a/ρ) t); with an infinite radius, the tangent's.
+// the edge point is -(n + (a/ρ) t); with an infinite radius, the tangent's.
 TEST(OffsetFromCurvedEdge, IsTheDistanceFromACircleToSecondOrder) {
   const Eigen::Vector2d center(3.0, -2.0);
   const double radius = 7.0, angle = 0.4;
@@ -236,5 +235,6 @@ TEST(OffsetFromCurvedEdge, IsTheDistanceFromACircleToSecondOrder) {
   const EdgeOffset flat = OffsetFromCurvedEdge(point, edge_point, normal, INFINITY);
   EXPECT_DOUBLE_EQ(flat.distance, 0.5);
 }
+
 }  // namespace
 }  // namespace markerbench
