@@ -105,23 +105,26 @@ PixelFit FitPixelsAtTheirNoise(Model& model,
 
 // FitInRounds (pixel_fit.h) with each round's solve at the noise the last one showed:
 // solve_once(cam_from_marker, σ, noise, FitRound) gives an optional Result with a
-// PixelFit `fit` and the noise it showed, `noise_sigma`.
+// PixelFit `fit` and the noise it showed, `noise_sigma`; `first_settles` as FitInRounds'.
 template <class Result, class SolveOnce>
-std::optional<Result> FitInRoundsAtTheirNoise(const Rigid3& cam_from_marker,
-                                              double sigma_px,
-                                              double noise_sigma,
-                                              int max_rounds,
-                                              const SolveOnce& solve_once) {
+std::optional<Result> FitInRoundsAtTheirNoise(
+    const Rigid3& cam_from_marker,
+    double sigma_px,
+    double noise_sigma,
+    int max_rounds,
+    const SolveOnce& solve_once,
+    const FirstRoundSettles<Result>& first_settles = nullptr) {
   double noise = noise_sigma;
-  return FitInRounds<Result>(cam_from_marker,
-                             sigma_px,
-                             max_rounds,
-                             [&](const Rigid3& start, double sigma, const FitRound& round) {
-                               std::optional<Result> solved =
-                                   solve_once(start, sigma, noise, round);
-                               if (solved) noise = solved->noise_sigma;
-                               return solved;
-                             });
+  return FitInRounds<Result>(
+      cam_from_marker,
+      sigma_px,
+      max_rounds,
+      [&](const Rigid3& start, double sigma, const FitRound& round) {
+        std::optional<Result> solved = solve_once(start, sigma, noise, round);
+        if (solved) noise = solved->noise_sigma;
+        return solved;
+      },
+      first_settles);
 }
 
 }  // namespace markerbench

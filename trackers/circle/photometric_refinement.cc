@@ -665,6 +665,13 @@ std::optional<PhotometricResult> RefinePhotometric(const Image8& image,
                                                    double sigma_px,
                                                    double noise_sigma,
                                                    const PhotometricOptions& options) {
+  FirstRoundSettles<PhotometricResult> first_settles;
+  if (sigma_px < options.settle_below_sigma_px) {
+    first_settles = [&](const Rigid3& start, const PhotometricResult& first) {
+      return PoseMoveInStandardErrors(first.fit, start, first.noise_sigma) <
+             options.settle_within_standard_errors;
+    };
+  }
   return FitInRoundsAtTheirNoise<PhotometricResult>(
       cam_from_marker,
       sigma_px,
@@ -672,7 +679,8 @@ std::optional<PhotometricResult> RefinePhotometric(const Image8& image,
       options.max_rounds,
       [&](const Rigid3& start, double sigma, double noise, const FitRound& round) {
         return RefineOnce(image, camera, marker, start, sigma, noise, round, options);
-      });
+      },
+      first_settles);
 }
 
 std::optional<PhotometricNormalEquations> PhotometricNormalEquationsAt(

@@ -11,6 +11,8 @@
 #include <Eigen/Cholesky>
 #include <Eigen/Core>
 #include <algorithm>
+#include <cmath>
+#include <functional>
 #include <optional>
 #include <utility>
 #include <vector>
@@ -30,7 +32,8 @@ struct PixelFit {
   double sigma_px = 0.0;
   Eigen::VectorXd levels;  // offset and gain per channel
   int iterations = 0;
-  double cost = 0.0;  // at the result
+  double cost = 0.0;    // at the result
+  Eigen::MatrixXd jtj;  // JᵀJ of the normal equations at the result
 };
 
 // θ of a pose, σ and the levels (offset and gain per channel).
@@ -131,14 +134,16 @@ PixelFit FitPixels(const Model& model,
   fit.sigma_px = theta[6];
   fit.levels = theta.tail(model.Parameters() - 7);
   fit.cost = cost;
+  fit.jtj = std::move(jtj);
   return fit;
 }
 
 // A solve of a fit in rounds (FitInRounds). The first of several only places the next
 // round's pixels, and that round fits the levels and the pose again on them from its result:
 // it stops at kFirstRoundFunctionTolerance, and a model may take fewer pixels for it; every
-// later round, and a fit of one round, stops at kFunctionTolerance. A round that follows
-// another starts from the noise that one's pixels showed at its result.
+// later round, a fit of one round and a first round that may settle the fit (FitInRounds'
+// first_settles) stop at kFunctionTolerance. A round that follows another starts from the
+// noise that one's pixels showed at its result.
 struct FitRound {
   bool first_of_several = false;
   bool follows_another = false;
@@ -147,23 +152,48 @@ struct FitRound {
   }
 };
 
+// How many standard errors a fit's pose lies from `start` at the image's noise σ_n (0-1): the
+// Mahalanobis distance √(δᵀ C⁻¹ δ) of the move δ of θ's pose part (angle-axis, translation)
+// under its covariance C = σ_n² ((JᵀJ)⁻¹)₆ₓ₆ at the fit's result (σ and the levels free).
+inline double PoseMoveInStandardErrors(const PixelFit& fit,
+                                       const Rigid3& start,
+                                       double noise_sigma) {
+  const int parameters = static_cast<int>(fit.jtj.rows());
+  const Eigen::VectorXd move =
+      PixelFitParameters(fit.cam_from_marker, fit.sigma_px, fit.levels).head<6>() -
+      PixelFitParameters(start, fit.sigma_px, fit.levels).head<6>();
+  const Eigen::MatrixXd pose_covariance =
+      fit.jtj.ldlt().solve(Eigen::MatrixXd::Identity(parameters, parameters)).topLeftCorner<6, 6>();
+  return std::sqrt(move.dot(pose_covariance.ldlt().solve(move))) / noise_sigma;
+}
+
+// Whether a first round solved whole settles a fit in rounds: first_settles(start, its result).
+template <class Result>
+using FirstRoundSettles = std::function<bool(const Rigid3&, const Result&)>;
+
 // A fit in rounds, each on the pixels chosen at the last result (a solve ties its pixels to
 // the start's edges), until the translation moves by less than 1e-4 of its length:
 // solve_once(cam_from_marker, σ, FitRound) gives an optional Result with a PixelFit `fit` (a
-// first round is the result only where the second fails). A solve that ends with the marker
-// behind the camera (the plane's mirror image, FacesTheCamera) gives none: the rounds stop at
-// the last result before it.
+// first round is the result only where the second fails). With `first_settles`, the first round
+// is solved whole (as a last one, not FitRound::first_of_several) and is the result where it
+// says so. A solve that ends with the marker behind the camera (the plane's mirror image,
+// FacesTheCamera) gives none: the rounds stop at the last result before it.
 template <class Result, class SolveOnce>
 std::optional<Result> FitInRounds(const Rigid3& cam_from_marker,
                                   double sigma_px,
                                   int max_rounds,
-                                  const SolveOnce& solve_once) {
+                                  const SolveOnce& solve_once,
+                                  const FirstRoundSettles<Result>& first_settles = nullptr) {
   const auto solve = [&](const Rigid3& start, double sigma, const FitRound& round) {
     std::optional<Result> solved = solve_once(start, sigma, round);
     if (solved && !FacesTheCamera(solved->fit.cam_from_marker)) solved.reset();
     return solved;
   };
-  std::optional<Result> result = solve(cam_from_marker, sigma_px, FitRound{max_rounds > 1, false});
+  std::optional<Result> result =
+      solve(cam_from_marker, sigma_px, FitRound{!first_settles && max_rounds > 1, false});
+  if (result && first_settles && first_settles(cam_from_marker, *result)) {
+    return result;
+  }
   for (int round = 1; result && round < max_rounds; ++round) {
     std::optional<Result> next =
         solve(result->fit.cam_from_marker, result->fit.sigma_px, FitRound{false, true});

@@ -6,6 +6,7 @@
 
 #include <gtest/gtest.h>
 
+#include <Eigen/Geometry>
 #include <algorithm>
 #include <cmath>
 #include <vector>
@@ -99,6 +100,80 @@ TEST(FitInRounds, SolvesOnlyAFirstRoundThatAnotherFollowsToTheLooserTolerance) {
   EXPECT_EQ(firsts, std::vector<bool>{false});
   EXPECT_EQ(follows, std::vector<bool>{false});
   EXPECT_EQ(tolerances, std::vector<double>{kFunctionTolerance});
+}
+
+// With first_settles, the first round is solved whole (to the fit's own tolerance) and is the
+// result where first_settles, given the start and that round's result, says so; where it does
+// not, the rounds go on as without it.
+TEST(FitInRounds, StopsAfterAWholeFirstRoundThatSettles) {
+  struct Solved {
+    PixelFit fit;
+  };
+  std::vector<double> tolerances;
+  // Each solve moves the marker 1 mm sideways.
+  const auto solve_once = [&](const Rigid3& start, double sigma_px, const FitRound& round) {
+    tolerances.push_back(round.function_tolerance());
+    Solved solved;
+    solved.fit.cam_from_marker = start;
+    solved.fit.cam_from_marker.translation.x() += 1e-3;
+    solved.fit.sigma_px = sigma_px;
+    return std::optional<Solved>(solved);
+  };
+  Rigid3 start;  // 0.5 m in front of the camera, facing it
+  start.rotation = Eigen::Vector3d(1.0, -1.0, -1.0).asDiagonal();
+  start.translation = Eigen::Vector3d(0.0, 0.0, 0.5);
+  std::vector<Eigen::Vector3d> judged;  // the start's and the result's translations
+  bool settles = true;
+  const FirstRoundSettles<Solved> first_settles = [&](const Rigid3& from, const Solved& first) {
+    judged = {from.translation, first.fit.cam_from_marker.translation};
+    return settles;
+  };
+  std::optional<Solved> result = FitInRounds<Solved>(start, 1.0, 3, solve_once, first_settles);
+  ASSERT_TRUE(result);
+  EXPECT_EQ(tolerances, std::vector<double>{kFunctionTolerance});
+  EXPECT_NEAR(result->fit.cam_from_marker.translation.x(), 1e-3, 1e-15);
+  ASSERT_EQ(judged.size(), 2u);
+  EXPECT_EQ(judged[0], start.translation);
+  EXPECT_EQ(judged[1], result->fit.cam_from_marker.translation);
+  tolerances.clear();
+  settles = false;
+  result = FitInRounds<Solved>(start, 1.0, 3, solve_once, first_settles);
+  ASSERT_TRUE(result);
+  EXPECT_EQ(tolerances, std::vector<double>(3, kFunctionTolerance));
+  EXPECT_NEAR(result->fit.cam_from_marker.translation.x(), 3e-3, 1e-15);
+}
+
+// The pose's move in standard errors against closed forms: with the pose's normal equations
+// apart from σ's and the levels', √(Σ JᵀJ_ii δ_i²)/σ_n; with a pose parameter tied to σ
+// (JᵀJ [[a, b], [b, c]] on them), σ free, the parameter's information is a - b²/c.
+TEST(PoseMoveInStandardErrors, MatchesClosedForms) {
+  PixelFit fit;
+  fit.cam_from_marker.rotation =
+      Eigen::AngleAxisd(0.5, Eigen::Vector3d::UnitX()).toRotationMatrix();
+  fit.cam_from_marker.translation = Eigen::Vector3d(0.01, -0.02, 0.6);
+  fit.sigma_px = 0.8;
+  fit.levels = Eigen::Vector2d(0.1, 0.9);
+  fit.jtj = Eigen::MatrixXd::Identity(9, 9);
+  const Eigen::Matrix<double, 6, 1> information =
+      (Eigen::Matrix<double, 6, 1>() << 4e6, 9e6, 1e6, 2.5e7, 1.6e7, 4e5).finished();
+  fit.jtj.topLeftCorner<6, 6>() = information.asDiagonal();
+  const double noise = 0.05;
+  Rigid3 start = fit.cam_from_marker;
+  start.translation += Eigen::Vector3d(2e-4, -1e-4, 3e-3);
+  const double translation_only =
+      std::sqrt(2.5e7 * 2e-4 * 2e-4 + 1.6e7 * 1e-4 * 1e-4 + 4e5 * 3e-3 * 3e-3) / noise;
+  EXPECT_NEAR(PoseMoveInStandardErrors(fit, start, noise), translation_only, 1e-9);
+  // A rotation of 1e-4 rad about the x axis: the angle-axis's first component.
+  start = fit.cam_from_marker;
+  start.rotation = Eigen::AngleAxisd(0.5 - 1e-4, Eigen::Vector3d::UnitX()).toRotationMatrix();
+  EXPECT_NEAR(PoseMoveInStandardErrors(fit, start, noise), std::sqrt(4e6) * 1e-4 / noise, 1e-6);
+  // t_z tied to σ.
+  fit.jtj(5, 6) = fit.jtj(6, 5) = 600.0;  // c = 1
+  start = fit.cam_from_marker;
+  start.translation.z() += 3e-3;
+  EXPECT_NEAR(PoseMoveInStandardErrors(fit, start, noise),
+              std::sqrt((4e5 - 600.0 * 600.0 / 1.0) * 3e-3 * 3e-3) / noise,
+              1e-9);
 }
 
 }  // namespace
