@@ -34,6 +34,9 @@ struct PixelFit {
   int iterations = 0;
   double cost = 0.0;    // at the result
   Eigen::MatrixXd jtj;  // JᵀJ of the normal equations at the result
+  // θ's rotation at the result, the chart jtj is in (cam_from_marker's angle-axis, or the
+  // same rotation's other one past a half-turn)
+  Eigen::Vector3d angle_axis = Eigen::Vector3d::Zero();
 };
 
 // θ of a pose, σ and the levels (offset and gain per channel).
@@ -45,7 +48,8 @@ inline Eigen::VectorXd PixelFitParameters(const Rigid3& cam_from_marker,
                                    theta.data());
   theta.segment<3>(3) = cam_from_marker.translation;
   theta[6] = sigma_px;
-  theta.tail(levels.size()) = levels;
+  // Copied element by element: GCC 12 takes Eigen's packet copy of a tail for an overflow.
+  std::copy(levels.data(), levels.data() + levels.size(), theta.data() + 7);
   return theta;
 }
 
@@ -135,6 +139,7 @@ PixelFit FitPixels(const Model& model,
   fit.levels = theta.tail(model.Parameters() - 7);
   fit.cost = cost;
   fit.jtj = std::move(jtj);
+  fit.angle_axis = theta.template head<3>();
   return fit;
 }
 
@@ -154,14 +159,29 @@ struct FitRound {
 
 // How many standard errors a fit's pose lies from `start` at the image's noise σ_n (0-1): the
 // Mahalanobis distance √(δᵀ C⁻¹ δ) of the move δ of θ's pose part (angle-axis, translation)
-// under its covariance C = σ_n² ((JᵀJ)⁻¹)₆ₓ₆ at the fit's result (σ and the levels free).
+// under its covariance C = σ_n² ((JᵀJ)⁻¹)₆ₓ₆ at the fit's result (σ and the levels free). The
+// start's rotation is taken in the chart of the result's (the angle-axis vector of the same
+// rotation nearest it): a marker facing the camera turns it by about π, where v and
+// v (1 - 2π/|v|) are the same rotation, and a fit that crosses π ends on the other.
 inline double PoseMoveInStandardErrors(const PixelFit& fit,
                                        const Rigid3& start,
                                        double noise_sigma) {
   const int parameters = static_cast<int>(fit.jtj.rows());
-  const Eigen::VectorXd move =
-      PixelFitParameters(fit.cam_from_marker, fit.sigma_px, fit.levels).head<6>() -
-      PixelFitParameters(start, fit.sigma_px, fit.levels).head<6>();
+  Eigen::Matrix<double, 6, 1> start_pose;
+  ceres::RotationMatrixToAngleAxis(ceres::ColumnMajorAdapter3x3(start.rotation.data()),
+                                   start_pose.data());
+  start_pose.tail<3>() = start.translation;
+  const Eigen::Vector3d start_rotation = start_pose.head<3>();
+  const double start_angle = start_rotation.norm();
+  if (start_angle > 0.0) {
+    const Eigen::Vector3d other = start_rotation * (1.0 - 2.0 * M_PI / start_angle);
+    if ((other - fit.angle_axis).norm() < (start_rotation - fit.angle_axis).norm()) {
+      start_pose.head<3>() = other;
+    }
+  }
+  Eigen::Matrix<double, 6, 1> move;
+  move << fit.angle_axis, fit.cam_from_marker.translation;
+  move -= start_pose;
   const Eigen::MatrixXd pose_covariance =
       fit.jtj.ldlt().solve(Eigen::MatrixXd::Identity(parameters, parameters)).topLeftCorner<6, 6>();
   return std::sqrt(move.dot(pose_covariance.ldlt().solve(move))) / noise_sigma;

@@ -150,6 +150,7 @@ TEST(PoseMoveInStandardErrors, MatchesClosedForms) {
   PixelFit fit;
   fit.cam_from_marker.rotation =
       Eigen::AngleAxisd(0.5, Eigen::Vector3d::UnitX()).toRotationMatrix();
+  fit.angle_axis = Eigen::Vector3d(0.5, 0.0, 0.0);
   fit.cam_from_marker.translation = Eigen::Vector3d(0.01, -0.02, 0.6);
   fit.sigma_px = 0.8;
   fit.levels = Eigen::Vector2d(0.1, 0.9);
@@ -174,6 +175,34 @@ TEST(PoseMoveInStandardErrors, MatchesClosedForms) {
   EXPECT_NEAR(PoseMoveInStandardErrors(fit, start, noise),
               std::sqrt((4e5 - 600.0 * 600.0 / 1.0) * 3e-3 * 3e-3) / noise,
               1e-9);
+}
+
+// A marker facing the camera is turned by about π: a fit may cross it (its angle-axis then
+// longer than π) or start beyond it (the start's, at most π, pointing the other way), and the
+// move is still the small rotation between them.
+TEST(PoseMoveInStandardErrors, TakesTheStartInTheResultsChartAcrossAHalfTurn) {
+  PixelFit fit;
+  fit.cam_from_marker.translation = Eigen::Vector3d(0.01, -0.02, 0.6);
+  fit.sigma_px = 0.8;
+  fit.levels = Eigen::Vector2d(0.1, 0.9);
+  fit.jtj = Eigen::MatrixXd::Identity(9, 9);
+  fit.jtj(0, 0) = 4e6;
+  const double noise = 0.05;
+  const auto half_turn_and = [](double angle) {
+    return Eigen::AngleAxisd(M_PI + angle, Eigen::Vector3d::UnitX()).toRotationMatrix();
+  };
+  Rigid3 start = fit.cam_from_marker;
+  for (const double start_past_half_turn : {-1e-4, 1e-4}) {
+    for (const double result_past_half_turn : {-1e-4, 1e-4}) {
+      fit.angle_axis = Eigen::Vector3d(M_PI + result_past_half_turn, 0.0, 0.0);
+      fit.cam_from_marker.rotation = half_turn_and(result_past_half_turn);
+      start.rotation = half_turn_and(start_past_half_turn);
+      EXPECT_NEAR(PoseMoveInStandardErrors(fit, start, noise),
+                  std::sqrt(4e6) * std::abs(result_past_half_turn - start_past_half_turn) / noise,
+                  1e-6)
+          << start_past_half_turn << " " << result_past_half_turn;
+    }
+  }
 }
 
 }  // namespace
