@@ -665,12 +665,15 @@ std::optional<PhotometricResult> RefinePhotometric(const Image8& image,
                                                    double sigma_px,
                                                    double noise_sigma,
                                                    const PhotometricOptions& options) {
-  FirstRoundSettles<PhotometricResult> first_settles;
-  if (sigma_px < options.settle_below_sigma_px) {
-    first_settles = [&](const Rigid3& start, const PhotometricResult& first) {
-      return PoseMoveInStandardErrors(first.fit, start, first.noise_sigma) <
-             options.settle_within_standard_errors;
+  // Whether a round moved the pose by less than `standard_errors` from its start.
+  const auto moved_less_than = [](double standard_errors) {
+    return [standard_errors](const Rigid3& start, const PhotometricResult& round) {
+      return PoseMoveInStandardErrors(round.fit, start, round.noise_sigma) < standard_errors;
     };
+  };
+  RoundSettles<PhotometricResult> first_settles;
+  if (sigma_px < options.settle_below_sigma_px) {
+    first_settles = moved_less_than(options.settle_within_standard_errors);
   }
   return FitInRoundsAtTheirNoise<PhotometricResult>(
       cam_from_marker,
@@ -680,7 +683,8 @@ std::optional<PhotometricResult> RefinePhotometric(const Image8& image,
       [&](const Rigid3& start, double sigma, double noise, const FitRound& round) {
         return RefineOnce(image, camera, marker, start, sigma, noise, round, options);
       },
-      first_settles);
+      first_settles,
+      moved_less_than(options.later_round_settles_within_standard_errors));
 }
 
 std::optional<PhotometricNormalEquations> PhotometricNormalEquationsAt(

@@ -187,23 +187,25 @@ inline double PoseMoveInStandardErrors(const PixelFit& fit,
   return std::sqrt(move.dot(pose_covariance.ldlt().solve(move))) / noise_sigma;
 }
 
-// Whether a first round solved whole settles a fit in rounds: first_settles(start, its result).
+// Whether a round settles a fit in rounds: settles(its start, its result).
 template <class Result>
-using FirstRoundSettles = std::function<bool(const Rigid3&, const Result&)>;
+using RoundSettles = std::function<bool(const Rigid3&, const Result&)>;
 
 // A fit in rounds, each on the pixels chosen at the last result (a solve ties its pixels to
 // the start's edges), until the translation moves by less than 1e-4 of its length:
 // solve_once(cam_from_marker, σ, FitRound) gives an optional Result with a PixelFit `fit` (a
 // first round is the result only where the second fails). With `first_settles`, the first round
 // is solved whole (as a last one, not FitRound::first_of_several) and is the result where it
-// says so. A solve that ends with the marker behind the camera (the plane's mirror image,
-// FacesTheCamera) gives none: the rounds stop at the last result before it.
+// says so; with `later_settles`, a later round ends the fit where it says so instead. A solve
+// that ends with the marker behind the camera (the plane's mirror image, FacesTheCamera) gives
+// none: the rounds stop at the last result before it.
 template <class Result, class SolveOnce>
 std::optional<Result> FitInRounds(const Rigid3& cam_from_marker,
                                   double sigma_px,
                                   int max_rounds,
                                   const SolveOnce& solve_once,
-                                  const FirstRoundSettles<Result>& first_settles = nullptr) {
+                                  const RoundSettles<Result>& first_settles = nullptr,
+                                  const RoundSettles<Result>& later_settles = nullptr) {
   const auto solve = [&](const Rigid3& start, double sigma, const FitRound& round) {
     std::optional<Result> solved = solve_once(start, sigma, round);
     if (solved && !FacesTheCamera(solved->fit.cam_from_marker)) solved.reset();
@@ -218,11 +220,14 @@ std::optional<Result> FitInRounds(const Rigid3& cam_from_marker,
     std::optional<Result> next =
         solve(result->fit.cam_from_marker, result->fit.sigma_px, FitRound{false, true});
     if (!next) break;
-    const Eigen::Vector3d& last = result->fit.cam_from_marker.translation;
-    const double moved_m = (next->fit.cam_from_marker.translation - last).norm();
+    const Rigid3 last = result->fit.cam_from_marker;
     next->fit.iterations += result->fit.iterations;
     result = std::move(next);
-    if (moved_m < 1e-4 * result->fit.cam_from_marker.translation.norm()) break;
+    const Eigen::Vector3d& translation = result->fit.cam_from_marker.translation;
+    if (later_settles ? later_settles(last, *result)
+                      : (translation - last.translation).norm() < 1e-4 * translation.norm()) {
+      break;
+    }
   }
   return result;
 }

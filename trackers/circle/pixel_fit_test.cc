@@ -9,6 +9,7 @@
 #include <Eigen/Geometry>
 #include <algorithm>
 #include <cmath>
+#include <utility>
 #include <vector>
 
 #include "testing/linear_pixel_model.h"
@@ -124,7 +125,7 @@ TEST(FitInRounds, StopsAfterAWholeFirstRoundThatSettles) {
   start.translation = Eigen::Vector3d(0.0, 0.0, 0.5);
   std::vector<Eigen::Vector3d> judged;  // the start's and the result's translations
   bool settles = true;
-  const FirstRoundSettles<Solved> first_settles = [&](const Rigid3& from, const Solved& first) {
+  const RoundSettles<Solved> first_settles = [&](const Rigid3& from, const Solved& first) {
     judged = {from.translation, first.fit.cam_from_marker.translation};
     return settles;
   };
@@ -141,6 +142,53 @@ TEST(FitInRounds, StopsAfterAWholeFirstRoundThatSettles) {
   ASSERT_TRUE(result);
   EXPECT_EQ(tolerances, std::vector<double>(3, kFunctionTolerance));
   EXPECT_NEAR(result->fit.cam_from_marker.translation.x(), 3e-3, 1e-15);
+}
+
+// With later_settles, a round after the first ends the fit where later_settles, given that
+// round's start (the last result) and its result, says so, whatever the translation moved;
+// and only there: a round that moved the translation by less than 1e-4 of its length goes on.
+TEST(FitInRounds, StopsAfterALaterRoundThatSettles) {
+  struct Solved {
+    PixelFit fit;
+  };
+  int solves = 0;
+  // Each solve moves the marker 1 mm sideways in its first round, then 1 µm (2e-6 of 0.5 m).
+  const auto solve_once = [&](const Rigid3& start, double sigma_px, const FitRound&) {
+    Solved solved;
+    solved.fit.cam_from_marker = start;
+    solved.fit.cam_from_marker.translation.x() += ++solves == 1 ? 1e-3 : 1e-6;
+    solved.fit.sigma_px = sigma_px;
+    return std::optional<Solved>(solved);
+  };
+  Rigid3 start;  // 0.5 m in front of the camera, facing it
+  start.rotation = Eigen::Vector3d(1.0, -1.0, -1.0).asDiagonal();
+  start.translation = Eigen::Vector3d(0.0, 0.0, 0.5);
+  std::vector<std::pair<double, double>> judged;  // each later round's start and result, x
+  int settling_round = 2;                         // the round (0 the first) that settles
+  const RoundSettles<Solved> later_settles = [&](const Rigid3& from, const Solved& round) {
+    judged.emplace_back(from.translation.x(), round.fit.cam_from_marker.translation.x());
+    return solves - 1 == settling_round;
+  };
+  std::optional<Solved> result =
+      FitInRounds<Solved>(start, 1.0, 5, solve_once, nullptr, later_settles);
+  ASSERT_TRUE(result);
+  EXPECT_EQ(solves, 3);
+  EXPECT_NEAR(result->fit.cam_from_marker.translation.x(), 1e-3 + 2e-6, 1e-15);
+  ASSERT_EQ(judged.size(), 2u);
+  EXPECT_NEAR(judged[0].first, 1e-3, 1e-15);
+  EXPECT_NEAR(judged[0].second, 1e-3 + 1e-6, 1e-15);
+  EXPECT_NEAR(judged[1].first, 1e-3 + 1e-6, 1e-15);
+  // Without it, the translation's move of 2e-6 of its length ends the fit after the second.
+  solves = 0;
+  result = FitInRounds<Solved>(start, 1.0, 5, solve_once);
+  ASSERT_TRUE(result);
+  EXPECT_EQ(solves, 2);
+  // A later round that never settles runs to max_rounds.
+  solves = 0;
+  settling_round = 10;
+  result = FitInRounds<Solved>(start, 1.0, 5, solve_once, nullptr, later_settles);
+  ASSERT_TRUE(result);
+  EXPECT_EQ(solves, 5);
 }
 
 // The pose's move in standard errors against closed forms: with the pose's normal equations
