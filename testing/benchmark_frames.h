@@ -25,7 +25,20 @@ struct BenchmarkFrameOptions {
   double distance_m = 0.6;
   double blur_sigma_px = 0.0;
   double noise_var = 0.02;
+  // Each frame the next one of a hand-held video (scenarios/sequences/handheld.yaml: 0.15 m/s
+  // and 30°/s at 30 fps): the camera moved by 5 mm and turned by 1°, each in a random
+  // direction, with noise of its own.
+  bool one_video_frame_later = false;
 };
+
+// The camera's move between two frames of the hand-held video, `camera_after_from_before`.
+inline Rigid3 HandheldFrameMotion(Rng* rng) {
+  constexpr double kStepM = 0.15 / 30.0, kTurnRad = (30.0 / 30.0) * M_PI / 180.0;
+  const Eigen::Vector3d axis(rng->Gaussian(), rng->Gaussian(), rng->Gaussian());
+  const Eigen::Vector3d direction(rng->Gaussian(), rng->Gaussian(), rng->Gaussian());
+  return {Eigen::AngleAxisd(kTurnRad, axis.normalized()).toRotationMatrix(),
+          kStepM * direction.normalized()};
+}
 
 inline std::vector<Image8> BenchmarkFrames(const MarkerSpec& marker,
                                            int count,
@@ -40,10 +53,15 @@ inline std::vector<Image8> BenchmarkFrames(const MarkerSpec& marker,
         TiltedView(options.distance_m, rng.Uniform(0, 40), rng.Uniform(0, 360));
     request.scene.cam_from_marker.translation -=
         request.scene.cam_from_marker.rotation * Eigen::Vector3d(c.x(), c.y(), 0.0);
+    const uint64_t later = options.one_video_frame_later ? 1 : 0;
+    if (later) {
+      Rng motion(SeedFor(11, 0, static_cast<uint64_t>(i), SeedPurpose::kMotion));
+      request.scene.cam_from_marker = HandheldFrameMotion(&motion) * request.scene.cam_from_marker;
+    }
     request.degradations.blur_sigma_px = options.blur_sigma_px;
     request.degradations.noise_var = options.noise_var;
     request.channels = marker.HasColor() ? 3 : 1;
-    request.noise_seed = SeedFor(11, 0, static_cast<uint64_t>(i), SeedPurpose::kNoise);
+    request.noise_seed = SeedFor(11, later, static_cast<uint64_t>(i), SeedPurpose::kNoise);
     frames.push_back(RenderFrame(request).image);
   }
   return frames;

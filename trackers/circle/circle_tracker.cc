@@ -134,6 +134,7 @@ CircleTrackerOptions CircleTrackerOptions::FromYaml(const YamlMap& map) {
   o.refine = map.GetOr<bool>("refine", o.refine);
   o.photometric = map.GetOr<bool>("photometric", o.photometric);
   o.tracking = map.GetOr<bool>("tracking", o.tracking);
+  o.predict_motion = map.GetOr<bool>("predict_motion", o.predict_motion);
   o.roi_margin = map.GetOr<double>("roi_margin", o.roi_margin);
   o.max_prediction_error = map.GetOr<double>("max_prediction_error", o.max_prediction_error);
   o.max_edge_rms_px = map.GetOr<double>("max_edge_rms_px", o.max_edge_rms_px);
@@ -178,6 +179,7 @@ std::vector<std::pair<std::string, std::string>> CircleTracker::Parameters() con
       {"refine", BoolText(o.refine)},
       {"photometric", BoolText(o.photometric)},
       {"tracking", BoolText(o.tracking)},
+      {"predict_motion", BoolText(o.predict_motion)},
       {"roi_margin", NumberText(o.roi_margin)},
       {"max_prediction_error", NumberText(o.max_prediction_error)},
       {"max_edge_rms_px", NumberText(o.max_edge_rms_px)},
@@ -197,6 +199,16 @@ std::vector<std::pair<std::string, std::string>> CircleTracker::Parameters() con
 }
 
 TrackResult CircleTracker::Track(const Observation& observation) {
+  const std::optional<Rigid3> before = previous_cam_from_paper_;
+  TrackResult result = FindInFrame(observation);
+  last_motion_.reset();
+  if (before && previous_cam_from_paper_) {
+    last_motion_ = *previous_cam_from_paper_ * before->Inverse();
+  }
+  return result;
+}
+
+TrackResult CircleTracker::FindInFrame(const Observation& observation) {
   if (auto unusable = UnusableImage(observation)) return *unusable;
   const MarkerSpec& marker = *observation.marker;
   std::string error;
@@ -205,10 +217,12 @@ TrackResult CircleTracker::Track(const Observation& observation) {
   const Image8& image = *observation.image;
   const cv::Rect whole(0, 0, image.width, image.height);
   if (options_.tracking && previous_cam_from_paper_) {
-    // Predicted ellipses (and the marker's points) from the previous pose, grown by a margin.
+    // Predicted ellipses (and the marker's points) from the predicted pose, grown by a margin.
     const Camera& camera = *observation.camera;
-    const Rigid3 previous = *previous_cam_from_paper_;
-    const Eigen::Matrix3d H = camera.K() * RayFromPlane(previous);
+    const Rigid3 predicted_pose = options_.predict_motion && last_motion_
+                                      ? *last_motion_ * *previous_cam_from_paper_
+                                      : *previous_cam_from_paper_;
+    const Eigen::Matrix3d H = camera.K() * RayFromPlane(predicted_pose);
     cv::Rect2d box;
     std::vector<Eigen::Matrix3d> predicted;
     for (size_t i = 0; i < geometry->centers.size(); ++i) {
@@ -227,13 +241,14 @@ TrackResult CircleTracker::Track(const Observation& observation) {
     const cv::Rect clipped = region & whole;
     if (clipped.area() > 0) {
       // The predicted ellipses first, then a search of the region, then the whole image. A
-      // result counts only where its ellipses are the predicted ones: otherwise the previous
-      // pose says nothing about this frame (a cut, a jump, unrelated images), and the frame
+      // result counts only where its ellipses are the predicted ones: otherwise the prediction
+      // says nothing about this frame (a cut, a jump, unrelated images), and the frame
       // gets exactly the full detection a first frame gets, never a lock on the old pose.
       const std::vector<Eigen::Matrix3d>* const predictions[] = {&predicted, nullptr};
       for (const std::vector<Eigen::Matrix3d>* prediction : predictions) {
-        TrackResult result = TrackIn(observation, *geometry, clipped, prediction, &previous);
+        TrackResult result = TrackIn(observation, *geometry, clipped, prediction, &predicted_pose);
         diagnostics_.used_tracking_region = true;
+        diagnostics_.used_predicted_ellipses = prediction != nullptr;
         if (result.status == TrackStatus::kOk &&
             MatchPrediction(diagnostics_, predicted, m1, options_.max_prediction_error)) {
           return result;
@@ -250,7 +265,7 @@ TrackResult CircleTracker::TrackIn(const Observation& observation,
                                    const CircleGeometry& geometry,
                                    const cv::Rect& region,
                                    const std::vector<Eigen::Matrix3d>* predicted_conics_px,
-                                   const Rigid3* previous_cam_from_paper) {
+                                   const Rigid3* predicted_cam_from_paper) {
   diagnostics_ = CircleDiagnostics{};
   previous_cam_from_paper_.reset();
   TrackResult result;
@@ -326,11 +341,11 @@ TrackResult CircleTracker::TrackIn(const Observation& observation,
   diagnostics_.analytic_cam_from_marker = analytic->pose.cam_from_paper * paper_from_marker;
 
   // The refinement starts from whichever start explains the image best: in tracking mode the
-  // analytic pose or the previous one; otherwise every analytic candidate, since with small
+  // analytic pose or the predicted one; otherwise every analytic candidate, since with small
   // or blurred ellipses the chosen l_inf can land in the wrong basin.
   std::vector<Rigid3> starts;
-  if (previous_cam_from_paper) {
-    starts.push_back(*previous_cam_from_paper);
+  if (predicted_cam_from_paper) {
+    starts.push_back(*predicted_cam_from_paper);
   } else {
     for (const AnalyticSolution& candidate :
          AnalyticCandidates(geometry, K, measurements, options_.analytic.depth)) {

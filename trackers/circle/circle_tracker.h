@@ -47,7 +47,11 @@ struct CircleTrackerOptions {
   // set, dark blobs as circles of 14.7-15.9 px at σ 2.2-3.7 px, 4.2-6.7 σ; on the paper sweeps
   // 6 % of the frames of e and f, at blur σ 4 and beyond, fall below).
   double min_design_radius_per_blur = 7.0;
-  bool tracking = true;      // search around the previous pose first (paper step 5)
+  bool tracking = true;  // search around the previous pose first (paper step 5)
+  // Tracking mode predicts this frame's pose by moving the previous one on by the camera's
+  // last frame-to-frame motion, where the two frames before both had a pose (constant
+  // velocity; frames evenly spaced in time); otherwise, or with false, the previous pose.
+  bool predict_motion = true;
   double roi_margin = 0.25;  // tracking region: predicted box grown by this fraction
   // A tracking-mode result stands only if each ellipse is within this fraction of its
   // prediction (centre shift per semi-minor axis, and each semi-axis); else full detection.
@@ -58,7 +62,7 @@ struct CircleTrackerOptions {
 
   bool IsValid(std::string* error) const;
   // Reads flat keys (cost, huber_px, point_weight, max_iterations, k_normal, depth, refine,
-  // photometric, tracking, roi_margin, max_prediction_error, max_edge_rms_px,
+  // photometric, tracking, predict_motion, roi_margin, max_prediction_error, max_edge_rms_px,
   // max_appearance_misfit, min_contrast, edge_passes, max_rays, min_branch_angle_rad,
   // max_other_tilt_log_ratio, min_design_radius_per_blur, pixel_band_sigmas: the disks' fit's
   // band_sigmas); throws ConfigError naming the file and key.
@@ -68,6 +72,7 @@ struct CircleTrackerOptions {
 // Every stage of the last Track call, for tests and reports (style.md, item 4).
 struct CircleDiagnostics {
   bool used_tracking_region = false;
+  bool used_predicted_ellipses = false;  // the result is one edge pass from the predicted ellipses
   std::vector<Eigen::Matrix3d> conics_px;           // fitted, canonical
   std::vector<std::vector<Eigen::Vector2d>> edges;  // per circle, bias-corrected
   std::optional<Eigen::Vector2d>
@@ -90,17 +95,22 @@ class CircleTracker final : public Tracker {
   explicit CircleTracker(const CircleTrackerOptions& options = {});
   TrackResult Track(const Observation& observation) override;
   bool CanTrack(const MarkerSpec& marker) const override;
-  void Reset() override { previous_cam_from_paper_.reset(); }
+  void Reset() override {
+    previous_cam_from_paper_.reset();
+    last_motion_.reset();
+  }
   std::vector<std::pair<std::string, std::string>> Parameters() const override;
 
   const CircleDiagnostics& diagnostics() const { return diagnostics_; }
 
  private:
+  // Tracking mode around the predicted pose first, then the whole image.
+  TrackResult FindInFrame(const Observation& observation);
   TrackResult TrackIn(const Observation& observation,
                       const CircleGeometry& geometry,
                       const cv::Rect& region,
                       const std::vector<Eigen::Matrix3d>* predicted_conics_px,
-                      const Rigid3* previous_cam_from_paper);
+                      const Rigid3* predicted_cam_from_paper);
   // Where the fit on the pixels starts: the refined pose (`cam_from_paper`, whose edge
   // residual is `edge_rms_px`), and the circle's other tilt where it may be the one seen.
   std::vector<Rigid3> PixelFitStarts(const RefinementProblem& problem,
@@ -117,6 +127,7 @@ class CircleTracker final : public Tracker {
 
   CircleTrackerOptions options_;
   std::optional<Rigid3> previous_cam_from_paper_;
+  std::optional<Rigid3> last_motion_;  // cam_previous_from_cam_before, both frames with a pose
   CircleDiagnostics diagnostics_;
 };
 

@@ -337,6 +337,33 @@ TEST(CircleTracker, TracksFromThePreviousPoseAndResets) {
   EXPECT_FALSE(tracker.diagnostics().used_tracking_region);
 }
 
+// A camera moving steadily by 12 px a frame, beyond the reach of an edge pass from the last
+// pose's ellipses (8 px a frame stays within it; 14 px exceeds max_prediction_error, and
+// tracking from the last pose falls back to full detection): tracking mode predicts each
+// frame by the last frame-to-frame motion and finds the marker in one edge pass from there
+// from the third frame on; from the previous pose alone (predict_motion: false) each frame
+// needs the search of the region.
+TEST(CircleTracker, PredictsTheNextPoseByTheLastMotion) {
+  const MarkerSpec marker = Load("circles_a");
+  const double step_m = 0.012;
+  for (const bool predict_motion : {true, false}) {
+    SCOPED_TRACE(predict_motion ? "predict_motion" : "previous pose");
+    CircleTrackerOptions options;
+    options.predict_motion = predict_motion;
+    CircleTracker tracker(options);
+    for (int frame = 0; frame < 5; ++frame) {
+      Rigid3 truth = TiltedView(0.6, 25.0, 40.0);
+      truth.translation.x() += step_m * (frame - 2);
+      const TrackedFrame t = RenderAndTrack(&tracker, marker, truth, 0.02, 50 + frame);
+      ASSERT_EQ(t.result.status, TrackStatus::kOk) << frame;
+      EXPECT_EQ(tracker.diagnostics().used_tracking_region, frame > 0) << frame;
+      EXPECT_EQ(tracker.diagnostics().used_predicted_ellipses, predict_motion && frame > 1)
+          << frame;
+      EXPECT_LE(PositionError(t.result.hypotheses.front(), truth), kTiltedPositionFraction * 0.6);
+    }
+  }
+}
+
 // d and e under a blur that hides their dots from the threshold (issue 21): d at 1 m and e at
 // 0.8 m, blur σ 5 and σ² 0.02, where the dots (4.8 and 5.3 px in radius) peak at 0.37 and 0.42
 // of their ink. The search of blurred dots finds them (without it none is detected), and the
@@ -380,7 +407,7 @@ TEST(CircleTracker, ColourMarkerOnAGreyImageIsNotDetected) {
 TEST(CircleTracker, OptionsFromYamlNameTheBadKey) {
   const std::string path = WriteTestFile("circle_options.yaml",
                                          "good: {cost: conics, huber_px: 2.0, k_normal: false,"
-                                         " min_branch_angle_rad: 0.05,"
+                                         " min_branch_angle_rad: 0.05, predict_motion: false,"
                                          " max_other_tilt_log_ratio: 30,"
                                          " min_design_radius_per_blur: 5,"
                                          " max_blurred_dot_disks: 0,"
@@ -401,6 +428,7 @@ TEST(CircleTracker, OptionsFromYamlNameTheBadKey) {
   EXPECT_EQ(good.refinement.huber_px, 2.0);
   EXPECT_FALSE(good.analytic.k_normal);
   EXPECT_EQ(good.min_branch_angle_rad, 0.05);
+  EXPECT_FALSE(good.predict_motion);
   EXPECT_EQ(good.min_design_radius_per_blur, 5.0);
   EXPECT_EQ(good.max_other_tilt_log_ratio, 30.0);
   EXPECT_EQ(good.detector.max_blurred_dot_disks, 0);
