@@ -159,10 +159,11 @@ struct FitRound {
 
 // How many standard errors a fit's pose lies from `start` at the image's noise σ_n (0-1): the
 // Mahalanobis distance √(δᵀ C⁻¹ δ) of the move δ of θ's pose part (angle-axis, translation)
-// under its covariance C = σ_n² ((JᵀJ)⁻¹)₆ₓ₆ at the fit's result (σ and the levels free). The
-// start's rotation is taken in the chart of the result's (the angle-axis vector of the same
-// rotation nearest it): a marker facing the camera turns it by about π, where v and
-// v (1 - 2π/|v|) are the same rotation, and a fit that crosses π ends on the other.
+// under its covariance C = σ_n² ((JᵀJ)⁻¹)₆ₓ₆ at the fit's result (σ and the levels free):
+// with JᵀJ = [[A, B], [Bᵀ, D]], A the pose's block, C⁻¹ = (A - B D⁻¹ Bᵀ)/σ_n², the Schur
+// complement. The start's rotation is taken in the chart of the result's (the angle-axis
+// vector of the same rotation nearest it): a marker facing the camera turns it by about π,
+// where v and v (1 - 2π/|v|) are the same rotation, and a fit that crosses π ends on the other.
 inline double PoseMoveInStandardErrors(const PixelFit& fit,
                                        const Rigid3& start,
                                        double noise_sigma) {
@@ -182,9 +183,13 @@ inline double PoseMoveInStandardErrors(const PixelFit& fit,
   Eigen::Matrix<double, 6, 1> move;
   move << fit.angle_axis, fit.cam_from_marker.translation;
   move -= start_pose;
-  const Eigen::MatrixXd pose_covariance =
-      fit.jtj.ldlt().solve(Eigen::MatrixXd::Identity(parameters, parameters)).topLeftCorner<6, 6>();
-  return std::sqrt(move.dot(pose_covariance.ldlt().solve(move))) / noise_sigma;
+  const Eigen::MatrixXd& jtj = fit.jtj;
+  const int others = parameters - 6;
+  const Eigen::MatrixXd d_inverse_bt =
+      jtj.bottomRightCorner(others, others).ldlt().solve(jtj.bottomLeftCorner(others, 6));
+  const Eigen::Matrix<double, 6, 6> information =
+      jtj.topLeftCorner<6, 6>() - jtj.topRightCorner(6, others) * d_inverse_bt;
+  return std::sqrt(move.dot(information * move)) / noise_sigma;
 }
 
 // Whether a round settles a fit in rounds: settles(its start, its result).

@@ -65,13 +65,18 @@ TEST(FitPixels, ListsThePixelsAtItsResult) {
   EXPECT_GT(largest_move, 1e-3);
 }
 
+// What a round of the FitInRounds tests gives: its fit alone.
+struct Solved {
+  PixelFit fit;
+};
+
+// 0.5 m in front of the camera, facing it: the FitInRounds tests' start.
+const Rigid3 kFacing(Eigen::Vector3d(1.0, -1.0, -1.0).asDiagonal(), Eigen::Vector3d(0.0, 0.0, 0.5));
+
 // Only the first of several rounds is solved as one (FitRound::first_of_several: to the looser
 // tolerance, the next round fitting again from its result); every later round, and a fit of
 // one round, to the fit's own tolerance. Every round but the first follows another.
 TEST(FitInRounds, SolvesOnlyAFirstRoundThatAnotherFollowsToTheLooserTolerance) {
-  struct Solved {
-    PixelFit fit;
-  };
   std::vector<bool> firsts, follows;
   std::vector<double> tolerances;
   // Each solve moves the marker 1 mm sideways in its first two rounds, then not at all.
@@ -85,9 +90,7 @@ TEST(FitInRounds, SolvesOnlyAFirstRoundThatAnotherFollowsToTheLooserTolerance) {
     solved.fit.sigma_px = sigma_px;
     return std::optional<Solved>(solved);
   };
-  Rigid3 start;  // 0.5 m in front of the camera, facing it
-  start.rotation = Eigen::Vector3d(1.0, -1.0, -1.0).asDiagonal();
-  start.translation = Eigen::Vector3d(0.0, 0.0, 0.5);
+  const Rigid3 start = kFacing;
   ASSERT_TRUE(FitInRounds<Solved>(start, 1.0, 5, solve_once));
   EXPECT_EQ(firsts, (std::vector<bool>{true, false, false}));
   EXPECT_EQ(follows, (std::vector<bool>{false, true, true}));
@@ -107,9 +110,6 @@ TEST(FitInRounds, SolvesOnlyAFirstRoundThatAnotherFollowsToTheLooserTolerance) {
 // result where first_settles, given the start and that round's result, says so; where it does
 // not, the rounds go on as without it.
 TEST(FitInRounds, StopsAfterAWholeFirstRoundThatSettles) {
-  struct Solved {
-    PixelFit fit;
-  };
   std::vector<double> tolerances;
   // Each solve moves the marker 1 mm sideways.
   const auto solve_once = [&](const Rigid3& start, double sigma_px, const FitRound& round) {
@@ -120,9 +120,7 @@ TEST(FitInRounds, StopsAfterAWholeFirstRoundThatSettles) {
     solved.fit.sigma_px = sigma_px;
     return std::optional<Solved>(solved);
   };
-  Rigid3 start;  // 0.5 m in front of the camera, facing it
-  start.rotation = Eigen::Vector3d(1.0, -1.0, -1.0).asDiagonal();
-  start.translation = Eigen::Vector3d(0.0, 0.0, 0.5);
+  const Rigid3 start = kFacing;
   std::vector<Eigen::Vector3d> judged;  // the start's and the result's translations
   bool settles = true;
   const RoundSettles<Solved> first_settles = [&](const Rigid3& from, const Solved& first) {
@@ -148,9 +146,6 @@ TEST(FitInRounds, StopsAfterAWholeFirstRoundThatSettles) {
 // round's start (the last result) and its result, says so, whatever the translation moved;
 // and only there: a round that moved the translation by less than 1e-4 of its length goes on.
 TEST(FitInRounds, StopsAfterALaterRoundThatSettles) {
-  struct Solved {
-    PixelFit fit;
-  };
   int solves = 0;
   // Each solve moves the marker 1 mm sideways in its first round, then 1 µm (2e-6 of 0.5 m).
   const auto solve_once = [&](const Rigid3& start, double sigma_px, const FitRound&) {
@@ -160,9 +155,7 @@ TEST(FitInRounds, StopsAfterALaterRoundThatSettles) {
     solved.fit.sigma_px = sigma_px;
     return std::optional<Solved>(solved);
   };
-  Rigid3 start;  // 0.5 m in front of the camera, facing it
-  start.rotation = Eigen::Vector3d(1.0, -1.0, -1.0).asDiagonal();
-  start.translation = Eigen::Vector3d(0.0, 0.0, 0.5);
+  const Rigid3 start = kFacing;
   std::vector<std::pair<double, double>> judged;  // each later round's start and result, x
   int settling_round = 2;                         // the round (0 the first) that settles
   const RoundSettles<Solved> later_settles = [&](const Rigid3& from, const Solved& round) {
