@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <filesystem>
+#include <limits>
 #include <map>
 #include <sstream>
 
@@ -42,6 +43,17 @@ bool Convert(const YAML::Node& node, T* out) {
   try {
     *out = node.as<T>();
   } catch (const YAML::Exception&) {
+    // An integer may be written as any whole number: 1e+05 is how NumberText writes 100000,
+    // in the parameters a run records.
+    if constexpr (std::is_same_v<T, int>) {
+      double whole = 0.0;
+      if (!Convert(node, &whole) || whole != std::floor(whole) ||
+          !(std::abs(whole) <= std::numeric_limits<int>::max())) {
+        return false;
+      }
+      *out = static_cast<int>(whole);
+      return true;
+    }
     return false;
   }
   if constexpr (std::is_same_v<T, double>) return std::isfinite(*out);

@@ -1,9 +1,13 @@
 #include "trackers/tracker.h"
 
 #include <gtest/gtest.h>
+#include <yaml-cpp/yaml.h>
+
+#include <set>
 
 #include "core/camera_yaml.h"
 #include "core/marker_yaml.h"
+#include "core/yaml_reader.h"
 #include "trackers/tracker_factory.h"
 
 namespace markerbench {
@@ -50,6 +54,24 @@ TEST(TrackerFactory, TrackersCanTrackTheirOwnMarkersOnly) {
       const MarkerSpec other = LoadMarkerYaml(std::string("scenarios/markers/") + kind + ".yaml");
       EXPECT_FALSE(tracker->CanTrack(other)) << name << " " << kind;
     }
+  }
+}
+
+// A run records each tracker's Parameters() (its manifest, `markerbench list trackers`): read
+// back as options they must build the same tracker, every key but the facts that come with a
+// tracker's name (how it finds the pose, the pixel convention's offset) read back as written.
+TEST(TrackerFactory, ParametersReadBackAsOptionsGiveTheSameTracker) {
+  const std::set<std::string> facts = {"pose", "pixel_offset_corrected"};
+  for (const std::string& name : TrackerNames()) {
+    const std::vector<std::pair<std::string, std::string>> parameters =
+        MakeTracker(name, nullptr)->Parameters();
+    ASSERT_FALSE(parameters.empty()) << name;
+    YAML::Node node(YAML::NodeType::Map);
+    for (const auto& [key, value] : parameters) {
+      if (!facts.count(key)) node[key] = YAML::Load(value);
+    }
+    const YamlMap options(node, "parameters of " + name, "");
+    EXPECT_EQ(MakeTracker(name, &options)->Parameters(), parameters) << name;
   }
 }
 
