@@ -28,14 +28,59 @@ cv::Rect2d EllipseBox(const Eigen::Matrix3d& C) {
   return {e.center.x() - hw, e.center.y() - hh, 2 * hw, 2 * hh};
 }
 
+// The marker's image at a predicted pose: its ellipses, its point m1, and the region around
+// them (their box grown by `roi_margin` of its size and 10 px, within the image).
+struct PredictedImage {
+  std::vector<Eigen::Matrix3d> conics_px;  // canonical
+  Eigen::Vector2d m1_px;
+  cv::Rect region;
+};
+
+// nullopt where the pose puts a circle within its radius of the camera's plane or behind it (a
+// motion carried on too far: no image to search), or the region outside the image.
+std::optional<PredictedImage> PredictImage(const CircleGeometry& geometry,
+                                           const Camera& camera,
+                                           const Rigid3& cam_from_paper,
+                                           double roi_margin,
+                                           const cv::Rect& image) {
+  const Eigen::Matrix3d H = camera.K() * RayFromPlane(cam_from_paper);
+  PredictedImage predicted;
+  cv::Rect2d box;
+  for (size_t i = 0; i < geometry.centers.size(); ++i) {
+    const Eigen::Vector2d& c = geometry.centers[i];
+    if (!((cam_from_paper * Eigen::Vector3d(c.x(), c.y(), 0.0)).z() > geometry.radii_m[i])) {
+      return std::nullopt;
+    }
+    predicted.conics_px.push_back(CanonicalConic(ImageOfCircle<double>(H, c, geometry.radii_m[i])));
+    const cv::Rect2d b = EllipseBox(predicted.conics_px.back());
+    box = i == 0 ? b : (box | b);
+  }
+  predicted.m1_px = (H * Eigen::Vector3d(geometry.Lx, 0.0, 1.0)).hnormalized();
+  box |= cv::Rect2d(predicted.m1_px.x(), predicted.m1_px.y(), 1.0, 1.0);
+  const double grow = roi_margin * std::max(box.width, box.height) + 10.0;
+  // Far off the image (or not finite): nothing to search, and no int holds its corners.
+  constexpr double kFar = 1e6;
+  if (!(box.x - grow > -kFar && box.y - grow > -kFar && box.x + box.width + grow < kFar &&
+        box.y + box.height + grow < kFar)) {
+    return std::nullopt;
+  }
+  predicted.region =
+      image & cv::Rect(cv::Point(static_cast<int>(std::floor(box.x - grow)),
+                                 static_cast<int>(std::floor(box.y - grow))),
+                       cv::Point(static_cast<int>(std::ceil(box.x + box.width + grow)),
+                                 static_cast<int>(std::ceil(box.y + box.height + grow))));
+  if (predicted.region.area() <= 0) return std::nullopt;
+  return predicted;
+}
+
 // Whether the detection is the predicted image of the marker: each ellipse's centre within
 // `max_error` of its predicted semi-minor axis and each semi-axis within that fraction, and
 // a detected feature point m1 within that fraction of circle 0's predicted semi-minor axis
 // (for c and d, whose circles alone do not fix the roll).
 bool MatchPrediction(const CircleDiagnostics& detected,
-                     const std::vector<Eigen::Matrix3d>& predicted_conics_px,
-                     const Eigen::Vector2d& predicted_m1_px,
+                     const PredictedImage& predicted,
                      double max_error) {
+  const std::vector<Eigen::Matrix3d>& predicted_conics_px = predicted.conics_px;
   if (detected.conics_px.size() != predicted_conics_px.size()) return false;
   for (size_t i = 0; i < predicted_conics_px.size(); ++i) {
     const Ellipse d = EllipseFromConic(detected.conics_px[i]);
@@ -46,7 +91,7 @@ bool MatchPrediction(const CircleDiagnostics& detected,
       return false;
     }
   }
-  return !detected.m1_px || (*detected.m1_px - predicted_m1_px).norm() <=
+  return !detected.m1_px || (*detected.m1_px - predicted.m1_px).norm() <=
                                 max_error * EllipseFromConic(predicted_conics_px[0]).semi_minor;
 }
 
@@ -217,40 +262,26 @@ TrackResult CircleTracker::FindInFrame(const Observation& observation) {
   const Image8& image = *observation.image;
   const cv::Rect whole(0, 0, image.width, image.height);
   if (options_.tracking && previous_cam_from_paper_) {
-    // Predicted ellipses (and the marker's points) from the predicted pose, grown by a margin.
+    // The pose predicted for this frame, and the marker's image there.
     const Camera& camera = *observation.camera;
     const Rigid3 predicted_pose = options_.predict_motion && last_motion_
                                       ? *last_motion_ * *previous_cam_from_paper_
                                       : *previous_cam_from_paper_;
-    const Eigen::Matrix3d H = camera.K() * RayFromPlane(predicted_pose);
-    cv::Rect2d box;
-    std::vector<Eigen::Matrix3d> predicted;
-    for (size_t i = 0; i < geometry->centers.size(); ++i) {
-      predicted.push_back(
-          CanonicalConic(ImageOfCircle<double>(H, geometry->centers[i], geometry->radii_m[i])));
-      const cv::Rect2d b = EllipseBox(predicted.back());
-      box = i == 0 ? b : (box | b);
-    }
-    const Eigen::Vector2d m1 = (H * Eigen::Vector3d(geometry->Lx, 0.0, 1.0)).hnormalized();
-    box |= cv::Rect2d(m1.x(), m1.y(), 1.0, 1.0);
-    const double grow = options_.roi_margin * std::max(box.width, box.height) + 10.0;
-    const cv::Rect region(cv::Point(static_cast<int>(std::floor(box.x - grow)),
-                                    static_cast<int>(std::floor(box.y - grow))),
-                          cv::Point(static_cast<int>(std::ceil(box.x + box.width + grow)),
-                                    static_cast<int>(std::ceil(box.y + box.height + grow))));
-    const cv::Rect clipped = region & whole;
-    if (clipped.area() > 0) {
+    const std::optional<PredictedImage> prediction =
+        PredictImage(*geometry, camera, predicted_pose, options_.roi_margin, whole);
+    if (prediction) {
       // The predicted ellipses first, then a search of the region, then the whole image. A
       // result counts only where its ellipses are the predicted ones: otherwise the prediction
       // says nothing about this frame (a cut, a jump, unrelated images), and the frame
       // gets exactly the full detection a first frame gets, never a lock on the old pose.
-      const std::vector<Eigen::Matrix3d>* const predictions[] = {&predicted, nullptr};
-      for (const std::vector<Eigen::Matrix3d>* prediction : predictions) {
-        TrackResult result = TrackIn(observation, *geometry, clipped, prediction, &predicted_pose);
+      const std::vector<Eigen::Matrix3d>* const starts[] = {&prediction->conics_px, nullptr};
+      for (const std::vector<Eigen::Matrix3d>* start : starts) {
+        TrackResult result =
+            TrackIn(observation, *geometry, prediction->region, start, &predicted_pose);
         diagnostics_.used_tracking_region = true;
-        diagnostics_.used_predicted_ellipses = prediction != nullptr;
+        diagnostics_.used_predicted_ellipses = start != nullptr;
         if (result.status == TrackStatus::kOk &&
-            MatchPrediction(diagnostics_, predicted, m1, options_.max_prediction_error)) {
+            MatchPrediction(diagnostics_, *prediction, options_.max_prediction_error)) {
           return result;
         }
       }

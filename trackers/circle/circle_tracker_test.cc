@@ -364,6 +364,29 @@ TEST(CircleTracker, PredictsTheNextPoseByTheLastMotion) {
   }
 }
 
+// A motion carried on too far: from 1.2 m to 0.6 m (a jump the region around the first pose's
+// ellipses does not match: full detection) it predicts the marker at the camera, from 2 m
+// behind it. That frame, back at 0.6 m, gets full detection; the next one, the camera still,
+// is tracked from its prediction again.
+TEST(CircleTracker, APredictionAtOrBehindTheCameraGetsFullDetection) {
+  const MarkerSpec marker = Load("circles_a");
+  const Rigid3 near = TiltedView(0.6, 20.0, 30.0);
+  for (const double first_m : {1.2, 2.0}) {
+    SCOPED_TRACE(first_m);
+    CircleTracker tracker;
+    Rigid3 far = near;
+    far.translation.z() = first_m;
+    ASSERT_EQ(RenderAndTrack(&tracker, marker, far, 0.02, 60).result.status, TrackStatus::kOk);
+    for (int frame = 1; frame <= 3; ++frame) {
+      const TrackedFrame t = RenderAndTrack(&tracker, marker, near, 0.02, 60 + frame);
+      ASSERT_EQ(t.result.status, TrackStatus::kOk) << frame;
+      EXPECT_LE(PositionError(t.result.hypotheses.front(), near), kTiltedPositionFraction * 0.6);
+      EXPECT_EQ(tracker.diagnostics().used_tracking_region, frame == 3) << frame;
+      EXPECT_EQ(tracker.diagnostics().used_predicted_ellipses, frame == 3) << frame;
+    }
+  }
+}
+
 // d and e under a blur that hides their dots from the threshold (issue 21): d at 1 m and e at
 // 0.8 m, blur σ 5 and σ² 0.02, where the dots (4.8 and 5.3 px in radius) peak at 0.37 and 0.42
 // of their ink. The search of blurred dots finds them (without it none is detected), and the
