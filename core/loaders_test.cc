@@ -162,12 +162,13 @@ TEST(YamlFiles, ComplexKeysAreRefused) {
 // An integer may be written as any whole number within an int (1e+05: how NumberText writes
 // 100000); a fraction, or a whole number beyond an int, is not one.
 TEST(YamlFiles, IntegersAreWholeNumbersInAnyNotation) {
-  const YamlMap map(YAML::Load("{plain: 42, exponent: 1e+05, point: 7.0, hex: 0x10,"
+  const YamlMap map(YAML::Load("{plain: 42, exponent: 1e+05, short: 1e5, point: 7.0, hex: 0x10,"
                                " fraction: 2.5, huge: 1e10, word: ten}"),
                     "numbers.yaml",
                     "");
   EXPECT_EQ(map.Get<int>("plain"), 42);
   EXPECT_EQ(map.Get<int>("exponent"), 100000);
+  EXPECT_EQ(map.Get<int>("short"), 100000);
   EXPECT_EQ(map.Get<int>("point"), 7);
   EXPECT_EQ(map.Get<int>("hex"), 16);
   for (const char* key : {"fraction", "huge", "word"}) {

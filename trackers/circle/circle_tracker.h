@@ -47,7 +47,7 @@ struct CircleTrackerOptions {
   // set, dark blobs as circles of 14.7-15.9 px at σ 2.2-3.7 px, 4.2-6.7 σ; on the paper sweeps
   // 6 % of the frames of e and f, at blur σ 4 and beyond, fall below).
   double min_design_radius_per_blur = 7.0;
-  bool tracking = true;  // search around the previous pose first (paper step 5)
+  bool tracking = true;  // search around the pose predicted from the last frames first (step 5)
   // Tracking mode predicts this frame's pose by moving the previous one on by the camera's
   // last frame-to-frame motion, where the two frames before both had a pose (constant
   // velocity; frames evenly spaced in time); otherwise, or with false, the previous pose.

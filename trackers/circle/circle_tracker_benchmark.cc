@@ -78,7 +78,7 @@ void BM_CircleTrackingMode(benchmark::State& state) {
   const std::vector<Image8> next_frames = BenchmarkFrames(marker, 16, later);
   const Camera camera;
   CircleTracker tracker;
-  size_t i = 0, ok = 0, in_region = 0;
+  size_t i = 0, ok = 0, in_region = 0, from_prediction = 0;
   for (auto _ : state) {
     const size_t k = i++ % frames.size();
     state.PauseTiming();
@@ -87,9 +87,13 @@ void BM_CircleTrackingMode(benchmark::State& state) {
     state.ResumeTiming();
     ok += tracker.Track({&next_frames[k], &camera, &marker}).status == TrackStatus::kOk;
     in_region += tracker.diagnostics().used_tracking_region;
+    from_prediction += tracker.diagnostics().used_predicted_ellipses;
   }
   state.counters["ok_fraction"] = static_cast<double>(ok) / static_cast<double>(i);
   state.counters["region_fraction"] = static_cast<double>(in_region) / static_cast<double>(i);
+  // Found by the edge pass from the predicted ellipses (else by the search of the region).
+  state.counters["predicted_fraction"] =
+      static_cast<double>(from_prediction) / static_cast<double>(i);
 }
 
 // The check of the printed design at the found pose (printed_appearance.h), alone: part of
