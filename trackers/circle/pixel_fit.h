@@ -168,10 +168,8 @@ inline double PoseMoveInStandardErrors(const PixelFit& fit,
                                        const Rigid3& start,
                                        double noise_sigma) {
   const int parameters = static_cast<int>(fit.jtj.rows());
-  Eigen::Matrix<double, 6, 1> start_pose;
-  ceres::RotationMatrixToAngleAxis(ceres::ColumnMajorAdapter3x3(start.rotation.data()),
-                                   start_pose.data());
-  start_pose.tail<3>() = start.translation;
+  Eigen::Matrix<double, 6, 1> start_pose =
+      PixelFitParameters(start, fit.sigma_px, fit.levels).head<6>();
   const Eigen::Vector3d start_rotation = start_pose.head<3>();
   const double start_angle = start_rotation.norm();
   if (start_angle > 0.0) {
