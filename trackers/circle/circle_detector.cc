@@ -338,20 +338,24 @@ CircleDetector::FittedEdges CircleDetector::FitEdgesInPasses(size_t i,
   double sigma = sigma_start_px;
   for (int pass = 0; pass < passes; ++pass) {
     fitted.edges = EdgesOf(i, smoothed, fitted.conic, sigma);
+    ++fitted.passes;
     const size_t kept = fitted.edges.points_px.size();
     if (kept < 8 || kept < options_.min_edge_fraction * fitted.edges.rays) {
       fitted.error = "edges found on only " + std::to_string(kept) + " of " +
                      std::to_string(fitted.edges.rays) + " rays of circle " + std::to_string(i);
       return fitted;
     }
-    const std::optional<ConicFit> fit = FitEllipse(
-        fitted.edges.points_px, pass + 1 == passes && refine_last ? options_.fit : direct);
+    const bool last = pass + 1 == passes ||
+                      (options_.stop_passes_within_start_blur && fitted.edges.sigma_px <= sigma);
+    const std::optional<ConicFit> fit =
+        FitEllipse(fitted.edges.points_px, last && refine_last ? options_.fit : direct);
     if (!fit) {
       fitted.error = "the edge points of a circle give no ellipse";
       return fitted;
     }
     fitted.conic = fit->conic;
     sigma = fitted.edges.sigma_px;
+    if (last) break;
   }
   return fitted;
 }
@@ -684,6 +688,7 @@ std::optional<MarkerDetection> CircleDetector::Detect(
     if (!fitted.error.empty()) return fail(fitted.error);
     DetectedCircle circle;
     circle.edges = std::move(fitted.edges);
+    circle.edge_passes = fitted.passes;
     // The edge contrast must stand out of the noise left after smoothing (a Gaussian of σ_s
     // divides white noise by 2√π σ_s): blobs of pure noise reach about 6 of those σ.
     const double contrast =

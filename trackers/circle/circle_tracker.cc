@@ -304,7 +304,12 @@ TrackResult CircleTracker::TrackIn(const Observation& observation,
   const Eigen::Matrix3d K = camera.K();
 
   std::string why;
-  const CircleDetector detector(*observation.marker, geometry, options_.detector);
+  // The fit on the pixels of disks (a-d) takes the pose from the image: the edges need only
+  // start it.
+  CircleDetectorOptions detector_options = options_.detector;
+  detector_options.stop_passes_within_start_blur =
+      options_.refine && options_.photometric && !geometry.roll_from_design;
+  const CircleDetector detector(*observation.marker, geometry, detector_options);
   std::optional<MarkerDetection> detection =
       detector.Detect(*observation.image, region, predicted_conics_px, &why);
   if (!detection) {
@@ -333,6 +338,7 @@ TrackResult CircleTracker::TrackIn(const Observation& observation,
     measurements.conics_px.push_back(circle.conic_px);
     diagnostics_.conics_px.push_back(circle.conic_px);
     diagnostics_.edges.push_back(circle.edges.points_px);
+    diagnostics_.edge_passes.push_back(circle.edge_passes);
     diagnostics_.blur_sigma_px = std::max(diagnostics_.blur_sigma_px, circle.edges.sigma_px);
     RefinementCircle rc;
     rc.center = geometry.centers[i];

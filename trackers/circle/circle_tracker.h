@@ -75,6 +75,7 @@ struct CircleDiagnostics {
   bool used_predicted_ellipses = false;  // the result is one edge pass from the predicted ellipses
   std::vector<Eigen::Matrix3d> conics_px;           // fitted, canonical
   std::vector<std::vector<Eigen::Vector2d>> edges;  // per circle, bias-corrected
+  std::vector<int> edge_passes;                     // per circle, run
   std::optional<Eigen::Vector2d>
       m1_px;                   // detected feature point (b-d; e, f: by the design), undistorted
   double blur_sigma_px = 0.0;  // fitted edge σ (blur + pre-smoothing)
