@@ -314,29 +314,37 @@ def circle_markers():
     return lines
 
 
+def median_interval(row, figure, unit, scale=1.0):
+    """" (lo–hi)": the 95 % interval of a median in a summary row (columns FIGURE_lo_UNIT and
+    FIGURE_hi_UNIT), times `scale`; nothing where it has none."""
+    lo, hi = row[f"{figure}_lo_{unit}"], row[f"{figure}_hi_{unit}"]
+    return f" ({significant(scale * number(lo))}–{significant(scale * number(hi))})" if lo else ""
+
+
 def sequences():
     """Tracking over time (issue 22): per sequence scenario, sweep value, marker and tracker of
     results/sequences/sequence_summary.csv."""
     lines = ["| video | marker: tracker | lost (95 % interval) | ATE, mm: median (95 % interval) "
-             "| RPE over 1 s, mm | jitter, mm | re-acquire, s (never) | ms tracking / detection |",
+             "| RPE over 1 s, mm | jitter, mm | re-acquire, s (never) "
+             "| ms tracking / detection: median (95 % interval) |",
              "|---|---|---|---|---|---|---|---|"]
     for r in read_summary("results/sequences/sequence_summary.csv"):
         visible = int(r["visible"])
         lost = 100 * int(r["lost"]) / visible if visible else math.nan
-        interval = (f" ({significant(1e3 * number(r['ate_median_lo_m']))}–"
-                    f"{significant(1e3 * number(r['ate_median_hi_m']))})"
-                    if r["ate_median_lo_m"] else "")
         reacquire = (f"{significant(number(r['reacquire_median_s']))} ({r['never_reacquired']})"
                      if int(r["occlusions"]) else "-")
         video = f"{r['scenario']}, {r['sweep_parameter']} {r['sweep_value']}"
         lines.append(
             f"| {video} | `{r['marker']}`: `{r['tracker']}` | {lost:.1f} % "
             f"({100 * number(r['lost_rate_lo']):.1f}–{100 * number(r['lost_rate_hi']):.1f}) | "
-            f"{significant(1e3 * number(r['ate_median_m']))}{interval} | "
+            f"{significant(1e3 * number(r['ate_median_m']))}"
+            f"{median_interval(r, 'ate_median', 'm', 1e3)} | "
             f"{significant(1e3 * number(r['rpe_median_m']))} | "
             f"{significant(1e3 * number(r['jitter_median_m']))} | {reacquire} | "
-            f"{significant(number(r['tracking_median_ms']))} / "
-            f"{significant(number(r['detection_median_ms']))} |")
+            f"{significant(number(r['tracking_median_ms']))}"
+            f"{median_interval(r, 'tracking_median', 'ms')} / "
+            f"{significant(number(r['detection_median_ms']))}"
+            f"{median_interval(r, 'detection_median', 'ms')} |")
     return lines
 
 

@@ -42,9 +42,10 @@ std::string Significant(double value) {
 }
 
 // " (1.2–3.4)": a median error's interval in mm; nothing when the sample is too small.
-std::string MillimetreRange(const Interval& ci_m) {
-  if (std::isnan(ci_m.lo)) return "";
-  return " (" + Significant(1e3 * ci_m.lo) + "–" + Significant(1e3 * ci_m.hi) + ")";
+// " (lo–hi)" of an interval times `scale` (1e3: metres to millimetres), or nothing.
+std::string ScaledRange(const Interval& ci, double scale) {
+  if (std::isnan(ci.lo)) return "";
+  return " (" + Significant(scale * ci.lo) + "–" + Significant(scale * ci.hi) + ")";
 }
 
 std::string ScenarioSection(const std::string& scenario,
@@ -110,7 +111,7 @@ std::string ScenarioSection(const std::string& scenario,
           Significant(r.apparent_size_median_px) + " | " + Percent(r.detection_rate) + " | " +
           Percent(r.success_rate) + " (" + PercentRange(r.success_rate_ci) + ") | " +
           Significant(1e3 * r.position_error_median_m) +
-          MillimetreRange(r.position_error_median_ci_m) + " | " +
+          ScaledRange(r.position_error_median_ci_m, 1e3) + " | " +
           Significant(1e3 * r.position_error_mean_m) + " | " +
           Significant(1e3 * r.position_error_p90_m) + " | " +
           Significant(r.rotation_error_median_deg) + " | " +
@@ -161,7 +162,8 @@ std::string SequencesSection(const std::vector<SequenceSummaryRow>& rows, const 
       "re-acquire: seconds from the marker's reappearance to the next pose (median over the "
       "occlusions; `never` counts those not followed by any pose); ms: median time per frame "
       "over the visible frames, right after a frame with a pose (tracking) and otherwise (full "
-      "detection: the first frame, after a loss or an occlusion). TUM files for evo: "
+      "detection: the first frame, after a loss or an occlusion), the median over the videos "
+      "with its 95 % interval. TUM files for evo: "
       "`" +
       scenario + "/tum/`; per sequence: `" + scenario + "/sequences.csv`.\n\n";
   if (fs::exists(dir + "/" + scenario + "_error_time.png")) {
@@ -177,11 +179,12 @@ std::string SequencesSection(const std::vector<SequenceSummaryRow>& rows, const 
           " | " + r.marker + " | " + r.tracker + " | " + std::to_string(r.sequences) + " | " +
           Percent(lost) + " (" + PercentRange(r.lost_rate_ci) + ") | " +
           std::to_string(r.found_hidden) + " | " + Significant(1e3 * r.ate_m) +
-          MillimetreRange(r.ate_ci_m) + " | " + Significant(1e3 * r.rpe_m) + " | " +
+          ScaledRange(r.ate_ci_m, 1e3) + " | " + Significant(1e3 * r.rpe_m) + " | " +
           Significant(r.rpe_deg) + " | " + Significant(1e3 * r.jitter_m) + " | " +
           Significant(r.reacquire_median_s) + " | " +
           (r.occlusions > 0 ? std::to_string(r.never_reacquired) : "-") + " | " +
-          Significant(r.tracking_ms) + " | " + Significant(r.detection_ms) + " |\n";
+          Significant(r.tracking_ms) + ScaledRange(r.tracking_ci_ms, 1.0) + " | " +
+          Significant(r.detection_ms) + ScaledRange(r.detection_ci_ms, 1.0) + " |\n";
   }
   return md + "\n";
 }

@@ -50,16 +50,17 @@ std::string SequencesCsvHeader() {
          "found_hidden,ate_m,rpe_m,rpe_deg,jitter_m,reacquire_s,tracking_ms,detection_ms\n";
 }
 
-// One summary row's samples over its sequences.
-struct SummaryCell {
-  SequenceSummaryRow row;
-  std::vector<double> ate, rpe, rpe_deg, jitter, reacquire, tracking, detection;
+}  // namespace
 
-  void Add(const SequenceMetrics& m) {
-    ++row.sequences;
-    row.visible += m.visible;
-    row.lost += m.lost;
-    row.found_hidden += m.found_hidden;
+SequenceSummaryRow SummaryOfSequences(const SequenceSummaryRow& cell,
+                                      const std::vector<SequenceMetrics>& sequences) {
+  SequenceSummaryRow s = cell;
+  std::vector<double> ate, rpe, rpe_deg, jitter, reacquire, tracking, detection;
+  for (const SequenceMetrics& m : sequences) {
+    ++s.sequences;
+    s.visible += m.visible;
+    s.lost += m.lost;
+    s.found_hidden += m.found_hidden;
     ate.push_back(m.ate_m);
     rpe.push_back(m.rpe_m);
     rpe_deg.push_back(m.rpe_deg);
@@ -68,32 +69,28 @@ struct SummaryCell {
     detection.push_back(m.detection_ms);
     for (const double seconds : m.reacquire_s) {
       if (std::isnan(seconds)) continue;
-      ++row.occlusions;
-      row.never_reacquired += std::isinf(seconds);
+      ++s.occlusions;
+      s.never_reacquired += std::isinf(seconds);
       reacquire.push_back(seconds);
     }
   }
-
-  SequenceSummaryRow Finish() const {
-    SequenceSummaryRow s = row;
-    // Frames of a video are not independent samples (a tracker loses runs of them): the
-    // videos are.
-    if (s.visible > 0) {
-      s.lost_rate_ci = WilsonIntervalOfRate(static_cast<double>(s.lost) / s.visible, s.sequences);
-    }
-    s.ate_m = Median(ate);
-    s.ate_ci_m = MedianInterval(ate);
-    s.rpe_m = Median(rpe);
-    s.rpe_deg = Median(rpe_deg);
-    s.jitter_m = Median(jitter);
-    s.reacquire_median_s = Median(reacquire);
-    s.tracking_ms = Median(tracking);
-    s.detection_ms = Median(detection);
-    return s;
+  // Frames of a video are not independent samples (a tracker loses runs of them): the
+  // videos are.
+  if (s.visible > 0) {
+    s.lost_rate_ci = WilsonIntervalOfRate(static_cast<double>(s.lost) / s.visible, s.sequences);
   }
-};
-
-}  // namespace
+  s.ate_m = Median(ate);
+  s.ate_ci_m = MedianInterval(ate);
+  s.rpe_m = Median(rpe);
+  s.rpe_deg = Median(rpe_deg);
+  s.jitter_m = Median(jitter);
+  s.reacquire_median_s = Median(reacquire);
+  s.tracking_ms = Median(tracking);
+  s.tracking_ci_ms = MedianInterval(tracking);
+  s.detection_ms = Median(detection);
+  s.detection_ci_ms = MedianInterval(detection);
+  return s;
+}
 
 SequenceResults::SequenceResults(const std::string& folder, const nlohmann::json& entry)
     : folder_(folder), trajectory_(TrajectoryOf(entry)), csv_(SequencesCsvHeader()) {}
@@ -169,26 +166,26 @@ std::vector<SequenceSummaryRow> SequenceResults::Finish() {
   Close();
   WriteFileAtomically(folder_ + "/sequences.csv", csv_);
   // Per (cell, marker, tracker), over the trials, in order of first appearance.
-  std::vector<SummaryCell> cells;
+  std::vector<std::pair<SequenceSummaryRow, std::vector<SequenceMetrics>>> cells;
   std::map<std::tuple<double, std::string, std::string, std::string>, size_t> index;
   for (const MeasuredSequence& m : measured_) {
     const FrameRow& r = m.sequence;
     const auto [it, added] =
         index.try_emplace({r.sweep_value, r.grid, r.marker, m.tracker}, cells.size());
     if (added) {
-      SummaryCell cell;
-      cell.row.scenario = r.scenario;
-      cell.row.sweep_parameter = r.sweep_parameter;
-      cell.row.sweep_value = r.sweep_value;
-      cell.row.grid = r.grid;
-      cell.row.marker = r.marker;
-      cell.row.tracker = m.tracker;
-      cells.push_back(cell);
+      SequenceSummaryRow cell;
+      cell.scenario = r.scenario;
+      cell.sweep_parameter = r.sweep_parameter;
+      cell.sweep_value = r.sweep_value;
+      cell.grid = r.grid;
+      cell.marker = r.marker;
+      cell.tracker = m.tracker;
+      cells.emplace_back(cell, std::vector<SequenceMetrics>{});
     }
-    cells[it->second].Add(m.metrics);
+    cells[it->second].second.push_back(m.metrics);
   }
   std::vector<SequenceSummaryRow> rows;
-  for (const SummaryCell& cell : cells) rows.push_back(cell.Finish());
+  for (const auto& [cell, sequences] : cells) rows.push_back(SummaryOfSequences(cell, sequences));
   return rows;
 }
 
@@ -197,7 +194,8 @@ std::string SequenceSummaryCsv(const std::vector<SequenceSummaryRow>& rows) {
       "scenario,sweep_parameter,sweep_value,grid,marker,tracker,sequences,visible,lost,"
       "lost_rate_lo,lost_rate_hi,found_hidden,ate_median_m,ate_median_lo_m,ate_median_hi_m,"
       "rpe_median_m,rpe_median_deg,jitter_median_m,occlusions,never_reacquired,"
-      "reacquire_median_s,tracking_median_ms,detection_median_ms\n";
+      "reacquire_median_s,tracking_median_ms,tracking_median_lo_ms,tracking_median_hi_ms,"
+      "detection_median_ms,detection_median_lo_ms,detection_median_hi_ms\n";
   for (const SequenceSummaryRow& s : rows) {
     csv += CsvField(s.scenario) + ',' + s.sweep_parameter + ',' + NumberText(s.sweep_value) + ',' +
            CsvField(s.grid) + ',' + CsvField(s.marker) + ',' + CsvField(s.tracker) + ',' +
@@ -209,7 +207,9 @@ std::string SequenceSummaryCsv(const std::vector<SequenceSummaryRow>& rows) {
            NumberTextOrEmpty(s.rpe_deg) + ',' + NumberTextOrEmpty(s.jitter_m) + ',' +
            std::to_string(s.occlusions) + ',' + std::to_string(s.never_reacquired) + ',' +
            NumberTextOrEmpty(s.reacquire_median_s) + ',' + NumberTextOrEmpty(s.tracking_ms) + ',' +
-           NumberTextOrEmpty(s.detection_ms) + '\n';
+           NumberTextOrEmpty(s.tracking_ci_ms.lo) + ',' + NumberTextOrEmpty(s.tracking_ci_ms.hi) +
+           ',' + NumberTextOrEmpty(s.detection_ms) + ',' + NumberTextOrEmpty(s.detection_ci_ms.lo) +
+           ',' + NumberTextOrEmpty(s.detection_ci_ms.hi) + '\n';
   }
   return csv;
 }

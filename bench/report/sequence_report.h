@@ -43,8 +43,12 @@ struct SequenceSummaryRow {
   double reacquire_median_s = NAN;
   int occlusions = 0;
   int never_reacquired = 0;
+  // The medians of the sequences' median times per frame (SequenceMetrics), with 95 %
+  // intervals over the videos.
   double tracking_ms = NAN;
+  Interval tracking_ci_ms;
   double detection_ms = NAN;
+  Interval detection_ci_ms;
 };
 
 // The rows of one sequence: its identity and, per tracker in order of appearance, its frames.
@@ -88,6 +92,11 @@ class SequenceResults {
   std::optional<SequenceRows> open_;  // the sequence being read
   std::vector<MeasuredSequence> measured_;
 };
+
+// One summary row: `cell`'s identity (scenario to tracker) with its figures over `sequences`,
+// the metrics of each of its videos.
+SequenceSummaryRow SummaryOfSequences(const SequenceSummaryRow& cell,
+                                      const std::vector<SequenceMetrics>& sequences);
 
 std::string SequenceSummaryCsv(const std::vector<SequenceSummaryRow>& rows);
 
