@@ -147,6 +147,8 @@ bool CircleTrackerOptions::IsValid(std::string* error) const {
     msg << "min_design_radius_per_blur=" << min_design_radius_per_blur << " must be >= 0";
   } else if (!(photometric_refinement.band_sigmas > 0.0)) {
     msg << "pixel_band_sigmas=" << photometric_refinement.band_sigmas << " must be > 0";
+  } else if (!(photometric_refinement.band_px >= 0.0)) {
+    msg << "pixel_band_px=" << photometric_refinement.band_px << " must be >= 0";
   } else {
     return true;
   }
@@ -202,6 +204,8 @@ CircleTrackerOptions CircleTrackerOptions::FromYaml(const YamlMap& map) {
       map.GetOr<double>("min_design_radius_per_blur", o.min_design_radius_per_blur);
   o.photometric_refinement.band_sigmas =
       map.GetOr<double>("pixel_band_sigmas", o.photometric_refinement.band_sigmas);
+  o.photometric_refinement.band_px =
+      map.GetOr<double>("pixel_band_px", o.photometric_refinement.band_px);
   FinishOptions(map, o);
   return o;
 }
@@ -240,6 +244,7 @@ std::vector<std::pair<std::string, std::string>> CircleTracker::Parameters() con
       {"max_other_tilt_log_ratio", NumberText(o.max_other_tilt_log_ratio)},
       {"min_design_radius_per_blur", NumberText(o.min_design_radius_per_blur)},
       {"pixel_band_sigmas", NumberText(o.photometric_refinement.band_sigmas)},
+      {"pixel_band_px", NumberText(o.photometric_refinement.band_px)},
   };
 }
 

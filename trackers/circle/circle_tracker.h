@@ -64,8 +64,8 @@ struct CircleTrackerOptions {
   // Reads flat keys (cost, huber_px, point_weight, max_iterations, k_normal, depth, refine,
   // photometric, tracking, predict_motion, roi_margin, max_prediction_error, max_edge_rms_px,
   // max_appearance_misfit, min_contrast, edge_passes, max_rays, min_branch_angle_rad,
-  // max_other_tilt_log_ratio, min_design_radius_per_blur, pixel_band_sigmas: the disks' fit's
-  // band_sigmas); throws ConfigError naming the file and key.
+  // max_other_tilt_log_ratio, min_design_radius_per_blur, pixel_band_sigmas and pixel_band_px:
+  // the disks' fit's band_sigmas and band_px); throws ConfigError naming the file and key.
   static CircleTrackerOptions FromYaml(const YamlMap& map);
 };
 

@@ -605,7 +605,7 @@ std::optional<ModelledPixels> PixelsAt(const Image8& image,
                                     marker,
                                     *layers,
                                     H,
-                                    options.band_sigmas * sigma + 1.0,
+                                    options.band_sigmas * sigma + options.band_px,
                                     options.max_depth_per_curvature);
   if (pixels.pixels.size() < 20) return std::nullopt;
   return ModelledPixels{std::move(*layers), std::move(pixels), sigma};

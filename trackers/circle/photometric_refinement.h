@@ -31,14 +31,21 @@
 namespace markerbench {
 
 struct PhotometricOptions {
-  // Pixels within this many σ (+ 1 px) of an edge take part (`pixel_band_sigmas`). A blurred
-  // step's pixels beyond 2σ hold erfc(2) = 0.5 % of its position's information (a few % of
-  // σ's): at the truth of rendered frames the pose's standard errors are within 2.5 % of a
-  // band of 4σ's (photometric_refinement_test.cc). Against 3: 6-9 % less time at 0.6 m, 11-14 %
-  // at 1 m and blur σ 2, 26-29 % at σ 8; paired on the circle markers' paper sweeps no cell's
-  // errors differed by a sign test after Holm, and over circles_a's blur sweep they grew 0.9 %
-  // (geometric mean, 95 % interval -0.4..+2.1 %; results/speed.md).
+  // Pixels within this many σ, plus band_px, of an edge take part (`pixel_band_sigmas`). A
+  // blurred step's pixels beyond 2σ hold erfc(2) = 0.5 % of its position's information (a few %
+  // of σ's): at the truth of rendered frames the pose's standard errors are within 2.5 % of a
+  // band twice as wide's (photometric_refinement_test.cc). Against 3: 6-9 % less time at 0.6 m,
+  // 11-14 % at 1 m and blur σ 2, 26-29 % at σ 8; paired on the circle markers' paper sweeps no
+  // cell's errors differed by a sign test after Holm, and over circles_a's blur sweep they grew
+  // 0.9 % (geometric mean, 95 % interval -0.4..+2.1 %; results/speed.md).
   double band_sigmas = 2.0;
+  // The band's margin (`pixel_band_px`). Half a pixel (its half-width, beyond which a pixel's
+  // area meets the blurred edge only past band_sigmas) against 1: full detection 11 % less time
+  // at 0.6 m, tracking mode 9 %, blur σ 2 5 %, but paired on circles_a's paper blur sweep the
+  // errors at blur σ 0 and 1 grew 6 and 4 % (95 % intervals 1.6-10.8 and 0.1-8.3 %), elsewhere
+  // within noise; at the truth the pose's standard errors were up to 4 % above a band twice as
+  // wide's, from 2.5 % (results/speed.md). Without a margin the distance sweep's errors grew 3.5 %.
+  double band_px = 1.0;
   // The same for the first of several rounds (FitRound, pixel_fit.h), whose result only places
   // the next round's pixels. Against 2: 8-9 % less time for full detection at 0.6 m, 3-5 % in
   // tracking mode, 6-9 % at blur σ 8; paired on the circle markers' paper sweeps no cell's
