@@ -325,18 +325,21 @@ CircleEdges CircleDetector::EdgesOf(size_t i,
                          options_.edges);
 }
 
-CircleDetector::FittedEdges CircleDetector::FitEdgesInPasses(size_t i,
-                                                             const cv::Mat& smoothed,
-                                                             const Eigen::Matrix3d& start,
-                                                             double sigma_start_px,
-                                                             int passes,
-                                                             bool refine_last) const {
+CircleDetector::FittedEdges CircleDetector::FitEdgesInPasses(
+    size_t i,
+    const cv::Mat& smoothed,
+    const Eigen::Matrix3d& start,
+    double sigma_start_px,
+    int passes,
+    bool refine_last,
+    const std::function<void()>& smooth_the_rest) const {
   ConicFitOptions direct = options_.fit;
   direct.refine_pnd = false;
   FittedEdges fitted;
   fitted.conic = start;
   double sigma = sigma_start_px;
   for (int pass = 0; pass < passes; ++pass) {
+    if (pass > 0 && smooth_the_rest) smooth_the_rest();
     fitted.edges = EdgesOf(i, smoothed, fitted.conic, sigma);
     ++fitted.passes;
     const size_t kept = fitted.edges.points_px.size();
@@ -655,22 +658,52 @@ std::optional<MarkerDetection> CircleDetector::Detect(
   // refinement: the pose refinement (cost B) works on the edges themselves.
   const int passes = from_prediction ? 1 : options_.edge_passes;
   // Full-resolution smoothing only around the circles, with room for rays at σ up to 12 px.
+  // Where a first pass may be the last, only as far as its rays reach at first, the rest
+  // before a later pass: smoothing a view takes its neighbours from the whole image, so a
+  // pixel is smoothed as in the whole patch (to the bit where the patch is itself a view:
+  // OpenCV smooths a whole image by another path, up to 2 grey levels apart). The patch took
+  // 5-7 % of the tracker's time on sharp images (results/speed.md).
+  const auto box_around = [&](const Eigen::Matrix3d& conic, int margin_px) {
+    const Ellipse e = EllipseFromConic(conic);
+    const int half = static_cast<int>(std::ceil(e.semi_major)) + margin_px;
+    return cv::Rect(static_cast<int>(e.center.x()) - half,
+                    static_cast<int>(e.center.y()) - half,
+                    2 * half + 1,
+                    2 * half + 1);
+  };
   cv::Rect patch;
   for (size_t i = 0; i < initial.size(); ++i) {
-    const Ellipse e = EllipseFromConic(initial[i]);
-    const int half = static_cast<int>(std::ceil(e.semi_major)) + 50;
-    const cv::Rect box(static_cast<int>(e.center.x()) - half,
-                       static_cast<int>(e.center.y()) - half,
-                       2 * half + 1,
-                       2 * half + 1);
-    patch = i == 0 ? box : (patch | box);
+    patch = i == 0 ? box_around(initial[i], 50) : (patch | box_around(initial[i], 50));
   }
   patch &= cv::Rect(0, 0, view.cols, view.rows);
   if (patch.empty()) return fail("the circles lie outside the search region");
   std::map<int, cv::Mat> smoothed;
+  const auto smooth = [&](const cv::Mat& channel, const cv::Rect& box, cv::Mat* out) {
+    if (box.empty()) return;  // a circle beside the search region: its rays find no edge
+    cv::Mat into = (*out)(box - patch.tl());
+    cv::GaussianBlur(channel(box), into, cv::Size(0, 0), detection.smoothing_sigma_px);
+  };
+  // A sample takes the pixel below and the next one, and a ray's base lies within a pixel of
+  // the box's centre.
+  const int first_reach_px = static_cast<int>(std::ceil(EdgeSearchReachPx(
+                                 detection.smoothing_sigma_px + 1.0, options_.edges))) +
+                             2;
+  const bool one_pass_may_do = passes == 1 || options_.stop_passes_within_start_blur;
   for (const auto& [channel, mat] : raw) {
-    cv::GaussianBlur(mat(patch), smoothed[channel], cv::Size(0, 0), detection.smoothing_sigma_px);
+    cv::Mat& out = smoothed[channel];
+    out.create(patch.size(), CV_8UC1);
+    for (size_t i = 0; i < initial.size(); ++i) {
+      if (!one_pass_may_do || plans_[i].channel != channel) continue;
+      smooth(mat, box_around(initial[i], first_reach_px) & patch, &out);
+    }
+    if (!one_pass_may_do) smooth(mat, patch, &out);
   }
+  bool smoothed_whole = !one_pass_may_do;
+  const auto smooth_the_rest = [&] {
+    if (smoothed_whole) return;
+    for (const auto& [channel, mat] : raw) smooth(mat, patch, &smoothed[channel]);
+    smoothed_whole = true;
+  };
   // x_patch = to_patch x_region.
   Eigen::Matrix3d to_patch = Eigen::Matrix3d::Identity();
   to_patch.topRightCorner<2, 1>() = -Eigen::Vector2d(patch.x, patch.y);
@@ -684,7 +717,8 @@ std::optional<MarkerDetection> CircleDetector::Detect(
                                           initial[i],
                                           detection.smoothing_sigma_px + 1.0,
                                           passes,
-                                          !from_prediction);
+                                          !from_prediction,
+                                          smooth_the_rest);
     if (!fitted.error.empty()) return fail(fitted.error);
     DetectedCircle circle;
     circle.edges = std::move(fitted.edges);

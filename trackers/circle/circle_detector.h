@@ -7,6 +7,7 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <functional>
 #include <opencv2/core.hpp>
 #include <optional>
 #include <string>
@@ -111,14 +112,16 @@ class CircleDetector {
   };
   // Circle `i`'s edges and conic in up to `passes` passes of EdgesOf, each from the last
   // pass's conic and blur (stop_passes_within_start_blur); the conic's PND refinement in the
-  // last when `refine_last`. An error where too few rays find an edge or the points give no
-  // ellipse.
+  // last when `refine_last`. Before a pass after the first, `smooth_the_rest` (if given)
+  // completes `smoothed`, which the first pass needs only within its rays' reach of `start`.
+  // An error where too few rays find an edge or the points give no ellipse.
   FittedEdges FitEdgesInPasses(size_t i,
                                const cv::Mat& smoothed,
                                const Eigen::Matrix3d& start,
                                double sigma_start_px,
                                int passes,
-                               bool refine_last) const;
+                               bool refine_last,
+                               const std::function<void()>& smooth_the_rest = nullptr) const;
   struct DiskWithDots {
     Eigen::Matrix3d conic = Eigen::Matrix3d::Zero();
     Eigen::Vector2d m0_px = Eigen::Vector2d::Zero();

@@ -123,7 +123,7 @@ CircleEdges FindCircleEdges(const cv::Mat& image,
   const double perimeter = M_PI * (e.semi_major + e.semi_minor);
   const int n_rays = std::clamp(
       static_cast<int>(perimeter / options.ray_spacing_px), options.min_rays, options.max_rays);
-  const double reach = options.reach_sigmas * sigma_start_px + 3.0;
+  const double reach = EdgeSearchReachPx(sigma_start_px, options);
   const double reach_out = std::min(reach, max_outward_px);
   const double reach_in = std::min(reach, max_inward_px);
   const Eigen::Vector2d u(std::cos(e.angle_rad), std::sin(e.angle_rad)), v(-u.y(), u.x());

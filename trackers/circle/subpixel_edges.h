@@ -31,6 +31,11 @@ struct CircleEdges {
   int rays = 0;  // rays tried; points_px.size() kept
 };
 
+// How far a search's rays reach past the hypothesised edge, each way, from its start σ.
+inline double EdgeSearchReachPx(double sigma_start_px, const EdgeSearchOptions& options) {
+  return options.reach_sigmas * sigma_start_px + 3.0;
+}
+
 // `image` is one 8-bit channel (the pre-smoothed ink channel). `ellipse_px` the hypothesis;
 // `max_inward_px` and `max_outward_px` bound how far rays look inside and outside (to stay
 // clear of other edges of the marker). `sigma_start_px` is the initial σ. Coordinates are image
