@@ -661,8 +661,8 @@ std::optional<MarkerDetection> CircleDetector::Detect(
   // Where a first pass may be the last, only as far as its rays reach at first, the rest
   // before a later pass: smoothing a view takes its neighbours from the whole image, so a
   // pixel is smoothed as in the whole patch (to the bit where the patch is itself a view:
-  // OpenCV smooths a whole image by another path, up to 2 grey levels apart). The patch took
-  // 5-7 % of the tracker's time on sharp images (results/speed.md).
+  // OpenCV smooths a whole image by another path, up to 2 grey levels apart). On sharp images
+  // this took 5-7 % off the tracker's time (results/speed.md).
   const auto box_around = [&](const Eigen::Matrix3d& conic, int margin_px) {
     const Ellipse e = EllipseFromConic(conic);
     const int half = static_cast<int>(std::ceil(e.semi_major)) + margin_px;
