@@ -44,6 +44,12 @@ Ellipse EllipseFromConic(const Eigen::Matrix3d& C) {
   return e;
 }
 
+double PndReach(const Ellipse& e, double distance) {
+  const double eccentricity = e.semi_major / e.semi_minor;
+  const double reach = 1.000001 * e.semi_major + 2.01 * distance * eccentricity * eccentricity;
+  return std::isnan(reach) ? INFINITY : reach;  // axes lost to rounding: skip nothing
+}
+
 Eigen::Matrix3d ConicFromEllipse(const Ellipse& ellipse) {
   const double c = std::cos(ellipse.angle_rad), s = std::sin(ellipse.angle_rad);
   Eigen::Matrix2d rot;

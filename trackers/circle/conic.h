@@ -29,6 +29,14 @@ struct Ellipse {
 Ellipse EllipseFromConic(const Eigen::Matrix3d& C);
 Eigen::Matrix3d ConicFromEllipse(const Ellipse& ellipse);
 
+// The distance from the centre of the real ellipse `e` beyond which every point is more
+// than `distance` PND (PndResidual) from it, for scans that skip far points. Outside an
+// ellipse |PND| is at least the Sampson distance, which at distance D from an ellipse of
+// semi-axes a >= b exceeds D b² / (2 a²) (the point is s v with v on the ellipse, s > 1,
+// and Sampson = (s² - 1) / (2 s |A v|) for the normalized quadric A). Hence
+// a + 2 distance (a / b)², with a margin for rounding; infinity where the axes are NaN.
+double PndReach(const Ellipse& e, double distance);
+
 // The line l misses the real ellipse C iff lᵀ adj(C) l > 0 (§1; invariant to scale and sign).
 bool LineMissesEllipse(const Eigen::Vector3d& l, const Eigen::Matrix3d& C);
 
