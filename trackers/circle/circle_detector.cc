@@ -692,11 +692,15 @@ std::optional<MarkerDetection> CircleDetector::Detect(
   for (const auto& [channel, mat] : raw) {
     cv::Mat& out = smoothed[channel];
     out.create(patch.size(), CV_8UC1);
-    for (size_t i = 0; i < initial.size(); ++i) {
-      if (!one_pass_may_do || plans_[i].channel != channel) continue;
-      smooth(mat, box_around(initial[i], first_reach_px) & patch, &out);
+    if (!one_pass_may_do) {
+      smooth(mat, patch, &out);
+      continue;
     }
-    if (!one_pass_may_do) smooth(mat, patch, &out);
+    for (size_t i = 0; i < initial.size(); ++i) {
+      if (plans_[i].channel == channel) {
+        smooth(mat, box_around(initial[i], first_reach_px) & patch, &out);
+      }
+    }
   }
   bool smoothed_whole = !one_pass_may_do;
   const auto smooth_the_rest = [&] {
