@@ -50,29 +50,6 @@ bool Overlap(const std::vector<int>& a, const std::vector<int>& b) {
   return 2 * common.size() > std::min(a.size(), b.size());
 }
 
-// Whether dot i has another within `reach`: a scan over all dots, visiting them outwards
-// from dot i in y (below, above, in turn), so that a neighbour ends it soon and a lone dot's
-// ends at the reach in y. `by_y` lists the dots with finite centres sorted by y, and `rank[i]`
-// is dot i's place in it.
-bool HasNeighbour(const std::vector<ImagedDot>& dots,
-                  const std::vector<int>& by_y,
-                  const std::vector<size_t>& rank,
-                  int i,
-                  double reach) {
-  const Eigen::Vector2d& c = dots[i].center_px;
-  auto near = [&](size_t k) { return (dots[by_y[k]].center_px - c).squaredNorm() < reach * reach; };
-  auto in_reach_y = [&](size_t k) { return std::abs(dots[by_y[k]].center_px.y() - c.y()) < reach; };
-  size_t below = rank[i], above = rank[i] + 1;
-  bool down = below > 0 && in_reach_y(below - 1), up = above < by_y.size() && in_reach_y(above);
-  while (down || up) {
-    if (down && near(--below)) return true;
-    if (up && near(above++)) return true;
-    down = down && below > 0 && in_reach_y(below - 1);
-    up = up && above < by_y.size() && in_reach_y(above);
-  }
-  return false;
-}
-
 // The dots with finite centres, sorted by y, for the scans of a band of rows: their index,
 // centre and moment area in arrays of their own.
 struct DotsByY {
@@ -85,6 +62,42 @@ struct DotsByY {
             static_cast<size_t>(std::upper_bound(y.begin(), y.end(), high) - y.begin())};
   }
 };
+
+DotsByY SortByY(const std::vector<ImagedDot>& dots, const std::vector<int>& which) {
+  DotsByY sorted;
+  sorted.index = which;
+  std::sort(sorted.index.begin(), sorted.index.end(), [&](int a, int b) {
+    return dots[a].center_px.y() < dots[b].center_px.y();
+  });
+  for (int i : sorted.index) {
+    sorted.x.push_back(dots[i].center_px.x());
+    sorted.y.push_back(dots[i].center_px.y());
+    sorted.area.push_back(MomentArea(dots[i]));
+  }
+  return sorted;
+}
+
+// Whether the k-th dot of `sorted` has another within `reach`: a scan visiting the dots
+// outwards from it in y (below, above, in turn), so that a neighbour ends it soon and a lone
+// dot's ends at the reach in y.
+bool HasNeighbour(const DotsByY& sorted, size_t k, double reach) {
+  const double x = sorted.x[k], y = sorted.y[k];
+  auto near = [&](size_t m) {
+    const double dx = sorted.x[m] - x, dy = sorted.y[m] - y;
+    return dx * dx + dy * dy < reach * reach;
+  };
+  auto in_reach_y = [&](size_t m) { return std::abs(sorted.y[m] - y) < reach; };
+  const size_t n = sorted.index.size();
+  size_t below = k, above = k + 1;
+  bool down = below > 0 && in_reach_y(below - 1), up = above < n && in_reach_y(above);
+  while (down || up) {
+    if (down && near(--below)) return true;
+    if (up && near(above++)) return true;
+    down = down && below > 0 && in_reach_y(below - 1);
+    up = up && above < n && in_reach_y(above);
+  }
+  return false;
+}
 
 // Marks dot indices in a bitset, to read them back in increasing order without a sort.
 class DotMarks {
@@ -105,20 +118,6 @@ class DotMarks {
  private:
   std::vector<uint64_t> words_;
 };
-
-DotsByY SortByY(const std::vector<ImagedDot>& dots, const std::vector<int>& which) {
-  DotsByY sorted;
-  sorted.index = which;
-  std::sort(sorted.index.begin(), sorted.index.end(), [&](int a, int b) {
-    return dots[a].center_px.y() < dots[b].center_px.y();
-  });
-  for (int i : sorted.index) {
-    sorted.x.push_back(dots[i].center_px.x());
-    sorted.y.push_back(dots[i].center_px.y());
-    sorted.area.push_back(MomentArea(dots[i]));
-  }
-  return sorted;
-}
 
 // RANSAC for ring conics: the inlier sets (dot centres within tolerance) of the
 // options.ring_candidates conics with the most inliers that do not overlap, most first. A
@@ -145,20 +144,19 @@ std::vector<std::vector<int>> RingCandidates(const std::vector<ImagedDot>& dots,
     if (dots[i].center_px.allFinite()) placed.push_back(i);
   }
   const DotsByY placed_by_y = SortByY(dots, placed);
-  const std::vector<int>& by_y = placed_by_y.index;
-  std::vector<size_t> rank(n);
-  for (size_t k = 0; k < by_y.size(); ++k) rank[by_y[k]] = k;
-  std::vector<int> pool;  // in dot order, which the samples are drawn in
-  for (int i : placed) {
-    const double reach = options.neighbour_reach * std::max(dots[i].semi_major_px, 1.0);
-    if (HasNeighbour(dots, by_y, rank, i, reach)) pool.push_back(i);
-  }
-  if (static_cast<int>(pool.size()) < options.min_ring_dots) return candidates;
-  const DotsByY pool_by_y = SortByY(dots, pool);
   // The scans below visit a band of rows and read what they found back in dot order: the
   // same samples and inlier sets as scans of all dots, in a fraction of the time where
   // there are thousands (fuzzing found textures of 5000 dots).
   DotMarks marks(n);
+  for (size_t k = 0; k < placed_by_y.index.size(); ++k) {
+    const int i = placed_by_y.index[k];
+    const double reach = options.neighbour_reach * std::max(dots[i].semi_major_px, 1.0);
+    if (HasNeighbour(placed_by_y, k, reach)) marks.Mark(i);
+  }
+  std::vector<int> pool;  // in dot order, which the samples are drawn in
+  marks.TakeInOrder(&pool);
+  if (static_cast<int>(pool.size()) < options.min_ring_dots) return candidates;
+  const DotsByY pool_by_y = SortByY(dots, pool);
   Rng rng(seed);
   std::vector<int> inliers, similar;
   int iterations = options.max_ransac_iterations;
@@ -196,11 +194,10 @@ std::vector<std::vector<int>> RingCandidates(const std::vector<ImagedDot>& dots,
     const auto [row_low, row_high] =
         placed_by_y.Band(ellipse.center.y() - inlier_reach, ellipse.center.y() + inlier_reach);
     for (size_t k = row_low; k < row_high; ++k) {
-      const int j = placed_by_y.index[k];
-      const Eigen::Vector2d& p = dots[j].center_px;
-      if (std::abs(p.x() - ellipse.center.x()) <= inlier_reach &&
-          std::abs(PndResidual<double>(*C, p.x(), p.y())) < tolerance) {
-        marks.Mark(j);
+      const double x = placed_by_y.x[k], y = placed_by_y.y[k];
+      if (std::abs(x - ellipse.center.x()) <= inlier_reach &&
+          std::abs(PndResidual<double>(*C, x, y)) < tolerance) {
+        marks.Mark(placed_by_y.index[k]);
       }
     }
     marks.TakeInOrder(&inliers);
