@@ -20,7 +20,8 @@ TEST(Camera, ProjectUnprojectRoundTripWithDistortion) {
   std::mt19937 rng(11);
   std::uniform_real_distribution<double> u(0.0, camera.width - 1.0), v(0.0, camera.height - 1.0);
   for (int i = 0; i < 500; ++i) {
-    const Eigen::Vector2d px(u(rng), v(rng));
+    const double y = v(rng);  // drawn before x: the order g++ gave them as arguments
+    const Eigen::Vector2d px(u(rng), y);
     const Eigen::Vector3d ray = camera.CamFromImg(px);
     EXPECT_DOUBLE_EQ(ray.z(), 1.0);
     const Eigen::Vector2d back = camera.ImgFromCam(2.7 * ray);

@@ -30,7 +30,8 @@ TEST(NumberText, IsTheShortestRoundTrip) {
 TEST(NumberText, ReadsBackExactly) {
   Rng rng(11);
   for (int i = 0; i < 10000; ++i) {
-    const double value = rng.Gaussian() * std::pow(10.0, rng.Uniform(-12.0, 12.0));
+    const double mantissa = rng.Gaussian();
+    const double value = mantissa * std::pow(10.0, rng.Uniform(-12.0, 12.0));
     EXPECT_EQ(std::strtod(NumberText(value).c_str(), nullptr), value) << NumberText(value);
   }
 }

@@ -111,7 +111,8 @@ TEST(Shapes, DistancesToLeadToEachBoundary) {
   Rng rng(7);
   for (size_t k = 0; k < shapes.size(); ++k) {
     for (int i = 0; i < 1000; ++i) {
-      const Eigen::Vector2d p(rng.Uniform(-0.05, 0.05), rng.Uniform(-0.05, 0.05));
+      const double y = rng.Uniform(-0.05, 0.05);  // before x: g++'s order as arguments
+      const Eigen::Vector2d p(rng.Uniform(-0.05, 0.05), y);
       const BoundaryDistances b = DistancesTo(shapes[k], p);
       ASSERT_EQ(b.count, counts[k]);
       bool inside = true;
@@ -161,7 +162,8 @@ TEST(Shapes, DistanceToOutlineIsTheDistanceToTheDrawnEdges) {
     }
     int nearer_terms = 0;
     for (int n = 0; n < 300; ++n) {
-      const Eigen::Vector2d p(rng.Uniform(-0.05, 0.05), rng.Uniform(-0.05, 0.05));
+      const double y = rng.Uniform(-0.05, 0.05);  // before x: g++'s order as arguments
+      const Eigen::Vector2d p(rng.Uniform(-0.05, 0.05), y);
       double brute = std::numeric_limits<double>::infinity();
       for (const Eigen::Vector2d& q : outline) brute = std::min(brute, (p - q).norm());
       const double exact = DistanceToOutline(shapes[k], p);

@@ -45,7 +45,7 @@ void EachFrame(
   for (auto _ : state) {
     // A fresh pose and noise seed every frame: tilt 0..40°, any roll, as in the paper sweeps.
     Rng rng(SeedFor(1, 0, frame, SeedPurpose::kPose));
-    request.scene.cam_from_marker = TiltedView(0.6, rng.Uniform(0, 40), rng.Uniform(0, 360));
+    request.scene.cam_from_marker = RandomTiltedView(0.6, 0.0, 40.0, &rng);
     request.scene.cam_from_marker.translation -= request.scene.cam_from_marker.rotation * center;
     request.noise_seed = SeedFor(1, 0, frame++, SeedPurpose::kNoise);
     if (moving) MakeMoving(&request);
@@ -141,7 +141,7 @@ void BM_MemoryOver10000Frames(benchmark::State& state) {
     for (int frame = 0; frame < 10000; ++frame) {
       if (frame == 100) after_warmup = peak_kb();
       Rng rng(SeedFor(2, 0, frame, SeedPurpose::kPose));
-      request.scene.cam_from_marker = TiltedView(0.6, rng.Uniform(0, 40), rng.Uniform(0, 360));
+      request.scene.cam_from_marker = RandomTiltedView(0.6, 0.0, 40.0, &rng);
       request.noise_seed = SeedFor(2, 0, frame, SeedPurpose::kNoise);
       benchmark::DoNotOptimize(RenderFrame(request));
     }

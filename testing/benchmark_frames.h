@@ -34,8 +34,8 @@ struct BenchmarkFrameOptions {
 // The camera's move between two frames of the hand-held video, `camera_after_from_before`.
 inline Rigid3 HandheldFrameMotion(Rng* rng) {
   constexpr double kStepM = 0.15 / 30.0, kTurnRad = (30.0 / 30.0) * M_PI / 180.0;
-  const Eigen::Vector3d axis(rng->Gaussian(), rng->Gaussian(), rng->Gaussian());
-  const Eigen::Vector3d direction(rng->Gaussian(), rng->Gaussian(), rng->Gaussian());
+  const Eigen::Vector3d axis = GaussianVector(rng);
+  const Eigen::Vector3d direction = GaussianVector(rng);
   return {Eigen::AngleAxisd(kTurnRad, axis.normalized()).toRotationMatrix(),
           kStepM * direction.normalized()};
 }
@@ -49,8 +49,7 @@ inline std::vector<Image8> BenchmarkFrames(const MarkerSpec& marker,
     Rng rng(SeedFor(11, 0, static_cast<uint64_t>(i), SeedPurpose::kPose));
     FrameRequest request;
     request.scene.marker = &marker;
-    request.scene.cam_from_marker =
-        TiltedView(options.distance_m, rng.Uniform(0, 40), rng.Uniform(0, 360));
+    request.scene.cam_from_marker = RandomTiltedView(options.distance_m, 0.0, 40.0, &rng);
     request.scene.cam_from_marker.translation -=
         request.scene.cam_from_marker.rotation * Eigen::Vector3d(c.x(), c.y(), 0.0);
     const uint64_t later = options.one_video_frame_later ? 1 : 0;

@@ -27,7 +27,7 @@ double MeanBlurRatioUnderClippedNoise(const MarkerSpec& marker, double blur, con
   Rng rng(5);
   double ratio = 0.0;
   for (int i = 0; i < kFrames; ++i) {
-    const Rigid3 truth = TiltedView(1.0, rng.Uniform(10.0, 40.0), rng.Uniform(0.0, 360.0));
+    const Rigid3 truth = RandomTiltedView(1.0, 10.0, 40.0, &rng);
     const RenderedFrame frame = RenderMarker(marker, truth, kNoiseVar, blur, 20 + i);
     const auto refined = refine(frame.image, truth, blur, kDetectorNoiseSigma);
     EXPECT_TRUE(refined) << "frame " << i;

@@ -73,7 +73,8 @@ void AddSquares(Rng* rng, MarkerSpec* sheet) {
   const int count = 3 + static_cast<int>(rng->Uniform(0.0, 10.0));
   for (int i = 0; i < count; ++i) {
     const double grey = rng->Uniform(0.0, 0.6);
-    sheet->layers.push_back({Square(OnSheet(rng), rng->Uniform(0.01, 0.08)), Rgb::Constant(grey)});
+    const double size_m = rng->Uniform(0.01, 0.08);  // before the corner: g++'s order
+    sheet->layers.push_back({Square(OnSheet(rng), size_m), Rgb::Constant(grey)});
   }
 }
 
@@ -169,8 +170,7 @@ NegativeFrame RenderNegative(int index) {
   FrameRequest request;
   request.scene.marker = &sheet;
   const double distance = rng.Uniform(0.3, 2.5);
-  request.scene.cam_from_marker =
-      TiltedView(distance, rng.Uniform(0.0, 60.0), rng.Uniform(0.0, 360.0));
+  request.scene.cam_from_marker = RandomTiltedView(distance, 0.0, 60.0, &rng);
   request.scene.cam_from_marker.translation.x() += rng.Uniform(-0.15, 0.15) * distance;
   request.scene.cam_from_marker.translation.y() += rng.Uniform(-0.15, 0.15) * distance;
   const double noise_vars[] = {0.0, 0.01, 0.02, 0.05, 0.1, 0.3};

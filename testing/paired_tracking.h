@@ -44,7 +44,7 @@ inline PairedErrors TrackPaired(const MarkerSpec& marker,
     return std::numeric_limits<double>::infinity();
   };
   for (int i = 0; i < frames; ++i) {
-    const Rigid3 truth = TiltedView(distance_m, rng.Uniform(10.0, 40.0), rng.Uniform(0.0, 360.0));
+    const Rigid3 truth = RandomTiltedView(distance_m, 10.0, 40.0, &rng);
     const RenderedFrame frame = RenderMarker(marker, truth, noise_var, 0.0, first_noise_seed + i);
     errors.first.push_back(error(first, frame.image, truth, &errors.first_missed));
     errors.second.push_back(error(second, frame.image, truth, &errors.second_missed));

@@ -24,9 +24,10 @@ std::array<Eigen::Vector2d, 4> ProjectCorners(const Rigid3& cam_from_marker,
                                               Rng* rng) {
   std::array<Eigen::Vector2d, 4> px;
   for (size_t k = 0; k < 4; ++k) {
+    const double noise_y = rng->Gaussian();  // drawn before x, in g++'s order (test_scenes.h)
     px[k] = camera.ImgFromCam(cam_from_marker *
                               kSquare[k].homogeneous().cwiseProduct(Eigen::Vector3d(1, 1, 0))) +
-            noise_px * Eigen::Vector2d(rng->Gaussian(), rng->Gaussian());
+            noise_px * Eigen::Vector2d(rng->Gaussian(), noise_y);
   }
   return px;
 }

@@ -208,8 +208,9 @@ TEST_P(CircleTrackerTest, UnrelatedFramesInSequenceGiveTheDetectionResults) {
   Rng rng(41);
   int tracked = 0;
   for (int frame = 0; frame < 30; ++frame) {
-    Rigid3 truth =
-        TiltedView(rng.Uniform(0.3, 2.0), rng.Uniform(0.0, 60.0), rng.Uniform(0.0, 360.0));
+    // g++'s order (test_scenes.h)
+    const double roll_deg = rng.Uniform(0.0, 360.0), tilt_deg = rng.Uniform(0.0, 60.0);
+    Rigid3 truth = TiltedView(rng.Uniform(0.3, 2.0), tilt_deg, roll_deg);
     truth.translation.x() += rng.Uniform(-0.1, 0.1) * truth.translation.z();
     truth.translation.y() += rng.Uniform(-0.1, 0.1) * truth.translation.z();
     SCOPED_TRACE("frame " + std::to_string(frame));

@@ -124,8 +124,7 @@ TEST(DesignRefinement, ChoosesTheTiltAsOftenAsFromTheTruePoseAndItsMirror) {
     int ours_wrong = 0, from_truth_wrong = 0;
     constexpr int kFrames = 30;
     for (int i = 0; i < kFrames; ++i) {
-      const Rigid3 truth = TiltedView(
-          c.distance_m, rng.Uniform(c.min_tilt_deg, c.max_tilt_deg), rng.Uniform(0.0, 360.0));
+      const Rigid3 truth = RandomTiltedView(c.distance_m, c.min_tilt_deg, c.max_tilt_deg, &rng);
       const RenderedFrame frame = RenderMarker(marker, truth, 0.02, c.blur, 200 + i);
       const double wrong_m = 0.1 * c.distance_m;  // the benchmark's success criterion
       tracker.Reset();

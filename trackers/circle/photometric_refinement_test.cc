@@ -279,9 +279,9 @@ TEST(PhotometricRefinement, ASettledFirstRoundIsWithinAStandardErrorOfMoreRounds
         const Rigid3 truth = TiltedView(distance, 20.0 + 10.0 * trial, 70.0 * trial);
         const RenderedFrame frame = RenderMarker(marker, truth, noise_var, blur, 30 + trial);
         Rigid3 start = truth;
-        const Eigen::Vector3d axis(rng.Gaussian(), rng.Gaussian(), rng.Gaussian());
+        const Eigen::Vector3d axis = GaussianVector(&rng);
         start.rotation = Eigen::AngleAxisd(0.02 * M_PI / 180.0, axis.normalized()) * truth.rotation;
-        start.translation += 1e-4 * Eigen::Vector3d(rng.Gaussian(), rng.Gaussian(), rng.Gaussian());
+        start.translation += 1e-4 * GaussianVector(&rng);
         const double sigma = std::sqrt(blur * blur + 1.0 / 12.0);
         const AgainstRounds against = RefineAgainstRounds(
             frame, marker, start, sigma, noise_var, first_round_only, more_rounds);

@@ -144,7 +144,7 @@ TEST(IsolatedTracker, ResetReachesTheWorker) {
 }
 
 // Under AddressSanitizer the worker reports the SEGV and exits with status 1 instead.
-#if defined(__SANITIZE_ADDRESS__)
+#if defined(MARKERBENCH_ASAN)
 constexpr const char* kSegfaultEnd = "the worker exited with status 1 on this frame";
 #else
 constexpr const char* kSegfaultEnd = "the worker was killed by signal SIGSEGV on this frame";
