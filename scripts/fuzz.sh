@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # Builds the libFuzzer targets with clang, AddressSanitizer (with LeakSanitizer) and UBSan
 # into build-fuzz/, replays the inputs earlier fuzzing found (*/fuzz_regressions/<target>/),
-# then runs each target for SECONDS (default 60) from its committed seed corpus.
+# then runs both targets side by side for SECONDS (default 60) from their committed seed corpus.
 # A crash, a leak, an escaped exception or an input that takes over TIMEOUT seconds fails;
 # the input is saved in build-fuzz/findings/. New corpus entries stay in build-fuzz/corpus/.
 # TIMEOUT is 3 s: the heaviest input known (runetag-improved on a 256x256 texture of 5000
@@ -17,6 +17,10 @@ cmake -S . -B build-fuzz -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo \
   -DMARKERBENCH_UBSAN=ON -DMARKERBENCH_TESTS=OFF -DMARKERBENCH_BENCHMARKS=OFF
 cmake --build build-fuzz --parallel "$(nproc)" --target loaders_fuzz track_fuzz
 mkdir -p build-fuzz/findings
+# The regressions are replayed one target after the other; then the targets fuzz side by side
+# (one process each, so on two cores at once), each into its own log, printed when both end.
+names=() pids=()
+trap 'kill "${pids[@]}" 2> /dev/null || true' EXIT  # a failed replay stops the other target
 for seeds in bench/fuzz_corpus/loaders_fuzz trackers/fuzz_corpus/track_fuzz; do
   name="$(basename "$seeds")"
   folder="$(dirname "$(dirname "$seeds")")"  # bench or trackers
@@ -27,8 +31,19 @@ for seeds in bench/fuzz_corpus/loaders_fuzz trackers/fuzz_corpus/track_fuzz; do
     "$binary" -timeout="$timeout" -rss_limit_mb=4096 "$regressions"/*
   fi
   mkdir -p "build-fuzz/corpus/$name"
-  echo "== fuzzing $name for ${seconds} s"
+  echo "== fuzzing $name for ${seconds} s (log: build-fuzz/$name.log)"
   "$binary" "build-fuzz/corpus/$name" "$seeds" \
     -max_total_time="$seconds" -timeout="$timeout" -rss_limit_mb=4096 -print_final_stats=1 \
-    -print_funcs=0 -artifact_prefix="build-fuzz/findings/$name-"
+    -print_funcs=0 -artifact_prefix="build-fuzz/findings/$name-" > "build-fuzz/$name.log" 2>&1 &
+  names+=("$name")
+  pids+=("$!")
 done
+failed=0
+for i in "${!pids[@]}"; do
+  status=0
+  wait "${pids[$i]}" || status=$?
+  echo "== ${names[$i]} (exit status $status)"
+  cat "build-fuzz/${names[$i]}.log"
+  [ "$status" -eq 0 ] || failed=1
+done
+exit "$failed"
