@@ -68,7 +68,9 @@ TEST(Rasterizer, GrazingCloseUpsDoNotLoop) {
     }
   }
   RecordProperty("slowest_render_s", std::to_string(slowest_s));
-  if (!kSanitizedBuild) EXPECT_LT(slowest_s, 10.0);  // at 640x480, for optimised builds
+  if (!kSanitizedBuild) {
+    EXPECT_LT(slowest_s, 10.0);  // at 640x480, for optimised builds
+  }
 }
 
 TEST(Rasterizer, ObliqueDiskInkMatchesProjectedEllipse) {
