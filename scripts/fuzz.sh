@@ -17,33 +17,36 @@ cmake -S . -B build-fuzz -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo \
   -DMARKERBENCH_UBSAN=ON -DMARKERBENCH_TESTS=OFF -DMARKERBENCH_BENCHMARKS=OFF
 cmake --build build-fuzz --parallel "$(nproc)" --target loaders_fuzz track_fuzz
 mkdir -p build-fuzz/findings
-# The regressions are replayed one target after the other; then the targets fuzz side by side
-# (one process each, so on two cores at once), each into its own log, printed when both end.
-names=() pids=()
-trap 'kill "${pids[@]}" 2> /dev/null || true' EXIT  # a failed replay stops the other target
-for seeds in bench/fuzz_corpus/loaders_fuzz trackers/fuzz_corpus/track_fuzz; do
-  name="$(basename "$seeds")"
-  folder="$(dirname "$(dirname "$seeds")")"  # bench or trackers
-  binary="build-fuzz/$folder/$name"
-  regressions="$folder/fuzz_regressions/$name"
+# The regressions are replayed first, one target after the other (alone on the machine: the
+# heaviest takes half the timeout); then the targets fuzz side by side (one process each, so
+# on two cores at once), each into its own log, printed when both end.
+targets=(bench/fuzz_corpus/loaders_fuzz trackers/fuzz_corpus/track_fuzz)
+binary_of() { echo "build-fuzz/$(dirname "$(dirname "$1")")/$(basename "$1")"; }
+for seeds in "${targets[@]}"; do
+  regressions="$(dirname "$(dirname "$seeds")")/fuzz_regressions/$(basename "$seeds")"
   if [ -d "$regressions" ]; then
     echo "== replaying $regressions"
-    "$binary" -timeout="$timeout" -rss_limit_mb=4096 "$regressions"/*
+    "$(binary_of "$seeds")" -timeout="$timeout" -rss_limit_mb=4096 "$regressions"/*
   fi
+done
+pids=()
+trap 'kill "${pids[@]}" 2> /dev/null || true' EXIT  # a failing script stops the fuzzers
+for seeds in "${targets[@]}"; do
+  name="$(basename "$seeds")"
   mkdir -p "build-fuzz/corpus/$name"
   echo "== fuzzing $name for ${seconds} s (log: build-fuzz/$name.log)"
-  "$binary" "build-fuzz/corpus/$name" "$seeds" \
+  "$(binary_of "$seeds")" "build-fuzz/corpus/$name" "$seeds" \
     -max_total_time="$seconds" -timeout="$timeout" -rss_limit_mb=4096 -print_final_stats=1 \
     -print_funcs=0 -artifact_prefix="build-fuzz/findings/$name-" > "build-fuzz/$name.log" 2>&1 &
-  names+=("$name")
   pids+=("$!")
 done
 failed=0
-for i in "${!pids[@]}"; do
+for i in "${!targets[@]}"; do
+  name="$(basename "${targets[$i]}")"
   status=0
   wait "${pids[$i]}" || status=$?
-  echo "== ${names[$i]} (exit status $status)"
-  cat "build-fuzz/${names[$i]}.log"
+  echo "== $name (exit status $status)"
+  cat "build-fuzz/$name.log"
   [ "$status" -eq 0 ] || failed=1
 done
 exit "$failed"
