@@ -11,6 +11,7 @@
 #include "bench/plan/frame_plan.h"
 #include "bench/plan/marker_files.h"
 #include "bench/run/dataset.h"
+#include "bench/run/frame_bound.h"
 #include "bench/run/frames_csv.h"
 #include "bench/run/pose_columns.h"
 #include "core/camera_yaml.h"
@@ -45,7 +46,9 @@ class GroundTruthCsv {
     for (const char* c : kPoseColumns) out_ << ',' << c;
     out_ << ",noise_var,blur_sigma_px,motion_blur_px,motion_blur_angle_deg,gain,offset,"
             "jpeg_quality,channels,apparent_size_px,keypoints_px,sequence_frame,time_s,occluded,"
-            "exposure_s,readout_s\n";
+            "exposure_s,readout_s";
+    for (const std::string& c : FrameBoundColumns()) out_ << ',' << c;
+    out_ << '\n';
   }
 
   void Write(int frame,
@@ -55,7 +58,8 @@ class GroundTruthCsv {
              uint64_t seed,
              const Camera& camera,
              const FrameRequest& request,
-             const GroundTruth& truth) {
+             const GroundTruth& truth,
+             const FrameBound& bound) {
     out_ << frame << ',' << CsvField(image) << ',' << CsvField(marker) << ','
          << origin.sweep_parameter << ',' << origin.sweep_value << ',' << CsvField(origin.grid)
          << ',' << origin.trial << ',' << seed << ',' << NumberText(camera.fx) << ','
@@ -73,7 +77,8 @@ class GroundTruthCsv {
     }
     out_ << ',' << (origin.sequence_frame >= 0 ? std::to_string(origin.sequence_frame) : "") << ','
          << NumberTextOrEmpty(origin.time_s) << ',' << int{origin.occluded} << ','
-         << NumberText(request.exposure_s) << ',' << NumberText(request.readout_s) << '\n';
+         << NumberText(request.exposure_s) << ',' << NumberText(request.readout_s)
+         << FrameBoundFields(bound) << '\n';
     out_.flush();
   }
 
@@ -133,7 +138,8 @@ void RenderScenario(const std::string& scenario_path,
               scenario.seed,
               scenario.camera,
               request,
-              frame.truth);
+              frame.truth,
+              PlannedFrameBound(scenario, f, request));
     progress.Advance();
   }
   progress.Finish();
@@ -222,7 +228,8 @@ void RenderPoses(const ExplicitRenderOptions& o) {
               o.seed,
               frames.camera,
               request,
-              frame.truth);
+              frame.truth,
+              BoundOf(PoseCrlb(request)));
     progress.Advance();
   }
   progress.Finish();

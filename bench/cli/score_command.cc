@@ -8,6 +8,7 @@
 #include "bench/io/atomic_file.h"
 #include "bench/io/output_folder.h"
 #include "bench/run/dataset.h"
+#include "bench/run/frame_bound.h"
 #include "bench/run/frames_csv.h"
 #include "bench/run/manifest.h"
 #include "bench/run/pose_columns.h"
@@ -112,6 +113,7 @@ void RunScoreCommand(const ScoreOptions& o, std::ostream& out) {
     row.apparent_size_px = d.apparent_size_px;
     row.distance_m = DistanceToMarker(d.truth, dataset.markers.at(d.marker));
     row.truth = d.truth;
+    SetFrameBound(d.bound, &row);
     const auto e = estimates.find(d.frame);
     if (e == estimates.end()) {
       ++missing;

@@ -14,6 +14,7 @@
 #include "bench/plan/frame_plan.h"
 #include "bench/report/report.h"
 #include "bench/run/dataset.h"
+#include "bench/run/frame_bound.h"
 #include "bench/run/pose_columns.h"
 #include "bench/run/run_results.h"
 #include "core/config_error.h"
@@ -75,33 +76,74 @@ TEST(Dataset, RenderWritesASelfContainedDataset) {
     EXPECT_EQ(dataset.frames[i].truth.rotation, plan[i].cam_from_marker.rotation) << i;
     EXPECT_EQ(dataset.frames[i].truth.translation, plan[i].cam_from_marker.translation) << i;
     EXPECT_EQ(dataset.frames[i].sweep_value, plan[i].sweep_value) << i;
+    // The frame's Cramér-Rao bound, to the bit what a sweep of the scenario writes.
+    const FrameBound bound = PlannedFrameBound(scenario, plan[i], RequestFor(scenario, plan[i]));
+    const FrameBound& read = dataset.frames[i].bound;
+    EXPECT_GT(read.position_med_m, 0.0) << i;
+    EXPECT_EQ(read.position_m, bound.position_m) << i;
+    EXPECT_EQ(read.position_med_m, bound.position_med_m) << i;
+    EXPECT_EQ(read.rotation_deg, bound.rotation_deg) << i;
+    EXPECT_EQ(read.rotation_med_deg, bound.rotation_med_deg) << i;
+    EXPECT_EQ(read.position_variances_m2, bound.position_variances_m2) << i;
   }
+}
+
+// groundtruth.csv with one field replaced: (column, value) on its first row.
+std::string DamagedDataset(const std::string& column, const std::string& value) {
+  const std::string copy = fs::path(WriteTestFile("unused", "")).parent_path() / "damaged";
+  fs::remove_all(copy);
+  fs::copy(DatasetDir(), copy, fs::copy_options::recursive);
+  std::ifstream in(copy + "/groundtruth.csv");
+  std::string header, row, rest;
+  std::getline(in, header);
+  std::getline(in, row);
+  for (std::string line; std::getline(in, line);) rest += line + "\n";
+  in.close();
+  std::vector<std::string> names = SplitCsvLine(header), fields = SplitCsvLine(row);
+  const size_t at = std::find(names.begin(), names.end(), column) - names.begin();
+  EXPECT_LT(at, names.size()) << column;
+  if (at < names.size()) fields[at] = value;
+  std::string line;
+  for (const std::string& f : fields) line += (line.empty() ? "" : ",") + CsvField(f);
+  std::ofstream(copy + "/groundtruth.csv") << header << "\n" << line << "\n" << rest;
+  return copy;
 }
 
 // A damaged groundtruth.csv: frame numbers and seeds out of range are located errors.
 TEST(Dataset, CountsOutOfRangeAreErrors) {
   for (const auto& [column, value] : std::vector<std::pair<std::string, std::string>>{
            {"frame", "1e300"}, {"frame", "-1"}, {"seed", "-3"}, {"seed", "1.5"}}) {
-    const std::string copy = fs::path(WriteTestFile("unused", "")).parent_path() / "damaged";
-    fs::remove_all(copy);
-    fs::copy(DatasetDir(), copy, fs::copy_options::recursive);
-    std::ifstream in(copy + "/groundtruth.csv");
-    std::string header, row, rest;
-    std::getline(in, header);
-    std::getline(in, row);
-    for (std::string line; std::getline(in, line);) rest += line + "\n";
-    in.close();
-    std::vector<std::string> names = SplitCsvLine(header), fields = SplitCsvLine(row);
-    const size_t at = std::find(names.begin(), names.end(), column) - names.begin();
-    ASSERT_LT(at, names.size());
-    fields[at] = value;
-    std::string line;
-    for (const std::string& f : fields) line += (line.empty() ? "" : ",") + CsvField(f);
-    std::ofstream(copy + "/groundtruth.csv") << header << "\n" << line << "\n" << rest;
+    const std::string copy = DamagedDataset(column, value);
     EXPECT_THAT([&] { ReadDataset(copy); },
                 ::testing::ThrowsMessage<ConfigError>(HasSubstr(
                     "groundtruth.csv:2: column '" + column + "': expected a whole number")))
         << column << " " << value;
+  }
+}
+
+// The bound's fields: empty (not computed) and inf (nothing to see) read back as such, a
+// negative or unreadable one is a located error.
+TEST(Dataset, BoundFieldsReadBackOrNameTheirLine) {
+  EXPECT_TRUE(
+      std::isnan(ReadDataset(DamagedDataset("crlb_position_m", "")).frames[0].bound.position_m));
+  EXPECT_EQ(ReadDataset(DamagedDataset("crlb_rotation_deg", "inf")).frames[0].bound.rotation_deg,
+            INFINITY);
+  // A file with CRLF line ends (edited on Windows) reads the same.
+  const std::string crlf = DamagedDataset("crlb_position_m", "");
+  std::ifstream in(crlf + "/groundtruth.csv");
+  std::string text;
+  for (std::string line; std::getline(in, line);) text += line + "\r\n";
+  in.close();
+  std::ofstream(crlf + "/groundtruth.csv") << text;
+  const Dataset read = ReadDataset(crlf);
+  EXPECT_EQ(read.frames.back().bound.position_variances_m2,
+            ReadDataset(DatasetDir()).frames.back().bound.position_variances_m2);
+  for (const char* value : {"-1", "x"}) {
+    const std::string copy = DamagedDataset("crlb_position_var2_m2", value);
+    EXPECT_THAT([&] { ReadDataset(copy); },
+                ::testing::ThrowsMessage<ConfigError>(
+                    HasSubstr("groundtruth.csv:2: column 'crlb_position_var2_m2': expected a")))
+        << value;
   }
 }
 
@@ -138,6 +180,12 @@ TEST(Score, EstimatesBecomeARunThatReportReads) {
     EXPECT_EQ(rows[static_cast<size_t>(i)].message, "no estimate");
   }
   EXPECT_EQ(rows[0].tracker, "mine");
+  // Every frame, estimated or not, keeps its bound from the dataset.
+  for (size_t i = 0; i < rows.size(); ++i) {
+    EXPECT_EQ(rows[i].crlb_position_med_m, dataset.frames[i].bound.position_med_m) << i;
+    EXPECT_EQ(rows[i].crlb_position_variances_m2, dataset.frames[i].bound.position_variances_m2)
+        << i;
+  }
   EXPECT_FALSE(fs::exists(options.out_dir + "/smoke/timing.csv")) << "frames 3-5 have no time";
   ReportOptions report;
   report.plots = false;

@@ -32,7 +32,12 @@ groundtruth.csv    one row per frame: the frame, its image, marker, sweep value 
                    (a sequence scenario) its frame (from 0), the ground truth's time in
                    seconds (time_s, the middle row at mid-exposure), whether the marker is
                    hidden (occluded 1) and the exposure and rolling-shutter readout
-                   (exposure_s, readout_s); sequence_frame and time_s are empty otherwise
+                   (exposure_s, readout_s); sequence_frame and time_s are empty otherwise;
+                   then the frame's Cramer-Rao bound on the camera centre's error (crlb_position_m
+                   RMS, crlb_position_med_m median, m), the rotation's (crlb_rotation_deg,
+                   crlb_rotation_med_deg) and the centre's covariance eigenvalues
+                   (crlb_position_var1_m2..var3_m2): inf where the marker is hidden, empty
+                   where not computed
 camera.yaml        the camera (ROS camera_info; distortion plumb_bob, OpenCV's k1 k2 p1 p2 k3)
 markers/NAME.yaml  each marker as the frames show it: multiply every length by its `scale`
 dataset.json       the scenario's name and these files
@@ -104,7 +109,13 @@ Dataset ReadDataset(const std::string& dir) {
   RequireRegularFile(csv_path);
   std::ifstream in(csv_path);
   std::string line;
-  std::getline(in, line);
+  // A line read without the CR of a CRLF file (one edited on Windows).
+  const auto next_line = [&] {
+    const bool read = static_cast<bool>(std::getline(in, line));
+    if (read && !line.empty() && line.back() == '\r') line.pop_back();
+    return read;
+  };
+  next_line();
   const std::vector<std::string> header = SplitCsvLine(line);
   auto column = [&](const std::string& name) {
     const auto at = std::find(header.begin(), header.end(), name);
@@ -118,7 +129,12 @@ Dataset ReadDataset(const std::string& dir) {
   for (size_t k = 0; k < 12; ++k) pose[k] = column(kPoseColumns[k]);
   // A grid sweep's other axes; datasets written before grids have no such column.
   const auto grid_at = std::find(header.begin(), header.end(), "grid");
-  for (int number = 2; std::getline(in, line); ++number) {
+  // The frame's Cramér-Rao bound; datasets written before it have none of its columns.
+  std::vector<size_t> bound_at;
+  if (std::find(header.begin(), header.end(), FrameBoundColumns()[0]) != header.end()) {
+    for (const std::string& name : FrameBoundColumns()) bound_at.push_back(column(name));
+  }
+  for (int number = 2; next_line(); ++number) {
     const std::vector<std::string> f = SplitCsvLine(line);
     if (f.size() != header.size()) {
       throw ConfigError(Located(csv_path, number) + "expected " + std::to_string(header.size()) +
@@ -161,6 +177,23 @@ Dataset ReadDataset(const std::string& dir) {
     d.seed = *seed_value;
     d.truth = PoseFromFields(f, pose, Located(csv_path, number));
     d.apparent_size_px = number_at(size);
+    if (!bound_at.empty()) {
+      // Empty: not computed; "inf": nothing to see; else a number >= 0.
+      double values[7];
+      for (size_t k = 0; k < bound_at.size(); ++k) {
+        const std::string& text = f[bound_at[k]];
+        values[k] = text.empty() ? NAN : text == "inf" ? INFINITY : number_at(bound_at[k]);
+        if (values[k] < 0.0) {
+          throw ConfigError(Located(csv_path, number) + "column '" + header[bound_at[k]] +
+                            "': expected a bound >= 0, empty or inf, got '" + text + "'");
+        }
+      }
+      d.bound = {values[0],
+                 values[1],
+                 values[2],
+                 values[3],
+                 Eigen::Vector3d(values[4], values[5], values[6])};
+    }
     dataset.frames.push_back(d);
   }
   if (dataset.frames.empty()) throw ConfigError(csv_path + ": no frames");

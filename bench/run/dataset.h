@@ -10,6 +10,7 @@
 #include <string>
 #include <vector>
 
+#include "bench/run/frame_bound.h"
 #include "core/camera.h"
 #include "core/marker_spec.h"
 #include "core/rigid3.h"
@@ -35,6 +36,7 @@ struct DatasetFrame {
   uint64_t seed = 0;
   Rigid3 truth;  // cam_from_marker
   double apparent_size_px = 0.0;
+  FrameBound bound;  // NaN in a dataset written before groundtruth.csv gave it
 };
 
 struct Dataset {

@@ -21,13 +21,13 @@
 #include "bench/io/progress.h"
 #include "bench/plan/frame_plan.h"
 #include "bench/plan/scenario.h"
+#include "bench/run/frame_bound.h"
 #include "bench/run/frames_csv.h"
 #include "bench/run/manifest.h"
 #include "bench/run/pose_overlay.h"
 #include "bench/run/sweep_trackers.h"
 #include "core/yaml_reader.h"
 #include "renderer/image_io.h"
-#include "renderer/pose_crlb.h"
 
 namespace fs = std::filesystem;
 
@@ -305,18 +305,7 @@ void RunFrame(const PreparedSweep& p,
   row.apparent_size_px = frame.truth.apparent_size_px;
   row.distance_m = DistanceToMarker(f.cam_from_marker, marker);
   row.truth = f.cam_from_marker;
-  if (f.occluded) {
-    row.crlb_position_m = row.crlb_position_med_m = INFINITY;  // nothing to see
-    row.crlb_rotation_deg = row.crlb_rotation_med_deg = INFINITY;
-    row.crlb_position_variances_m2.setConstant(INFINITY);
-  } else if (s.crlb) {
-    const PoseBound bound = PoseCrlb(request);
-    row.crlb_position_m = bound.position_rms_m;
-    row.crlb_position_med_m = bound.position_median_m;
-    row.crlb_rotation_deg = bound.rotation_rms_deg;
-    row.crlb_rotation_med_deg = bound.rotation_median_deg;
-    row.crlb_position_variances_m2 = bound.position_variances_m2;
-  }
+  SetFrameBound(PlannedFrameBound(s, f, request), &row);
   for (const size_t t : tracker_indices) {
     Tracker* tracker = (*trackers)[t].get();
     // Frames are independent, and sequences too: no state may leak between them.
