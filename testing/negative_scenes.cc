@@ -130,7 +130,7 @@ void AddColourDots(Rng* rng, MarkerSpec* sheet) {
 
 }  // namespace
 
-NegativeFrame RenderNegative(int index) {
+NegativeFrame RenderNegative(int index, int set) {
   Clutter clutter = Clutter::kPaper;
   int within = index;
   for (const auto& [kind, count] : kCounts) {
@@ -138,7 +138,8 @@ NegativeFrame RenderNegative(int index) {
     if (within < count) break;
     within -= count;
   }
-  Rng rng(SeedFor(21, static_cast<uint64_t>(index), 0, SeedPurpose::kPose));
+  const uint64_t seed = 21 + static_cast<uint64_t>(set);
+  Rng rng(SeedFor(seed, static_cast<uint64_t>(index), 0, SeedPurpose::kPose));
   MarkerSpec sheet;
   sheet.kind = MarkerKind::kBitGrid;
   std::string label = std::string(Name(clutter)) + " " + std::to_string(index);
@@ -178,7 +179,7 @@ NegativeFrame RenderNegative(int index) {
   request.degradations.noise_var = noise_vars[static_cast<size_t>(rng.Uniform(0.0, 6.0))];
   request.degradations.blur_sigma_px = blur_sigmas[static_cast<size_t>(rng.Uniform(0.0, 5.0))];
   request.channels = 3;
-  request.noise_seed = SeedFor(21, static_cast<uint64_t>(index), 0, SeedPurpose::kNoise);
+  request.noise_seed = SeedFor(seed, static_cast<uint64_t>(index), 0, SeedPurpose::kNoise);
   return {label, RenderFrame(request)};
 }
 

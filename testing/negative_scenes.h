@@ -22,7 +22,9 @@ struct NegativeFrame {
 
 // Frame `index` (0 <= index < kNegativeSetSize) of the set, RGB, from the default camera.
 // Marker files of the other systems are read from scenarios/markers/ (the working directory
-// is the source root, as in every test).
-NegativeFrame RenderNegative(int index);
+// is the source root, as in every test). Set 0 is the committed set the tests use; sets 1, 2,
+// ... are fresh draws of the same kinds (other poses, sheets and noise), for the false-positive
+// rate out of the sample the trackers were checked on.
+NegativeFrame RenderNegative(int index, int set = 0);
 
 }  // namespace markerbench
