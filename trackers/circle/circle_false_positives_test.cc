@@ -28,10 +28,9 @@ bool ShowsKind(const NegativeFrame& negative, const std::string& kind) {
 }
 
 TEST(CircleFalsePositives, NoMarkerOnTheNegativeSet) {
-  const auto& kinds = kKinds;
   std::vector<MarkerSpec> markers;
   std::vector<CircleTracker> tracking;  // each has just tracked its marker
-  for (const char* kind : kinds) {
+  for (const char* kind : kKinds) {
     markers.push_back(LoadMarkerYaml(std::string("scenarios/markers/") + kind + ".yaml"));
     tracking.emplace_back();
     const TrackedFrame primed = RenderAndTrack(
@@ -45,7 +44,7 @@ TEST(CircleFalsePositives, NoMarkerOnTheNegativeSet) {
     const NegativeFrame negative = RenderNegative(i);
     const Observation observation{&negative.frame.image, &camera, nullptr};
     for (size_t k = 0; k < markers.size(); ++k) {
-      if (ShowsKind(negative, kinds[k])) continue;
+      if (ShowsKind(negative, kKinds[k])) continue;
       Observation of_marker = observation;
       of_marker.marker = &markers[k];
       CircleTracker detection;
@@ -55,7 +54,7 @@ TEST(CircleFalsePositives, NoMarkerOnTheNegativeSet) {
         ++tries;
         found += result.status == TrackStatus::kOk;
         EXPECT_NE(result.status, TrackStatus::kOk)
-            << kinds[k] << " found in " << negative.label
+            << kKinds[k] << " found in " << negative.label
             << (tracker == &detection ? "" : " in tracking mode");
       }
     }
