@@ -4,6 +4,7 @@
 #include <limits>
 #include <stdexcept>
 
+#include "bench/run/frame_bound.h"
 #include "bench/run/pose_columns.h"
 #include "core/joined.h"
 #include "core/number_text.h"
@@ -29,18 +30,15 @@ const std::vector<std::string>& Columns() {
                                   "rotation_error_deg",
                                   "best_position_error_m",
                                   "best_rotation_error_deg",
-                                  "flip",
-                                  "crlb_position_m",
-                                  "crlb_position_med_m",
-                                  "crlb_rotation_deg",
-                                  "crlb_rotation_med_deg"};
+                                  "flip"};
+    // The bound's columns (frame_bound.h): its RMS and median ones here, the variances last.
+    const std::vector<std::string>& bound = FrameBoundColumns();
+    c.insert(c.end(), bound.begin(), bound.begin() + 4);
     for (const char* p : kPoseColumns) c.push_back(std::string("gt_") + p);
     for (const char* p : kPoseColumns) c.push_back(p);
     c.push_back("message");
     c.push_back("grid");
-    for (const char* v :
-         {"crlb_position_var1_m2", "crlb_position_var2_m2", "crlb_position_var3_m2"})
-      c.push_back(v);
+    c.insert(c.end(), bound.begin() + 4, bound.end());
     return c;
   }();
   return kColumns;
