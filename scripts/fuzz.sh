@@ -1,9 +1,13 @@
 #!/usr/bin/env bash
-# Builds the libFuzzer targets with clang, AddressSanitizer (with LeakSanitizer) and UBSan
-# into build-fuzz/, replays the inputs earlier fuzzing found (*/fuzz_regressions/<target>/),
-# then runs both targets side by side for SECONDS (default 60) from their committed seed corpus.
-# A crash, a leak, an escaped exception or an input that takes over TIMEOUT seconds fails;
-# the input is saved in build-fuzz/findings/. New corpus entries stay in build-fuzz/corpus/.
+# Usage: scripts/fuzz.sh [SECONDS] [TREE]
+# Builds the libFuzzer targets, replays the inputs earlier fuzzing found
+# (*/fuzz_regressions/<target>/), then runs both targets side by side for SECONDS (default 60)
+# from their committed seed corpus. A crash, a leak, an escaped exception or an input that
+# takes over TIMEOUT seconds fails; the input is saved in TREE/findings/. New corpus entries
+# stay in TREE/corpus/. TREE is a build tree configured with MARKERBENCH_FUZZ (scripts/test.sh
+# passes its sanitizer tree, which built the targets beside the tests); without it,
+# build-fuzz/ is configured here: clang, AddressSanitizer (with LeakSanitizer) and UBSan with
+# every check.
 # TIMEOUT is 3 s: the heaviest input known (runetag-improved on a 256x256 texture of 5000
 # dots, 0.1 s in Release) took 0.56 s a run under the sanitizers on one machine and 1.8 s on
 # another (0.9-1.1 s there since its RANSAC scans bands of rows), so 1 s failed CI on it;
@@ -11,17 +15,24 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 seconds="${1:-60}"
+tree="${2:-build-fuzz}"
 timeout=3
-cmake -S . -B build-fuzz -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo \
-  -DCMAKE_CXX_COMPILER=clang++ -DMARKERBENCH_FUZZ=ON -DMARKERBENCH_ASAN=ON \
-  -DMARKERBENCH_UBSAN=ON -DMARKERBENCH_TESTS=OFF -DMARKERBENCH_BENCHMARKS=OFF
-cmake --build build-fuzz --parallel "$(nproc)" --target loaders_fuzz track_fuzz
-mkdir -p build-fuzz/findings
+if [ $# -lt 2 ]; then
+  cmake -S . -B build-fuzz -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo \
+    -DCMAKE_CXX_COMPILER=clang++ -DMARKERBENCH_FUZZ=ON -DMARKERBENCH_ASAN=ON \
+    -DMARKERBENCH_UBSAN=ON -DMARKERBENCH_TESTS=OFF -DMARKERBENCH_BENCHMARKS=OFF
+elif ! grep -qx 'MARKERBENCH_FUZZ:BOOL=ON' "$tree/CMakeCache.txt" 2> /dev/null; then
+  echo "fuzz.sh: $tree/CMakeCache.txt: MARKERBENCH_FUZZ is not ON (configure the tree with" \
+    "-DMARKERBENCH_FUZZ=ON, or leave TREE out for build-fuzz/)" >&2
+  exit 2
+fi
+cmake --build "$tree" --parallel "$(nproc)" --target loaders_fuzz track_fuzz
+mkdir -p "$tree/findings"
 # The regressions are replayed first, one target after the other (alone on the machine: the
 # heaviest takes half the timeout); then the targets fuzz side by side (one process each, so
 # on two cores at once), each into its own log, printed when both end.
 targets=(bench/fuzz_corpus/loaders_fuzz trackers/fuzz_corpus/track_fuzz)
-binary_of() { echo "build-fuzz/$(dirname "$(dirname "$1")")/$(basename "$1")"; }
+binary_of() { echo "$tree/$(dirname "$(dirname "$1")")/$(basename "$1")"; }
 for seeds in "${targets[@]}"; do
   regressions="$(dirname "$(dirname "$seeds")")/fuzz_regressions/$(basename "$seeds")"
   if [ -d "$regressions" ]; then
@@ -33,11 +44,11 @@ pids=()
 trap 'kill "${pids[@]}" 2> /dev/null || true' EXIT  # a failing script stops the fuzzers
 for seeds in "${targets[@]}"; do
   name="$(basename "$seeds")"
-  mkdir -p "build-fuzz/corpus/$name"
-  echo "== fuzzing $name for ${seconds} s (log: build-fuzz/$name.log)"
-  "$(binary_of "$seeds")" "build-fuzz/corpus/$name" "$seeds" \
+  mkdir -p "$tree/corpus/$name"
+  echo "== fuzzing $name for ${seconds} s (log: $tree/$name.log)"
+  "$(binary_of "$seeds")" "$tree/corpus/$name" "$seeds" \
     -max_total_time="$seconds" -timeout="$timeout" -rss_limit_mb=4096 -print_final_stats=1 \
-    -print_funcs=0 -artifact_prefix="build-fuzz/findings/$name-" > "build-fuzz/$name.log" 2>&1 &
+    -print_funcs=0 -artifact_prefix="$tree/findings/$name-" > "$tree/$name.log" 2>&1 &
   pids+=("$!")
 done
 failed=0
@@ -46,7 +57,7 @@ for i in "${!targets[@]}"; do
   status=0
   wait "${pids[$i]}" || status=$?
   echo "== $name (exit status $status)"
-  cat "build-fuzz/$name.log"
+  cat "$tree/$name.log"
   [ "$status" -eq 0 ] || failed=1
 done
 exit "$failed"

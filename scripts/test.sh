@@ -2,7 +2,7 @@
 # The whole test suite from a clean clone: install dependencies, check formatting, build
 # with warnings as errors (Release, g++), run every test with ctest, then run the unit,
 # synthetic and tracker tests again under AddressSanitizer (with LeakSanitizer) + UBSan
-# (clang), and fuzz the file loaders and the trackers, side by side, for 45 s.
+# (clang), and fuzz the file loaders and the trackers, side by side, for 45 s (in the same tree).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 bash scripts/install-deps.sh
@@ -19,14 +19,16 @@ bash scripts/build.sh -DMARKERBENCH_WERROR=ON
 # took 28 (UBSan's checks in Eigen's templates cost g++ most), and ran these tests in 10
 # minutes against 8.7. A second compiler also runs the tests: unspecified orders show.
 # UBSan's null, alignment and object-size checks are left out here: they made clang take 30 %
-# longer on the heaviest files, ASan reports a null dereference (SEGV) and any access out of
-# bounds, and the fuzz build below keeps every check.
+# longer on the heaviest files, and ASan reports a null dereference (SEGV) and any access out
+# of bounds. The same tree holds the libFuzzer targets (MARKERBENCH_FUZZ: coverage
+# instrumentation beside the sanitizers), so the library is compiled twice, not three times.
 echo "== sanitizers (ASan + LSan + UBSan, clang): unit, synthetic and tracker tests"
 cmake -S . -B build-sanitize -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -DMARKERBENCH_WERROR=ON \
   -DCMAKE_CXX_COMPILER=clang++ -DMARKERBENCH_ASAN=ON -DMARKERBENCH_UBSAN=ON \
-  -DMARKERBENCH_UBSAN_EXCLUDE=null,alignment,object-size -DMARKERBENCH_BENCHMARKS=OFF
+  -DMARKERBENCH_UBSAN_EXCLUDE=null,alignment,object-size -DMARKERBENCH_BENCHMARKS=OFF \
+  -DMARKERBENCH_FUZZ=ON
 cmake --build build-sanitize --parallel "$(nproc)"
 (cd build-sanitize && ctest --output-on-failure --parallel "$(nproc)" -L 'unit|synthetic|tracker')
 
 echo "== fuzzing (libFuzzer, ASan + UBSan)"
-bash scripts/fuzz.sh 45
+bash scripts/fuzz.sh 45 build-sanitize
