@@ -113,7 +113,7 @@ void RunScoreCommand(const ScoreOptions& o, std::ostream& out) {
     row.apparent_size_px = d.apparent_size_px;
     row.distance_m = DistanceToMarker(d.truth, dataset.markers.at(d.marker));
     row.truth = d.truth;
-    SetFrameBound(d.bound, &row);
+    row.bound = d.bound;
     const auto e = estimates.find(d.frame);
     if (e == estimates.end()) {
       ++missing;

@@ -182,8 +182,8 @@ TEST(Score, EstimatesBecomeARunThatReportReads) {
   EXPECT_EQ(rows[0].tracker, "mine");
   // Every frame, estimated or not, keeps its bound from the dataset.
   for (size_t i = 0; i < rows.size(); ++i) {
-    EXPECT_EQ(rows[i].crlb_position_med_m, dataset.frames[i].bound.position_med_m) << i;
-    EXPECT_EQ(rows[i].crlb_position_variances_m2, dataset.frames[i].bound.position_variances_m2)
+    EXPECT_EQ(rows[i].bound.position_med_m, dataset.frames[i].bound.position_med_m) << i;
+    EXPECT_EQ(rows[i].bound.position_variances_m2, dataset.frames[i].bound.position_variances_m2)
         << i;
   }
   EXPECT_FALSE(fs::exists(options.out_dir + "/smoke/timing.csv")) << "frames 3-5 have no time";

@@ -41,11 +41,11 @@ FrameRow Row(const std::string& scenario,
   r.apparent_size_px = 60.0;
   r.distance_m = 1.0;
   r.truth.translation = Eigen::Vector3d(0.0, 0.0, 1.0);
-  r.crlb_position_m = 0.012 * (trial + 1);
-  r.crlb_position_med_m = 0.01 * (trial + 1);
-  r.crlb_rotation_deg = 0.6;
-  r.crlb_rotation_med_deg = 0.5;
-  r.crlb_position_variances_m2 = Eigen::Vector3d(0.0, 0.0, std::pow(0.05 * (trial + 1), 2));
+  r.bound.position_m = 0.012 * (trial + 1);
+  r.bound.position_med_m = 0.01 * (trial + 1);
+  r.bound.rotation_deg = 0.6;
+  r.bound.rotation_med_deg = 0.5;
+  r.bound.position_variances_m2 = Eigen::Vector3d(0.0, 0.0, std::pow(0.05 * (trial + 1), 2));
   if (std::isnan(error_m)) {
     r.status = TrackStatus::kNotDetected;
     r.errors = {NAN, NAN, NAN, NAN, false};
@@ -63,12 +63,12 @@ FrameRow Row(const std::string& scenario,
 
 TEST(FramesCsv, RowsRoundTrip) {
   FrameRow unobservable = Row("s", "x", 0.2, 1, NAN);
-  unobservable.crlb_position_m = unobservable.crlb_position_med_m = INFINITY;
-  unobservable.crlb_position_variances_m2.setConstant(INFINITY);
+  unobservable.bound.position_m = unobservable.bound.position_med_m = INFINITY;
+  unobservable.bound.position_variances_m2.setConstant(INFINITY);
   FrameRow without_bound = Row("s", "y", 0.2, 1, NAN);
-  without_bound.crlb_position_m = without_bound.crlb_position_med_m = NAN;
-  without_bound.crlb_rotation_deg = without_bound.crlb_rotation_med_deg = NAN;
-  without_bound.crlb_position_variances_m2.setConstant(NAN);
+  without_bound.bound.position_m = without_bound.bound.position_med_m = NAN;
+  without_bound.bound.rotation_deg = without_bound.bound.rotation_med_deg = NAN;
+  without_bound.bound.position_variances_m2.setConstant(NAN);
   for (const FrameRow& row : {Row("s", "apriltag", 0.1, 3, 0.02), unobservable, without_bound}) {
     std::string line = FormatFrameRow(row);
     ASSERT_EQ(line.back(), '\n');
@@ -77,12 +77,12 @@ TEST(FramesCsv, RowsRoundTrip) {
     EXPECT_EQ(FormatFrameRow(back), FormatFrameRow(row));
     EXPECT_EQ(back.message, row.message);
     EXPECT_EQ(back.estimate.has_value(), row.estimate.has_value());
-    EXPECT_EQ(std::isinf(back.crlb_position_m), std::isinf(row.crlb_position_m));
-    EXPECT_EQ(std::isnan(back.crlb_rotation_med_deg), std::isnan(row.crlb_rotation_med_deg));
+    EXPECT_EQ(std::isinf(back.bound.position_m), std::isinf(row.bound.position_m));
+    EXPECT_EQ(std::isnan(back.bound.rotation_med_deg), std::isnan(row.bound.rotation_med_deg));
     for (int k = 0; k < 3; ++k) {
-      const double v = row.crlb_position_variances_m2[k];
-      EXPECT_TRUE(std::isnan(v) ? std::isnan(back.crlb_position_variances_m2[k])
-                                : back.crlb_position_variances_m2[k] == v);
+      const double v = row.bound.position_variances_m2[k];
+      EXPECT_TRUE(std::isnan(v) ? std::isnan(back.bound.position_variances_m2[k])
+                                : back.bound.position_variances_m2[k] == v);
     }
   }
   EXPECT_THROW(ParseFrameRow("a,b,c"), std::runtime_error);

@@ -46,13 +46,13 @@ void SummaryBuilder::Add(const FrameRow& r, double time_ms) {
       IsSuccess(has_pose, r.errors.position_error_m, r.distance_m, options_.success_fraction);
   g.sizes.push_back(r.apparent_size_px);
   g.times.push_back(time_ms);
-  g.position_bound.push_back(r.crlb_position_med_m);
-  g.rotation_bound.push_back(r.crlb_rotation_med_deg);
-  g.success_at_bound_sum +=
-      ProbabilityNormWithin(options_.success_fraction * r.distance_m, r.crlb_position_variances_m2);
+  g.position_bound.push_back(r.bound.position_med_m);
+  g.rotation_bound.push_back(r.bound.rotation_med_deg);
+  g.success_at_bound_sum += ProbabilityNormWithin(options_.success_fraction * r.distance_m,
+                                                  r.bound.position_variances_m2);
   if (!has_pose) return;
-  g.posed_position_bound.push_back(r.crlb_position_med_m);
-  g.posed_rotation_bound.push_back(r.crlb_rotation_med_deg);
+  g.posed_position_bound.push_back(r.bound.position_med_m);
+  g.posed_rotation_bound.push_back(r.bound.rotation_med_deg);
   ++g.posed;
   g.flips += r.errors.flip;
   g.position.push_back(r.errors.position_error_m);

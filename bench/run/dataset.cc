@@ -179,7 +179,7 @@ Dataset ReadDataset(const std::string& dir) {
     d.apparent_size_px = number_at(size);
     if (!bound_at.empty()) {
       // Empty: not computed; "inf": nothing to see; else a number >= 0.
-      double values[7];
+      std::array<double, kFrameBoundColumns> values;
       for (size_t k = 0; k < bound_at.size(); ++k) {
         const std::string& text = f[bound_at[k]];
         values[k] = text.empty() ? NAN : text == "inf" ? INFINITY : number_at(bound_at[k]);
@@ -188,11 +188,7 @@ Dataset ReadDataset(const std::string& dir) {
                             "': expected a bound >= 0, empty or inf, got '" + text + "'");
         }
       }
-      d.bound = {values[0],
-                 values[1],
-                 values[2],
-                 values[3],
-                 Eigen::Vector3d(values[4], values[5], values[6])};
+      d.bound = BoundFromValues(values);
     }
     dataset.frames.push_back(d);
   }

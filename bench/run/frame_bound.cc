@@ -21,37 +21,36 @@ FrameBound PlannedFrameBound(const Scenario& scenario,
   return scenario.crlb ? BoundOf(PoseCrlb(request)) : FrameBound{};
 }
 
-const std::vector<std::string>& FrameBoundColumns() {
-  static const std::vector<std::string> kColumns = {"crlb_position_m",
-                                                    "crlb_position_med_m",
-                                                    "crlb_rotation_deg",
-                                                    "crlb_rotation_med_deg",
-                                                    "crlb_position_var1_m2",
-                                                    "crlb_position_var2_m2",
-                                                    "crlb_position_var3_m2"};
+const std::array<std::string, kFrameBoundColumns>& FrameBoundColumns() {
+  static const std::array<std::string, kFrameBoundColumns> kColumns = {"crlb_position_m",
+                                                                       "crlb_position_med_m",
+                                                                       "crlb_rotation_deg",
+                                                                       "crlb_rotation_med_deg",
+                                                                       "crlb_position_var1_m2",
+                                                                       "crlb_position_var2_m2",
+                                                                       "crlb_position_var3_m2"};
   return kColumns;
+}
+
+std::array<double, kFrameBoundColumns> BoundValues(const FrameBound& bound) {
+  return {bound.position_m,
+          bound.position_med_m,
+          bound.rotation_deg,
+          bound.rotation_med_deg,
+          bound.position_variances_m2[0],
+          bound.position_variances_m2[1],
+          bound.position_variances_m2[2]};
+}
+
+FrameBound BoundFromValues(const std::array<double, kFrameBoundColumns>& values) {
+  return {
+      values[0], values[1], values[2], values[3], Eigen::Vector3d(values[4], values[5], values[6])};
 }
 
 std::string FrameBoundFields(const FrameBound& bound) {
   std::string fields;
-  for (const double value : {bound.position_m,
-                             bound.position_med_m,
-                             bound.rotation_deg,
-                             bound.rotation_med_deg,
-                             bound.position_variances_m2[0],
-                             bound.position_variances_m2[1],
-                             bound.position_variances_m2[2]}) {
-    fields += ',' + NumberTextOrEmpty(value);
-  }
+  for (const double value : BoundValues(bound)) fields += ',' + NumberTextOrEmpty(value);
   return fields;
-}
-
-void SetFrameBound(const FrameBound& bound, FrameRow* row) {
-  row->crlb_position_m = bound.position_m;
-  row->crlb_position_med_m = bound.position_med_m;
-  row->crlb_rotation_deg = bound.rotation_deg;
-  row->crlb_rotation_med_deg = bound.rotation_med_deg;
-  row->crlb_position_variances_m2 = bound.position_variances_m2;
 }
 
 }  // namespace markerbench

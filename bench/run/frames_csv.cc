@@ -1,5 +1,6 @@
 #include "bench/run/frames_csv.h"
 
+#include <array>
 #include <cmath>
 #include <limits>
 #include <stdexcept>
@@ -11,6 +12,10 @@
 
 namespace markerbench {
 namespace {
+
+// The Cramér-Rao bound's columns (frame_bound.h): its RMS and median ones after the errors,
+// the variances last.
+constexpr size_t kBoundColumnsBeforePoses = 4;
 
 const std::vector<std::string>& Columns() {
   static const std::vector<std::string> kColumns = [] {
@@ -31,14 +36,13 @@ const std::vector<std::string>& Columns() {
                                   "best_position_error_m",
                                   "best_rotation_error_deg",
                                   "flip"};
-    // The bound's columns (frame_bound.h): its RMS and median ones here, the variances last.
-    const std::vector<std::string>& bound = FrameBoundColumns();
-    c.insert(c.end(), bound.begin(), bound.begin() + 4);
+    const auto& bound = FrameBoundColumns();
+    c.insert(c.end(), bound.begin(), bound.begin() + kBoundColumnsBeforePoses);
     for (const char* p : kPoseColumns) c.push_back(std::string("gt_") + p);
     for (const char* p : kPoseColumns) c.push_back(p);
     c.push_back("message");
     c.push_back("grid");
-    c.insert(c.end(), bound.begin() + 4, bound.end());
+    c.insert(c.end(), bound.begin() + kBoundColumnsBeforePoses, bound.end());
     return c;
   }();
   return kColumns;
@@ -123,6 +127,7 @@ std::vector<std::string> SplitCsvLine(const std::string& line) {
 std::string FramesCsvHeader() { return Joined(Columns(), ",") + '\n'; }
 
 std::string FormatFrameRow(const FrameRow& r) {
+  const std::array<double, kFrameBoundColumns> bound = BoundValues(r.bound);
   std::string out =
       CsvField(r.scenario) + ',' + r.sweep_parameter + ',' + NumberText(r.sweep_value) + ',' +
       std::to_string(r.trial) + ',' + std::to_string(r.frame) + ',' + CsvField(r.marker) + ',' +
@@ -132,12 +137,13 @@ std::string FormatFrameRow(const FrameRow& r) {
       NumberTextOrEmpty(r.errors.rotation_error_deg) + ',' +
       NumberTextOrEmpty(r.errors.best_position_error_m) + ',' +
       NumberTextOrEmpty(r.errors.best_rotation_error_deg) + ',' + (r.errors.flip ? "1" : "0") +
-      ',' + NumberTextOrEmpty(r.crlb_position_m) + ',' + NumberTextOrEmpty(r.crlb_position_med_m) +
-      ',' + NumberTextOrEmpty(r.crlb_rotation_deg) + ',' +
-      NumberTextOrEmpty(r.crlb_rotation_med_deg);
+      ',' + NumberTextOrEmpty(bound[0]);
+  for (size_t k = 1; k < kBoundColumnsBeforePoses; ++k) out += ',' + NumberTextOrEmpty(bound[k]);
   out += PoseFields(r.truth) + (r.estimate ? PoseFields(*r.estimate) : std::string(12, ','));
   out += ',' + CsvField(r.message) + ',' + CsvField(r.grid);
-  for (int k = 0; k < 3; ++k) out += ',' + NumberTextOrEmpty(r.crlb_position_variances_m2[k]);
+  for (size_t k = kBoundColumnsBeforePoses; k < kFrameBoundColumns; ++k) {
+    out += ',' + NumberTextOrEmpty(bound[k]);
+  }
   return out + '\n';
 }
 
@@ -167,17 +173,18 @@ FrameRow ParseFrameRow(const std::string& line) {
   r.errors.best_position_error_m = ParseNumber(f, 14, true);
   r.errors.best_rotation_error_deg = ParseNumber(f, 15, true);
   r.errors.flip = f[16] == "1";
-  r.crlb_position_m = ParseNumber(f, 17, true);
-  r.crlb_position_med_m = ParseNumber(f, 18, true);
-  r.crlb_rotation_deg = ParseNumber(f, 19, true);
-  r.crlb_rotation_med_deg = ParseNumber(f, 20, true);
+  std::array<double, kFrameBoundColumns> bound;
+  for (size_t k = 0; k < kBoundColumnsBeforePoses; ++k) bound[k] = ParseNumber(f, 17 + k, true);
   // Poses as sweep wrote them: trackers' estimates need not be exact rotations.
   r.truth = PoseFromFields(f, ConsecutiveColumns(21), "", RotationCheck::kNone, "gt_");
   if (!f[33].empty())
     r.estimate = PoseFromFields(f, ConsecutiveColumns(33), "", RotationCheck::kNone);
   r.message = f[45];
   r.grid = f[46];
-  for (int k = 0; k < 3; ++k) r.crlb_position_variances_m2[k] = ParseNumber(f, 47 + k, true);
+  for (size_t k = kBoundColumnsBeforePoses; k < kFrameBoundColumns; ++k) {
+    bound[k] = ParseNumber(f, 47 + k - kBoundColumnsBeforePoses, true);
+  }
+  r.bound = BoundFromValues(bound);
   return r;
 }
 

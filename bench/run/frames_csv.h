@@ -3,6 +3,7 @@
 // and thread counts; the measured call times go to timing.csv.
 #pragma once
 
+#include <Eigen/Core>
 #include <cmath>
 #include <cstdint>
 #include <optional>
@@ -14,6 +15,19 @@
 #include "trackers/tracker.h"
 
 namespace markerbench {
+
+// A frame's Cramér-Rao bound (renderer/pose_crlb.h): the RMS and median camera-centre error
+// and the RMS and median rotation error of an efficient estimator, and the eigenvalues of its
+// camera-centre covariance, ascending (the chance of success of such an estimator:
+// ProbabilityNormWithin). NaN (an empty field): not computed (the scenario's crlb: false).
+// Infinite: nothing to see (the marker hidden, or a pose direction the image does not show).
+struct FrameBound {
+  double position_m = NAN;      // RMS of the camera centre's error
+  double position_med_m = NAN;  // its median
+  double rotation_deg = NAN;
+  double rotation_med_deg = NAN;
+  Eigen::Vector3d position_variances_m2 = Eigen::Vector3d::Constant(NAN);
+};
 
 struct FrameRow {
   std::string scenario;
@@ -30,16 +44,7 @@ struct FrameRow {
   TrackStatus status = TrackStatus::kNotDetected;
   int hypotheses = 0;
   PoseErrors errors{};
-  // The frame's Cramér-Rao bound (renderer/pose_crlb.h), the same for every tracker: RMS and
-  // median camera-centre error, RMS and median rotation error of an efficient estimator.
-  // NaN when the scenario turns the bound off, +inf when the pose is unobservable.
-  double crlb_position_m = NAN;
-  double crlb_position_med_m = NAN;
-  double crlb_rotation_deg = NAN;
-  double crlb_rotation_med_deg = NAN;
-  // The eigenvalues of the bound's camera-centre covariance, ascending (m²): the chance of
-  // success of an efficient estimator (renderer/pose_crlb.h, ProbabilityNormWithin).
-  Eigen::Vector3d crlb_position_variances_m2 = Eigen::Vector3d::Constant(NAN);
+  FrameBound bound;  // the same for every tracker
   Rigid3 truth;
   std::optional<Rigid3> estimate;  // the first hypothesis, when the status is ok
   std::string message;

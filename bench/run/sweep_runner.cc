@@ -305,7 +305,7 @@ void RunFrame(const PreparedSweep& p,
   row.apparent_size_px = frame.truth.apparent_size_px;
   row.distance_m = DistanceToMarker(f.cam_from_marker, marker);
   row.truth = f.cam_from_marker;
-  SetFrameBound(PlannedFrameBound(s, f, request), &row);
+  row.bound = PlannedFrameBound(s, f, request);
   for (const size_t t : tracker_indices) {
     Tracker* tracker = (*trackers)[t].get();
     // Frames are independent, and sequences too: no state may leak between them.

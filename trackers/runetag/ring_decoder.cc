@@ -5,6 +5,7 @@
 #include <cmath>
 #include <complex>
 #include <iterator>
+#include <utility>
 
 #include "core/codes/runetag_cyclic_code.h"
 #include "core/random.h"
@@ -50,12 +51,18 @@ bool Overlap(const std::vector<int>& a, const std::vector<int>& b) {
   return 2 * common.size() > std::min(a.size(), b.size());
 }
 
-// The dots with finite centres, sorted by y, for the scans of a band of rows: their index,
-// centre and moment area in arrays of their own.
+// Dots sorted by y, for the scans of a band of rows: their index, centre and (where asked)
+// moment area in arrays of their own.
 struct DotsByY {
   std::vector<int> index;  // into the dots, by increasing y
   std::vector<double> x, y, area;
 
+  void Add(const ImagedDot& dot, int i, bool with_area) {
+    index.push_back(i);
+    x.push_back(dot.center_px.x());
+    y.push_back(dot.center_px.y());
+    if (with_area) area.push_back(MomentArea(dot));
+  }
   // The range of `index` with y in [low, high].
   std::pair<size_t, size_t> Band(double low, double high) const {
     return {static_cast<size_t>(std::lower_bound(y.begin(), y.end(), low) - y.begin()),
@@ -63,17 +70,13 @@ struct DotsByY {
   }
 };
 
-DotsByY SortByY(const std::vector<ImagedDot>& dots, const std::vector<int>& which) {
-  DotsByY sorted;
-  sorted.index = which;
-  std::sort(sorted.index.begin(), sorted.index.end(), [&](int a, int b) {
+// The dots `which` names, sorted by y, without their areas.
+DotsByY SortByY(const std::vector<ImagedDot>& dots, std::vector<int> which) {
+  std::sort(which.begin(), which.end(), [&](int a, int b) {
     return dots[a].center_px.y() < dots[b].center_px.y();
   });
-  for (int i : sorted.index) {
-    sorted.x.push_back(dots[i].center_px.x());
-    sorted.y.push_back(dots[i].center_px.y());
-    sorted.area.push_back(MomentArea(dots[i]));
-  }
+  DotsByY sorted;
+  for (int i : which) sorted.Add(dots[i], i, false);
   return sorted;
 }
 
@@ -143,20 +146,22 @@ std::vector<std::vector<int>> RingCandidates(const std::vector<ImagedDot>& dots,
   for (int i = 0; i < n; ++i) {
     if (dots[i].center_px.allFinite()) placed.push_back(i);
   }
-  const DotsByY placed_by_y = SortByY(dots, placed);
+  const DotsByY placed_by_y = SortByY(dots, std::move(placed));
   // The scans below visit a band of rows and read what they found back in dot order: the
   // same samples and inlier sets as scans of all dots, in a fraction of the time where
   // there are thousands (fuzzing found textures of 5000 dots).
   DotMarks marks(n);
+  DotsByY pool_by_y;  // the placed dots with a neighbour, still by y, with their areas
   for (size_t k = 0; k < placed_by_y.index.size(); ++k) {
     const int i = placed_by_y.index[k];
     const double reach = options.neighbour_reach * std::max(dots[i].semi_major_px, 1.0);
-    if (HasNeighbour(placed_by_y, k, reach)) marks.Mark(i);
+    if (!HasNeighbour(placed_by_y, k, reach)) continue;
+    marks.Mark(i);
+    pool_by_y.Add(dots[i], i, true);
   }
   std::vector<int> pool;  // in dot order, which the samples are drawn in
   marks.TakeInOrder(&pool);
   if (static_cast<int>(pool.size()) < options.min_ring_dots) return candidates;
-  const DotsByY pool_by_y = SortByY(dots, pool);
   Rng rng(seed);
   std::vector<int> inliers, similar;
   int iterations = options.max_ransac_iterations;
