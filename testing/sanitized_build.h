@@ -1,10 +1,11 @@
 // Whether this test program was built with AddressSanitizer or UBSan (CMake defines
 // MARKERBENCH_ASAN / MARKERBENCH_UBSAN: clang 14 defines no __SANITIZE_* macro, and neither
-// compiler one for UBSan). There the trackers run 3-5 times slower per frame than in Release
+// compiler one for UBSan). There the trackers run 5-9 times slower per frame than in Release
 // (Eigen's expressions no longer inlined; measured in CI's tree, which leaves out UBSan's null,
-// alignment and object-size checks: 10-20 times with every check), so a test that repeats one
-// check over many frames checks a sample of them (`SanitizedStride`; every frame would add
-// about 2 minutes to CI's sanitizer run), and a long test whose claim is a count over many
+// alignment and object-size checks and holds the fuzzers' coverage instrumentation: without
+// it 3-5 times, with every UBSan check 10-20), so a test that repeats one check over many
+// frames checks a sample of them (`SanitizedStride`; every frame would add about 3 minutes
+// to CI's sanitizer run), and a long test whose claim is a count over many
 // frames skips (`kSanitizedBuild`): the sanitizers look for memory errors and undefined
 // behaviour, and CI runs every frame and every count in the optimised build.
 #pragma once
