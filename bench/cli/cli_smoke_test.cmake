@@ -88,6 +88,21 @@ run(0 render --marker scenarios/markers/circle_d.yaml --camera scenarios/cameras
 if(NOT EXISTS ${WORK_DIR}/explicit/frame_000000.png)
   message(FATAL_ERROR "explicit render wrote no image")
 endif()
+# groundtruth.csv ends with the frame's Cramér-Rao bound (seven numbers), or with seven empty
+# fields under --no-crlb.
+string(REPEAT ",[0-9][0-9.e+-]*" 7 bound_fields)
+file(STRINGS ${WORK_DIR}/explicit/groundtruth.csv rows)
+list(GET rows 1 row)
+if(NOT row MATCHES "${bound_fields}$")
+  message(FATAL_ERROR "explicit render's row has no bound: ${row}")
+endif()
+run(0 render --marker scenarios/markers/circle_d.yaml --camera scenarios/cameras/default.yaml
+    --poses ${WORK_DIR}/poses.csv --out ${WORK_DIR}/explicit_unbound --no-crlb)
+file(STRINGS ${WORK_DIR}/explicit_unbound/groundtruth.csv rows)
+list(GET rows 1 row)
+if(NOT row MATCHES ",,,,,,,$")
+  message(FATAL_ERROR "--no-crlb left a bound in the row: ${row}")
+endif()
 
 # A render never mixes two runs: a folder in use is refused, --overwrite replaces a dataset
 # (and nothing else), and the options of one form are refused in the other.
@@ -110,6 +125,10 @@ if(NOT last_error MATCHES "empties only a folder markerbench rendered" OR NOT EX
 endif()
 run(2 render scenarios/smoke.yaml --out ${WORK_DIR}/noisy --noise-var 0.1)
 if(NOT last_error MATCHES "--noise-var is for the explicit form")
+  message(FATAL_ERROR "unexpected message: ${last_error}")
+endif()
+run(2 render scenarios/smoke.yaml --out ${WORK_DIR}/unbound --no-crlb)
+if(NOT last_error MATCHES "--no-crlb is for the explicit form.*crlb: keys")
   message(FATAL_ERROR "unexpected message: ${last_error}")
 endif()
 run(2 render --marker scenarios/markers/circle_d.yaml --camera scenarios/cameras/default.yaml

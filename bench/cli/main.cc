@@ -100,6 +100,11 @@ int main(int argc, char** argv) {
   render->add_flag("--float",
                    explicit_options.write_float,
                    "Also write frame_NNNNNN.exr (linear float, after noise and clipping)");
+  render->add_flag_callback(
+      "--no-crlb",
+      [&explicit_options] { explicit_options.crlb = false; },
+      "With --poses: leave groundtruth.csv's Cramer-Rao bound empty (it takes about as long "
+      "as the render)");
 
   CLI::App* markers = app.add_subcommand(
       "markers", "Print-ready sheets of markers (PDF, SVG or 300 dpi PNG) with a check bar");
@@ -292,11 +297,11 @@ int main(int argc, char** argv) {
         }
         RenderPoses(explicit_options);
       } else {
-        for (const char* option : {"--noise-var", "--blur-sigma", "--seed"}) {
+        for (const char* option : {"--noise-var", "--blur-sigma", "--seed", "--no-crlb"}) {
           if (render->count(option) > 0) {
             std::cerr << "render: " << option
-                      << " is for the explicit form; a scenario sets its noise, blur and seed "
-                         "in its render: and seed: keys\n";
+                      << " is for the explicit form; a scenario sets its noise, blur, seed and "
+                         "bound in its render:, seed: and crlb: keys\n";
             return kBadInput;
           }
         }

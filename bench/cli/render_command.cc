@@ -229,7 +229,7 @@ void RenderPoses(const ExplicitRenderOptions& o) {
               frames.camera,
               request,
               frame.truth,
-              BoundOf(PoseCrlb(request)));
+              o.crlb ? BoundOf(PoseCrlb(request)) : FrameBound{});
     progress.Advance();
   }
   progress.Finish();

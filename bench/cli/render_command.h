@@ -31,6 +31,9 @@ struct ExplicitRenderOptions {
   uint64_t seed = 0;
   bool write_float = false;  // also frame_NNNNNN.exr (linear, after noise and clipping)
   bool overwrite = false;    // replace the dataset rendered in out_dir before
+  // Each frame's Cramér-Rao bound in groundtruth.csv (about as long as its render); else
+  // its columns are empty, as a scenario's with crlb: false.
+  bool crlb = true;
 };
 
 void RenderPoses(const ExplicitRenderOptions& options);
