@@ -7,6 +7,7 @@
 #include <benchmark/benchmark.h>
 #include <yaml-cpp/yaml.h>
 
+#include <functional>
 #include <opencv2/core/utility.hpp>
 #include <vector>
 
@@ -25,17 +26,21 @@ struct BenchmarkFrameOptions {
   double distance_m = 0.6;
   double blur_sigma_px = 0.0;
   double noise_var = 0.02;
-  // Each frame the next one of a hand-held video (scenarios/sequences/handheld.yaml: 0.15 m/s
-  // and 30°/s at 30 fps): the camera moved by 5 mm and turned by 1°, each in a random
-  // direction, with noise of its own.
-  bool one_video_frame_later = false;
+  // Each frame moved from the protocol's pose by camera_move(its index), the camera's move
+  // (camera_after_from_before; none: the pose itself), with noise of its own for each
+  // video_frame.
+  std::function<Rigid3(int)> camera_move;
+  uint64_t video_frame = 0;
 };
 
-// The camera's move between two frames of the hand-held video, `camera_after_from_before`.
-inline Rigid3 HandheldFrameMotion(Rng* rng) {
+// The camera's move to the next frame of a hand-held video (scenarios/sequences/handheld.yaml:
+// 0.15 m/s and 30°/s at 30 fps) with no history: moved by 5 mm and turned by 1°, each in a
+// random direction drawn for frame i.
+inline Rigid3 RandomHandheldFrameMotion(int i) {
+  Rng rng(SeedFor(11, 0, static_cast<uint64_t>(i), SeedPurpose::kMotion));
   constexpr double kStepM = 0.15 / 30.0, kTurnRad = (30.0 / 30.0) * M_PI / 180.0;
-  const Eigen::Vector3d axis = GaussianVector(rng);
-  const Eigen::Vector3d direction = GaussianVector(rng);
+  const Eigen::Vector3d axis = GaussianVector(&rng);
+  const Eigen::Vector3d direction = GaussianVector(&rng);
   return {Eigen::AngleAxisd(kTurnRad, axis.normalized()).toRotationMatrix(),
           kStepM * direction.normalized()};
 }
@@ -52,15 +57,14 @@ inline std::vector<Image8> BenchmarkFrames(const MarkerSpec& marker,
     request.scene.cam_from_marker = RandomTiltedView(options.distance_m, 0.0, 40.0, &rng);
     request.scene.cam_from_marker.translation -=
         request.scene.cam_from_marker.rotation * Eigen::Vector3d(c.x(), c.y(), 0.0);
-    const uint64_t later = options.one_video_frame_later ? 1 : 0;
-    if (later) {
-      Rng motion(SeedFor(11, 0, static_cast<uint64_t>(i), SeedPurpose::kMotion));
-      request.scene.cam_from_marker = HandheldFrameMotion(&motion) * request.scene.cam_from_marker;
+    if (options.camera_move) {
+      request.scene.cam_from_marker = options.camera_move(i) * request.scene.cam_from_marker;
     }
     request.degradations.blur_sigma_px = options.blur_sigma_px;
     request.degradations.noise_var = options.noise_var;
     request.channels = marker.HasColor() ? 3 : 1;
-    request.noise_seed = SeedFor(11, later, static_cast<uint64_t>(i), SeedPurpose::kNoise);
+    request.noise_seed =
+        SeedFor(11, options.video_frame, static_cast<uint64_t>(i), SeedPurpose::kNoise);
     frames.push_back(RenderFrame(request).image);
   }
   return frames;

@@ -73,6 +73,16 @@ std::array<double, 6> Shake::At(double t) const {
   return x;
 }
 
+Rigid3 Shake::MotionAt(double t) const {
+  const std::array<double, 6> x = At(t);
+  const Eigen::Vector3d rotation_vector(x[3], x[4], x[5]);
+  const double angle = rotation_vector.norm();
+  const Eigen::Matrix3d R =
+      angle > 0.0 ? Eigen::AngleAxisd(angle, rotation_vector / angle).toRotationMatrix()
+                  : Eigen::Matrix3d::Identity();
+  return Rigid3(R, Eigen::Vector3d(x[0], x[1], x[2]));
+}
+
 Rigid3 TrajectoryPose(const TrajectoryOptions& o,
                       const TrialTrajectory& trial,
                       const Camera& camera,
@@ -89,18 +99,8 @@ Rigid3 TrajectoryPose(const TrajectoryOptions& o,
       look_at.distance_m = from_m + (o.to_m - from_m) * std::min(1.0, moving / span);
       return LookAtPose(look_at, camera);
     }
-    default: {
-      // The camera moves by (rotation, translation) in its start frame:
-      // cam_from_center(t) = motion⁻¹ · cam_from_center(0).
-      const std::array<double, 6> x = trial.shake.At(moving);
-      const Eigen::Vector3d rotation_vector(x[3], x[4], x[5]);
-      const double angle = rotation_vector.norm();
-      const Eigen::Matrix3d R =
-          angle > 0.0 ? Eigen::AngleAxisd(angle, rotation_vector / angle).toRotationMatrix()
-                      : Eigen::Matrix3d::Identity();
-      const Rigid3 motion(R, Eigen::Vector3d(x[0], x[1], x[2]));
-      return motion.Inverse() * LookAtPose(look_at, camera);
-    }
+    default:
+      return trial.shake.MotionAt(moving).Inverse() * LookAtPose(look_at, camera);
   }
 }
 

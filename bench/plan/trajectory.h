@@ -37,6 +37,9 @@ struct Shake {
   static Shake Draw(double linear_speed_m_s, double angular_speed_deg_s, Rng* rng);
   // (translation in metres, rotation vector in radians) at time t.
   std::array<double, 6> At(double t) const;
+  // The same as a move of the camera in its start frame: cam_from_center(t) =
+  // MotionAt(t)⁻¹ · cam_from_center(0).
+  Rigid3 MotionAt(double t) const;
 };
 
 // A trial's trajectory: its start and, for handheld, its shake.

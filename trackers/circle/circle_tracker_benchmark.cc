@@ -1,14 +1,17 @@
 // circle tracker per-frame time on one thread (issue 3; results/speed.md): full detection +
 // analytic pose + refinement (with and without the refinement on the pixels), tracking mode
-// (the region predicted from the previous pose), and the check of the printed design. circles_a
+// (the region predicted from the frames before: one with no history, two of a smooth hand-held
+// video), and the check of the printed design. circles_a
 // with a 0.1 m equal-area footprint at 0.6 m, σ² = 0.02, the frames of the other tracker
 // benchmarks; at 1 m under blur σ 2 and 8 (the whole disks' model); and full detection of
 // markers (e) and (f) on the same poses (issue 22: their pose fitted on the pixels of the
 // whole design). Run from the project root.
 #include <benchmark/benchmark.h>
 
+#include <functional>
 #include <opencv2/core.hpp>
 
+#include "bench/plan/trajectory.h"
 #include "core/marker_scaling.h"
 #include "core/marker_yaml.h"
 #include "testing/benchmark_frames.h"
@@ -66,26 +69,22 @@ void BM_CircleDesignFullDetection(benchmark::State& state, const std::string& ki
   TimeIndependentFrames(state, tracker, marker, frames);
 }
 
-// Each frame is followed by the next frame of a hand-held video (the camera moved by 5 mm and
-// turned by 1°, new noise): the first is tracked untimed (full detection, sets the previous
-// pose), the second timed from its pose.
-void BM_CircleTrackingMode(benchmark::State& state) {
-  cv::setNumThreads(1);
-  const MarkerSpec marker = PaperMarker("circles_a");
-  const std::vector<Image8> frames = BenchmarkFrames(marker, 16);
-  BenchmarkFrameOptions later;
-  later.one_video_frame_later = true;
-  const std::vector<Image8> next_frames = BenchmarkFrames(marker, 16, later);
+// Tracking mode: each of the 16 poses starts a video (videos[j][k]: frame j of pose k's), whose
+// frames are tracked in order from a Reset(), untimed but the last; as in a video, the tracker
+// predicts each frame from the ones before it (its pose, and its motion from two frames on).
+void TimeLastFramesOfVideos(benchmark::State& state,
+                            const MarkerSpec& marker,
+                            const std::vector<std::vector<Image8>>& videos) {
   const Camera camera;
   CircleTracker tracker;
   size_t i = 0, ok = 0, in_region = 0, from_prediction = 0;
   for (auto _ : state) {
-    const size_t k = i++ % frames.size();
+    const size_t k = i++ % videos.front().size();
     state.PauseTiming();
     tracker.Reset();
-    tracker.Track({&frames[k], &camera, &marker});
+    for (size_t j = 0; j + 1 < videos.size(); ++j) tracker.Track({&videos[j][k], &camera, &marker});
     state.ResumeTiming();
-    ok += tracker.Track({&next_frames[k], &camera, &marker}).status == TrackStatus::kOk;
+    ok += tracker.Track({&videos.back()[k], &camera, &marker}).status == TrackStatus::kOk;
     in_region += tracker.diagnostics().used_tracking_region;
     from_prediction += tracker.diagnostics().used_predicted_ellipses;
   }
@@ -94,6 +93,45 @@ void BM_CircleTrackingMode(benchmark::State& state) {
   // Found by the edge pass from the predicted ellipses (else by the search of the region).
   state.counters["predicted_fraction"] =
       static_cast<double>(from_prediction) / static_cast<double>(i);
+}
+
+// Each frame followed by the next frame of a hand-held video with no history (the camera moved
+// by 5 mm and turned by 1°, each in a random direction, new noise): the second timed from the
+// first's pose.
+void BM_CircleTrackingMode(benchmark::State& state) {
+  cv::setNumThreads(1);
+  const MarkerSpec marker = PaperMarker("circles_a");
+  BenchmarkFrameOptions later;
+  later.camera_move = RandomHandheldFrameMotion;
+  later.video_frame = 1;
+  TimeLastFramesOfVideos(
+      state, marker, {BenchmarkFrames(marker, 16), BenchmarkFrames(marker, 16, later)});
+}
+
+// The camera's move `frames` video frames (30 fps) into the smooth shake of
+// scenarios/sequences/handheld.yaml (bench/plan/trajectory.h: RMS 0.15 m/s and 30°/s, a hand's
+// 0.2-1.5 Hz), a shake drawn for each pose.
+std::function<Rigid3(int)> HandheldShakeMove(int frames) {
+  return [frames](int i) {
+    Rng rng(SeedFor(11, 0, static_cast<uint64_t>(i), SeedPurpose::kMotion));
+    const Shake shake = Shake::Draw(0.15, 30.0, &rng);
+    return shake.MotionAt(frames / 30.0).Inverse() * shake.MotionAt(0.0);
+  };
+}
+
+// Three frames of that smooth hand-held video (new noise in each): the third timed, predicted
+// from the motion between the first two (`predict_motion`), as in a video.
+void BM_CircleTrackingModeHandheld(benchmark::State& state) {
+  cv::setNumThreads(1);
+  const MarkerSpec marker = PaperMarker("circles_a");
+  std::vector<std::vector<Image8>> videos;
+  for (int j = 0; j < 3; ++j) {
+    BenchmarkFrameOptions options;
+    options.camera_move = HandheldShakeMove(j);
+    options.video_frame = static_cast<uint64_t>(j);
+    videos.push_back(BenchmarkFrames(marker, 16, options));
+  }
+  TimeLastFramesOfVideos(state, marker, videos);
 }
 
 // The check of the printed design at the found pose (printed_appearance.h), alone: part of
@@ -128,6 +166,7 @@ BENCHMARK_CAPTURE(BM_CircleDesignFullDetection, circle_e, std::string("circle_e"
 BENCHMARK_CAPTURE(BM_CircleDesignFullDetection, circle_f, std::string("circle_f"))
     ->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_CircleTrackingMode)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_CircleTrackingModeHandheld)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_CircleAppearanceCheck)->Unit(benchmark::kMillisecond);
 
 }  // namespace
