@@ -19,7 +19,8 @@ namespace markerbench {
 // A frame's Cramér-Rao bound (renderer/pose_crlb.h): the RMS and median camera-centre error
 // and the RMS and median rotation error of an efficient estimator, and the eigenvalues of its
 // camera-centre covariance, ascending (the chance of success of such an estimator:
-// ProbabilityNormWithin). NaN (an empty field): not computed (the scenario's crlb: false).
+// ProbabilityNormWithin). NaN (an empty field): not computed (a scenario's crlb: false, or
+// render --no-crlb).
 // Infinite: nothing to see (the marker hidden, or a pose direction the image does not show).
 struct FrameBound {
   double position_m = NAN;      // RMS of the camera centre's error
