@@ -1,11 +1,10 @@
 // circle tracker per-frame time on one thread (issue 3; results/speed.md): full detection +
 // analytic pose + refinement (with and without the refinement on the pixels), tracking mode
 // (the region predicted from the frames before: one with no history, two of a smooth hand-held
-// video), and the check of the printed design. circles_a
-// with a 0.1 m equal-area footprint at 0.6 m, σ² = 0.02, the frames of the other tracker
-// benchmarks; at 1 m under blur σ 2 and 8 (the whole disks' model); and full detection of
-// markers (e) and (f) on the same poses (issue 22: their pose fitted on the pixels of the
-// whole design). Run from the project root.
+// video), and the check of the printed design. circles_a with a 0.1 m equal-area footprint at
+// 0.6 m, σ² = 0.02, the frames of the other tracker benchmarks; at 1 m under blur σ 2 and 8 (the
+// whole disks' model); and full detection of markers (e) and (f) on the same poses (issue 22:
+// their pose fitted on the pixels of the whole design). Run from the project root.
 #include <benchmark/benchmark.h>
 
 #include <functional>
@@ -135,7 +134,7 @@ void BM_CircleTrackingModeHandheld(benchmark::State& state) {
 }
 
 // The check of the printed design at the found pose (printed_appearance.h), alone: part of
-// both timings above.
+// every timing above.
 void BM_CircleAppearanceCheck(benchmark::State& state) {
   cv::setNumThreads(1);
   const MarkerSpec marker = PaperMarker("circles_a");
