@@ -57,11 +57,14 @@ struct DotsByY {
   std::vector<int> index;  // into the dots, by increasing y
   std::vector<double> x, y, area;
 
-  void Add(const ImagedDot& dot, int i, bool with_area) {
+  void Add(const ImagedDot& dot, int i) {
     index.push_back(i);
     x.push_back(dot.center_px.x());
     y.push_back(dot.center_px.y());
-    if (with_area) area.push_back(MomentArea(dot));
+  }
+  void AddWithArea(const ImagedDot& dot, int i) {
+    Add(dot, i);
+    area.push_back(MomentArea(dot));
   }
   // The range of `index` with y in [low, high].
   std::pair<size_t, size_t> Band(double low, double high) const {
@@ -76,7 +79,7 @@ DotsByY SortByY(const std::vector<ImagedDot>& dots, std::vector<int> which) {
     return dots[a].center_px.y() < dots[b].center_px.y();
   });
   DotsByY sorted;
-  for (int i : which) sorted.Add(dots[i], i, false);
+  for (int i : which) sorted.Add(dots[i], i);
   return sorted;
 }
 
@@ -157,7 +160,7 @@ std::vector<std::vector<int>> RingCandidates(const std::vector<ImagedDot>& dots,
     const double reach = options.neighbour_reach * std::max(dots[i].semi_major_px, 1.0);
     if (!HasNeighbour(placed_by_y, k, reach)) continue;
     marks.Mark(i);
-    pool_by_y.Add(dots[i], i, true);
+    pool_by_y.AddWithArea(dots[i], i);
   }
   std::vector<int> pool;  // in dot order, which the samples are drawn in
   marks.TakeInOrder(&pool);
