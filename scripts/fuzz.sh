@@ -35,8 +35,10 @@ fi
 cmake --build "$tree" --parallel "$(nproc)" --target loaders_fuzz track_fuzz
 mkdir -p "$tree/findings"
 # The regressions are replayed first, one target after the other (alone on the machine: the
-# heaviest takes half the timeout); then the targets fuzz side by side (one process each, so
-# on two cores at once), each into its own log, printed when both end.
+# heaviest, runetag_few_inliers, takes a third of the timeout a run in the sanitizer tree, and
+# libFuzzer runs a replayed input twice, the second time to look for leaks, so the time it
+# prints is both: 1.6-2.2 s); then the targets fuzz side by side (one process each, so on two
+# cores at once), each into its own log, printed when both end.
 targets=(bench/fuzz_corpus/loaders_fuzz trackers/fuzz_corpus/track_fuzz)
 binary_of() { echo "$tree/$(dirname "$(dirname "$1")")/$(basename "$1")"; }
 for seeds in "${targets[@]}"; do
