@@ -149,6 +149,10 @@ bool CircleTrackerOptions::IsValid(std::string* error) const {
     msg << "pixel_band_sigmas=" << photometric_refinement.band_sigmas << " must be > 0";
   } else if (!(photometric_refinement.band_px >= 0.0)) {
     msg << "pixel_band_px=" << photometric_refinement.band_px << " must be >= 0";
+  } else if (!(design_refinement.band_sigmas > 0.0)) {
+    msg << "design_band_sigmas=" << design_refinement.band_sigmas << " must be > 0";
+  } else if (!(design_refinement.band_px >= 0.0)) {
+    msg << "design_band_px=" << design_refinement.band_px << " must be >= 0";
   } else {
     return true;
   }
@@ -206,6 +210,9 @@ CircleTrackerOptions CircleTrackerOptions::FromYaml(const YamlMap& map) {
       map.GetOr<double>("pixel_band_sigmas", o.photometric_refinement.band_sigmas);
   o.photometric_refinement.band_px =
       map.GetOr<double>("pixel_band_px", o.photometric_refinement.band_px);
+  o.design_refinement.band_sigmas =
+      map.GetOr<double>("design_band_sigmas", o.design_refinement.band_sigmas);
+  o.design_refinement.band_px = map.GetOr<double>("design_band_px", o.design_refinement.band_px);
   FinishOptions(map, o);
   return o;
 }
@@ -245,6 +252,8 @@ std::vector<std::pair<std::string, std::string>> CircleTracker::Parameters() con
       {"min_design_radius_per_blur", NumberText(o.min_design_radius_per_blur)},
       {"pixel_band_sigmas", NumberText(o.photometric_refinement.band_sigmas)},
       {"pixel_band_px", NumberText(o.photometric_refinement.band_px)},
+      {"design_band_sigmas", NumberText(o.design_refinement.band_sigmas)},
+      {"design_band_px", NumberText(o.design_refinement.band_px)},
   };
 }
 

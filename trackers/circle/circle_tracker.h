@@ -65,7 +65,8 @@ struct CircleTrackerOptions {
   // photometric, tracking, predict_motion, roi_margin, max_prediction_error, max_edge_rms_px,
   // max_appearance_misfit, min_contrast, edge_passes, max_rays, min_branch_angle_rad,
   // max_other_tilt_log_ratio, min_design_radius_per_blur, pixel_band_sigmas and pixel_band_px:
-  // the disks' fit's band_sigmas and band_px); throws ConfigError naming the file and key.
+  // the disks' fit's band_sigmas and band_px, design_band_sigmas and design_band_px: e's and
+  // f's); throws ConfigError naming the file and key.
   static CircleTrackerOptions FromYaml(const YamlMap& map);
 };
 

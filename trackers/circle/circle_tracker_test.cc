@@ -477,7 +477,8 @@ TEST(CircleTracker, OptionsFromYamlNameTheBadKey) {
                                          " min_design_radius_per_blur: 5,"
                                          " max_blurred_dot_disks: 0,"
                                          " blurred_dot_min_significance: 8,"
-                                         " pixel_band_sigmas: 3, pixel_band_px: 1}\n"
+                                         " pixel_band_sigmas: 3, pixel_band_px: 1,"
+                                         " design_band_sigmas: 2, design_band_px: 0.5}\n"
                                          "bad_value: {huber_px: -1}\n"
                                          "bad_cost: {cost: sampson}\n"
                                          "unknown: {hubr_px: 1}\n"
@@ -487,7 +488,9 @@ TEST(CircleTracker, OptionsFromYamlNameTheBadKey) {
                                          "bad_peak: {max_blurred_dot_peak: 1.5}\n"
                                          "bad_dot: {min_blurred_dot_radius_px: 0}\n"
                                          "bad_band: {pixel_band_sigmas: 0}\n"
-                                         "bad_margin: {pixel_band_px: -0.5}\n");
+                                         "bad_margin: {pixel_band_px: -0.5}\n"
+                                         "bad_design_band: {design_band_sigmas: 0}\n"
+                                         "bad_design_margin: {design_band_px: -1}\n");
   const YamlMap root = YamlMap::LoadFile(path);
   const CircleTrackerOptions good = CircleTrackerOptions::FromYaml(root.GetMap("good"));
   EXPECT_EQ(good.refinement.cost, RefinementCost::kConics);
@@ -501,6 +504,8 @@ TEST(CircleTracker, OptionsFromYamlNameTheBadKey) {
   EXPECT_EQ(good.detector.blurred_dots.min_significance, 8.0);
   EXPECT_EQ(good.photometric_refinement.band_sigmas, 3.0);
   EXPECT_EQ(good.photometric_refinement.band_px, 1.0);
+  EXPECT_EQ(good.design_refinement.band_sigmas, 2.0);
+  EXPECT_EQ(good.design_refinement.band_px, 0.5);
   for (const char* key : {"bad_value",
                           "bad_cost",
                           "unknown",
@@ -510,7 +515,9 @@ TEST(CircleTracker, OptionsFromYamlNameTheBadKey) {
                           "bad_peak",
                           "bad_dot",
                           "bad_band",
-                          "bad_margin"}) {
+                          "bad_margin",
+                          "bad_design_band",
+                          "bad_design_margin"}) {
     try {
       CircleTrackerOptions::FromYaml(root.GetMap(key));
       ADD_FAILURE() << key << " was accepted";

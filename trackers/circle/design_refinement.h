@@ -23,7 +23,9 @@
 namespace markerbench {
 
 struct DesignRefinementOptions {
-  double band_sigmas = 3.0;  // pixels within this many σ, plus band_px, of an edge take part
+  // Pixels within this many σ, plus band_px, of an edge take part (the circle tracker's
+  // `design_band_sigmas` and `design_band_px`).
+  double band_sigmas = 3.0;
   double band_px = 1.5;
   int max_iterations = 20;  // per solve
   // Solves, each on the pixels chosen at the last result, until the translation moves by less
