@@ -53,6 +53,10 @@ inline Eigen::Matrix3d RayFromPlane(const Rigid3& cam_from_marker) {
 // det R > 0 (a matrix with a NaN is none). For rotations read from text or other programs.
 bool IsRotation(const Eigen::Matrix3d& r, double tolerance = 1e-6);
 
+// The rotation by |v| radians about v (the exponential map of the rotation vector v); the
+// identity for v = 0.
+Eigen::Matrix3d RotationFromVector(const Eigen::Vector3d& v);
+
 // Angle of the relative rotation between two rotations, in radians, in [0, π].
 double RotationAngleBetween(const Eigen::Matrix3d& a, const Eigen::Matrix3d& b);
 

@@ -64,6 +64,24 @@ TEST(Rigid3, RayFromPlaneMapsPlanePointsAndBack) {
   }
 }
 
+TEST(Rigid3, RotationFromVectorRoundTrips) {
+  for (int seed = 1; seed <= 20; ++seed) {
+    const Eigen::Matrix3d r = RandomRigid(seed).rotation;
+    const Eigen::AngleAxisd angle_axis(r);
+    const Eigen::Matrix3d back = RotationFromVector(angle_axis.angle() * angle_axis.axis());
+    EXPECT_LT((back - r).norm(), kRoundTripTol) << "seed " << seed;
+  }
+  // |v| is the angle about v, in either direction.
+  const Eigen::Vector3d v(0.3, -0.4, 1.2);
+  EXPECT_NEAR(RotationAngleBetween(RotationFromVector(v), Eigen::Matrix3d::Identity()),
+              v.norm(),
+              kRoundTripTol);
+  EXPECT_LT((RotationFromVector(v) * v - v).norm(), kRoundTripTol);  // the axis stays
+  EXPECT_LT((RotationFromVector(-v) * RotationFromVector(v) - Eigen::Matrix3d::Identity()).norm(),
+            kRoundTripTol);
+  EXPECT_EQ(RotationFromVector(Eigen::Vector3d::Zero()), Eigen::Matrix3d::Identity());
+}
+
 TEST(Rigid3, RotationAngleBetween) {
   const Eigen::Matrix3d a = RandomRigid(9).rotation;
   const Eigen::Matrix3d b =

@@ -107,12 +107,9 @@ inline void MoveAtConstantRates(FrameRequest* request,
   request->readout_s = readout_s;
   const Rigid3 truth = request->scene.cam_from_marker;
   request->cam_from_marker_at = [=](double t) {
-    const Eigen::Vector3d turn = (t - truth_time_s) * angular_velocity;
-    const double angle = turn.norm();
-    const Eigen::Matrix3d R = angle > 0.0
-                                  ? Eigen::AngleAxisd(angle, turn / angle).toRotationMatrix()
-                                  : Eigen::Matrix3d::Identity();
-    return Rigid3(R, (t - truth_time_s) * velocity) * truth;
+    return Rigid3(RotationFromVector((t - truth_time_s) * angular_velocity),
+                  (t - truth_time_s) * velocity) *
+           truth;
   };
 }
 

@@ -75,12 +75,8 @@ std::array<double, 6> Shake::At(double t) const {
 
 Rigid3 Shake::MotionAt(double t) const {
   const std::array<double, 6> x = At(t);
-  const Eigen::Vector3d rotation_vector(x[3], x[4], x[5]);
-  const double angle = rotation_vector.norm();
-  const Eigen::Matrix3d R =
-      angle > 0.0 ? Eigen::AngleAxisd(angle, rotation_vector / angle).toRotationMatrix()
-                  : Eigen::Matrix3d::Identity();
-  return Rigid3(R, Eigen::Vector3d(x[0], x[1], x[2]));
+  return Rigid3(RotationFromVector(Eigen::Vector3d(x[3], x[4], x[5])),
+                Eigen::Vector3d(x[0], x[1], x[2]));
 }
 
 Rigid3 TrajectoryPose(const TrajectoryOptions& o,

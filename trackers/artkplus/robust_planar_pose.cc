@@ -100,11 +100,8 @@ class OrthogonalIteration {
       Eigen::Matrix<double, 6, 6> A = JtJ;
       A.diagonal() *= 1.0 + lambda;
       const Eigen::Matrix<double, 6, 1> delta = -A.ldlt().solve(Jtr);
-      const Eigen::Vector3d w = delta.head<3>();
-      const Eigen::Matrix3d dR =
-          w.norm() > 0.0 ? Eigen::AngleAxisd(w.norm(), w.normalized()).toRotationMatrix()
-                         : Eigen::Matrix3d::Identity();
-      const Rigid3 candidate(pose.rotation * dR, pose.translation + delta.tail<3>());
+      const Rigid3 candidate(pose.rotation * RotationFromVector(delta.head<3>()),
+                             pose.translation + delta.tail<3>());
       const double error = ObjectSpaceError(candidate.rotation, candidate.translation);
       if (error < h.object_space_error) {
         const double previous = h.object_space_error;
