@@ -153,6 +153,9 @@ bool CircleTrackerOptions::IsValid(std::string* error) const {
     msg << "design_band_sigmas=" << design_refinement.band_sigmas << " must be > 0";
   } else if (!(design_refinement.band_px >= 0.0)) {
     msg << "design_band_px=" << design_refinement.band_px << " must be >= 0";
+  } else if (!(design_refinement.max_first_round_log_ratio >= 0.0)) {
+    msg << "design_max_other_tilt_log_ratio=" << design_refinement.max_first_round_log_ratio
+        << " must be >= 0";
   } else {
     return true;
   }
@@ -213,6 +216,8 @@ CircleTrackerOptions CircleTrackerOptions::FromYaml(const YamlMap& map) {
   o.design_refinement.band_sigmas =
       map.GetOr<double>("design_band_sigmas", o.design_refinement.band_sigmas);
   o.design_refinement.band_px = map.GetOr<double>("design_band_px", o.design_refinement.band_px);
+  o.design_refinement.max_first_round_log_ratio = map.GetOr<double>(
+      "design_max_other_tilt_log_ratio", o.design_refinement.max_first_round_log_ratio);
   FinishOptions(map, o);
   return o;
 }
@@ -254,6 +259,8 @@ std::vector<std::pair<std::string, std::string>> CircleTracker::Parameters() con
       {"pixel_band_px", NumberText(o.photometric_refinement.band_px)},
       {"design_band_sigmas", NumberText(o.design_refinement.band_sigmas)},
       {"design_band_px", NumberText(o.design_refinement.band_px)},
+      {"design_max_other_tilt_log_ratio",
+       NumberText(o.design_refinement.max_first_round_log_ratio)},
   };
 }
 
@@ -592,15 +599,10 @@ std::optional<Rigid3> CircleTracker::OnPixels(const Observation& observation,
   for (const Rigid3& start : cam_from_paper_starts) starts.push_back(start * paper_from_marker);
   if (whole_design) {
     const DesignRefinementOptions& options = options_.design_refinement;
-    return BestFitFromStarts<DesignRefinement>(
-        starts,
-        [&](const Rigid3& start) {
-          return RefineDesign(
-              image, camera, marker, start, sigma_px, diagnostics_.noise_sigma, options);
-        },
-        [&](const std::vector<DesignRefinement>& fits) {
-          return BestDesignRefinement(image, camera, marker, fits, options);
-        });
+    const std::optional<DesignRefinement> fit = RefineDesignFromStarts(
+        image, camera, marker, starts, sigma_px, diagnostics_.noise_sigma, options);
+    if (!fit) return std::nullopt;
+    return fit->fit.cam_from_marker;
   }
   const PhotometricOptions& options = options_.photometric_refinement;
   return BestFitFromStarts<PhotometricResult>(

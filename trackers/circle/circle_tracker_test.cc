@@ -470,27 +470,30 @@ TEST(CircleTracker, ColourMarkerOnAGreyImageIsNotDetected) {
 }
 
 TEST(CircleTracker, OptionsFromYamlNameTheBadKey) {
-  const std::string path = WriteTestFile("circle_options.yaml",
-                                         "good: {cost: conics, huber_px: 2.0, k_normal: false,"
-                                         " min_branch_angle_rad: 0.05, predict_motion: false,"
-                                         " max_other_tilt_log_ratio: 30,"
-                                         " min_design_radius_per_blur: 5,"
-                                         " max_blurred_dot_disks: 0,"
-                                         " blurred_dot_min_significance: 8,"
-                                         " pixel_band_sigmas: 3, pixel_band_px: 1,"
-                                         " design_band_sigmas: 2, design_band_px: 0.5}\n"
-                                         "bad_value: {huber_px: -1}\n"
-                                         "bad_cost: {cost: sampson}\n"
-                                         "unknown: {hubr_px: 1}\n"
-                                         "bad_branch: {min_branch_angle_rad: 2.0}\n"
-                                         "bad_radius: {min_design_radius_per_blur: -1}\n"
-                                         "bad_ratio: {max_other_tilt_log_ratio: -1}\n"
-                                         "bad_peak: {max_blurred_dot_peak: 1.5}\n"
-                                         "bad_dot: {min_blurred_dot_radius_px: 0}\n"
-                                         "bad_band: {pixel_band_sigmas: 0}\n"
-                                         "bad_margin: {pixel_band_px: -0.5}\n"
-                                         "bad_design_band: {design_band_sigmas: 0}\n"
-                                         "bad_design_margin: {design_band_px: -1}\n");
+  const std::string path =
+      WriteTestFile("circle_options.yaml",
+                    "good: {cost: conics, huber_px: 2.0, k_normal: false,"
+                    " min_branch_angle_rad: 0.05, predict_motion: false,"
+                    " max_other_tilt_log_ratio: 30,"
+                    " min_design_radius_per_blur: 5,"
+                    " max_blurred_dot_disks: 0,"
+                    " blurred_dot_min_significance: 8,"
+                    " pixel_band_sigmas: 3, pixel_band_px: 1,"
+                    " design_band_sigmas: 2, design_band_px: 0.5,"
+                    " design_max_other_tilt_log_ratio: 50}\n"
+                    "bad_value: {huber_px: -1}\n"
+                    "bad_cost: {cost: sampson}\n"
+                    "unknown: {hubr_px: 1}\n"
+                    "bad_branch: {min_branch_angle_rad: 2.0}\n"
+                    "bad_radius: {min_design_radius_per_blur: -1}\n"
+                    "bad_ratio: {max_other_tilt_log_ratio: -1}\n"
+                    "bad_peak: {max_blurred_dot_peak: 1.5}\n"
+                    "bad_dot: {min_blurred_dot_radius_px: 0}\n"
+                    "bad_band: {pixel_band_sigmas: 0}\n"
+                    "bad_margin: {pixel_band_px: -0.5}\n"
+                    "bad_design_band: {design_band_sigmas: 0}\n"
+                    "bad_design_margin: {design_band_px: -1}\n"
+                    "bad_design_tilt: {design_max_other_tilt_log_ratio: -1}\n");
   const YamlMap root = YamlMap::LoadFile(path);
   const CircleTrackerOptions good = CircleTrackerOptions::FromYaml(root.GetMap("good"));
   EXPECT_EQ(good.refinement.cost, RefinementCost::kConics);
@@ -506,6 +509,7 @@ TEST(CircleTracker, OptionsFromYamlNameTheBadKey) {
   EXPECT_EQ(good.photometric_refinement.band_px, 1.0);
   EXPECT_EQ(good.design_refinement.band_sigmas, 2.0);
   EXPECT_EQ(good.design_refinement.band_px, 0.5);
+  EXPECT_EQ(good.design_refinement.max_first_round_log_ratio, 50.0);
   for (const char* key : {"bad_value",
                           "bad_cost",
                           "unknown",
@@ -517,7 +521,8 @@ TEST(CircleTracker, OptionsFromYamlNameTheBadKey) {
                           "bad_band",
                           "bad_margin",
                           "bad_design_band",
-                          "bad_design_margin"}) {
+                          "bad_design_margin",
+                          "bad_design_tilt"}) {
     try {
       CircleTrackerOptions::FromYaml(root.GetMap(key));
       ADD_FAILURE() << key << " was accepted";

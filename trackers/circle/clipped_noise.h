@@ -105,16 +105,18 @@ PixelFit FitPixelsAtTheirNoise(Model& model,
 
 // FitInRounds (pixel_fit.h) with each round's solve at the noise the last one showed:
 // solve_once(cam_from_marker, σ, noise, FitRound) gives an optional Result with a
-// PixelFit `fit` and the noise it showed, `noise_sigma`; `first_settles` and `later_settles` as
-// FitInRounds'.
+// PixelFit `fit` and the noise it showed, `noise_sigma`; `first_settles`, `later_settles` and
+// `abandons` as FitInRounds'.
 template <class Result, class SolveOnce>
-std::optional<Result> FitInRoundsAtTheirNoise(const Rigid3& cam_from_marker,
-                                              double sigma_px,
-                                              double noise_sigma,
-                                              int max_rounds,
-                                              const SolveOnce& solve_once,
-                                              const RoundSettles<Result>& first_settles = nullptr,
-                                              const RoundSettles<Result>& later_settles = nullptr) {
+std::optional<Result> FitInRoundsAtTheirNoise(
+    const Rigid3& cam_from_marker,
+    double sigma_px,
+    double noise_sigma,
+    int max_rounds,
+    const SolveOnce& solve_once,
+    const RoundSettles<Result>& first_settles = nullptr,
+    const RoundSettles<Result>& later_settles = nullptr,
+    const std::function<bool(const Result&)>& abandons = nullptr) {
   double noise = noise_sigma;
   return FitInRounds<Result>(
       cam_from_marker,
@@ -126,7 +128,8 @@ std::optional<Result> FitInRoundsAtTheirNoise(const Rigid3& cam_from_marker,
         return solved;
       },
       first_settles,
-      later_settles);
+      later_settles,
+      abandons);
 }
 
 }  // namespace markerbench

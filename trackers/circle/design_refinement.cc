@@ -176,6 +176,47 @@ class DesignModel {
   double noise_sigma_;
 };
 
+// Each refinement's cost (the pixels' ClippedPixelTerm summed) on the same pixels: those near
+// the design's edges at any of them, at the mean of their noise.
+struct DesignCosts {
+  std::vector<double> costs;
+  double noise_sigma = 0.0;
+};
+DesignCosts CostsOnSharedPixels(const Image8& image,
+                                const Camera& camera,
+                                const MarkerSpec& marker,
+                                const std::vector<DesignRefinement>& fits,
+                                const DesignRefinementOptions& options) {
+  std::vector<DesignPixel> pixels;
+  for (const DesignRefinement& refinement : fits) {
+    const std::vector<DesignPixel> near =
+        PixelsNearDesignEdges(image,
+                              camera,
+                              marker,
+                              refinement.fit.cam_from_marker,
+                              ReachPx(refinement.fit.sigma_px, options));
+    std::vector<DesignPixel> both;
+    std::set_union(pixels.begin(),
+                   pixels.end(),
+                   near.begin(),
+                   near.end(),
+                   std::back_inserter(both),
+                   RowMajorBefore);
+    pixels = std::move(both);
+  }
+  DesignCosts costs;
+  for (const DesignRefinement& refinement : fits) {
+    costs.noise_sigma += refinement.noise_sigma / fits.size();
+  }
+  const DesignModel model(camera, marker, pixels, costs.noise_sigma);
+  for (const DesignRefinement& refinement : fits) {
+    const PixelFit& fit = refinement.fit;
+    costs.costs.push_back(model.Evaluate(
+        PixelFitParameters(fit.cam_from_marker, fit.sigma_px, fit.levels), nullptr, nullptr));
+  }
+  return costs;
+}
+
 std::optional<DesignRefinement> RefineOnce(const Image8& image,
                                            const Camera& camera,
                                            const MarkerSpec& marker,
@@ -199,13 +240,15 @@ std::optional<DesignRefinement> RefineOnce(const Image8& image,
 
 }  // namespace
 
-std::optional<DesignRefinement> RefineDesign(const Image8& image,
-                                             const Camera& camera,
-                                             const MarkerSpec& marker,
-                                             const Rigid3& cam_from_marker,
-                                             double sigma_px,
-                                             double noise_sigma,
-                                             const DesignRefinementOptions& options) {
+std::optional<DesignRefinement> RefineDesign(
+    const Image8& image,
+    const Camera& camera,
+    const MarkerSpec& marker,
+    const Rigid3& cam_from_marker,
+    double sigma_px,
+    double noise_sigma,
+    const DesignRefinementOptions& options,
+    const std::function<bool(const DesignRefinement&)>& abandons) {
   // A solve's pixels are those near the edges at its start; from a start a few pixels off,
   // some of the result's are missing.
   return FitInRoundsAtTheirNoise<DesignRefinement>(
@@ -215,7 +258,10 @@ std::optional<DesignRefinement> RefineDesign(const Image8& image,
       options.max_rounds,
       [&](const Rigid3& start, double sigma, double noise, const FitRound& round) {
         return RefineOnce(image, camera, marker, start, sigma, noise, round, options);
-      });
+      },
+      nullptr,
+      nullptr,
+      abandons);
 }
 
 size_t BestDesignRefinement(const Image8& image,
@@ -224,38 +270,36 @@ size_t BestDesignRefinement(const Image8& image,
                             const std::vector<DesignRefinement>& fits,
                             const DesignRefinementOptions& options) {
   if (fits.size() == 1) return 0;
-  std::vector<DesignPixel> pixels;
-  for (const DesignRefinement& refinement : fits) {
-    const std::vector<DesignPixel> near =
-        PixelsNearDesignEdges(image,
-                              camera,
-                              marker,
-                              refinement.fit.cam_from_marker,
-                              ReachPx(refinement.fit.sigma_px, options));
-    std::vector<DesignPixel> both;
-    std::set_union(pixels.begin(),
-                   pixels.end(),
-                   near.begin(),
-                   near.end(),
-                   std::back_inserter(both),
-                   RowMajorBefore);
-    pixels = std::move(both);
+  const std::vector<double> costs = CostsOnSharedPixels(image, camera, marker, fits, options).costs;
+  return static_cast<size_t>(std::min_element(costs.begin(), costs.end()) - costs.begin());
+}
+
+std::optional<DesignRefinement> RefineDesignFromStarts(const Image8& image,
+                                                       const Camera& camera,
+                                                       const MarkerSpec& marker,
+                                                       const std::vector<Rigid3>& starts,
+                                                       double sigma_px,
+                                                       double noise_sigma,
+                                                       const DesignRefinementOptions& options) {
+  std::vector<DesignRefinement> fits;
+  for (const Rigid3& start : starts) {
+    const auto far_less_likely = [&](const DesignRefinement& first_round) {
+      if (fits.empty()) return false;
+      std::vector<DesignRefinement> compared = fits;
+      compared.push_back(first_round);
+      const DesignCosts shared = CostsOnSharedPixels(image, camera, marker, compared, options);
+      const double best_earlier = *std::min_element(shared.costs.begin(), shared.costs.end() - 1);
+      const double log_ratio =
+          (shared.costs.back() - best_earlier) / (shared.noise_sigma * shared.noise_sigma);
+      return log_ratio > options.max_first_round_log_ratio;
+    };
+    std::optional<DesignRefinement> fit =
+        RefineDesign(image, camera, marker, start, sigma_px, noise_sigma, options, far_less_likely);
+    if (fit) fits.push_back(std::move(*fit));
   }
-  double noise = 0.0;
-  for (const DesignRefinement& refinement : fits) noise += refinement.noise_sigma / fits.size();
-  const DesignModel model(camera, marker, pixels, noise);
-  size_t best = 0;
-  double best_cost = 0.0;
-  for (size_t i = 0; i < fits.size(); ++i) {
-    const PixelFit& fit = fits[i].fit;
-    const double cost = model.Evaluate(
-        PixelFitParameters(fit.cam_from_marker, fit.sigma_px, fit.levels), nullptr, nullptr);
-    if (i == 0 || cost < best_cost) {
-      best = i;
-      best_cost = cost;
-    }
-  }
-  return best;
+  if (fits.empty()) return std::nullopt;
+  const size_t best = BestDesignRefinement(image, camera, marker, fits, options);
+  return std::move(fits[best]);
 }
 
 }  // namespace markerbench

@@ -11,6 +11,7 @@
 // the circle and one centre point (circle_tracker.cc) leave most of that out.
 #pragma once
 
+#include <functional>
 #include <optional>
 #include <vector>
 
@@ -31,6 +32,13 @@ struct DesignRefinementOptions {
   // Solves, each on the pixels chosen at the last result, until the translation moves by less
   // than 1e-4 of its length.
   int max_rounds = 3;
+  // RefineDesignFromStarts: a later start's fit ends after its first round where that round's
+  // result is less likely than an earlier start's result by more than this, 2 ln Λ on their
+  // shared pixels (the circle tracker's `design_max_other_tilt_log_ratio`). On the paper's
+  // noise and blur sweeps of e and f (1,393 fits from the circle's other tilt) 746 ended so;
+  // the 2 of them that would have won beat the earlier result by 0.08 and 0.09 in the end:
+  // the same optimum (results/speed.md).
+  double max_first_round_log_ratio = 100.0;
 };
 
 struct DesignRefinement {
@@ -40,14 +48,29 @@ struct DesignRefinement {
 };
 
 // `noise_sigma`: a first estimate of the image's, 0-1 units. nullopt when too few pixels near the
-// design's edges are in front of the camera and in the image.
-std::optional<DesignRefinement> RefineDesign(const Image8& image,
-                                             const Camera& camera,
-                                             const MarkerSpec& marker,
-                                             const Rigid3& cam_from_marker,
-                                             double sigma_px,
-                                             double noise_sigma,
-                                             const DesignRefinementOptions& options = {});
+// design's edges are in front of the camera and in the image, or where `abandons` says so of
+// the first round's result.
+std::optional<DesignRefinement> RefineDesign(
+    const Image8& image,
+    const Camera& camera,
+    const MarkerSpec& marker,
+    const Rigid3& cam_from_marker,
+    double sigma_px,
+    double noise_sigma,
+    const DesignRefinementOptions& options = {},
+    const std::function<bool(const DesignRefinement&)>& abandons = nullptr);
+
+// The refinement from each start (RefineDesign) that explains the image best
+// (BestDesignRefinement); a start after the first is given up after its first round where
+// that round's result is far less likely than an earlier start's (max_first_round_log_ratio).
+// nullopt when no start gives a refinement.
+std::optional<DesignRefinement> RefineDesignFromStarts(const Image8& image,
+                                                       const Camera& camera,
+                                                       const MarkerSpec& marker,
+                                                       const std::vector<Rigid3>& starts,
+                                                       double sigma_px,
+                                                       double noise_sigma,
+                                                       const DesignRefinementOptions& options = {});
 
 // Which of several refinements explains the image best: the least cost (the clipped pixels'
 // likelihood) over the pixels near the design's edges at any of them (each fit judged on the

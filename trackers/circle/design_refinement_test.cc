@@ -96,6 +96,22 @@ TEST(DesignRefinement, KeepsTheTiltTheDesignShows) {
     EXPECT_GT(PositionError(fits[0].fit.cam_from_marker, truth), 0.1);
     EXPECT_LT(PositionError(fits[1].fit.cam_from_marker, truth), 0.01);
     EXPECT_EQ(BestDesignRefinement(frame.image, camera, marker, fits), 1u);
+    // From both starts in either order, the true tilt's fit, whether a later start is given up
+    // after its first round where it is far behind (the default) or at all behind (0).
+    for (const double max_log_ratio : {100.0, 0.0}) {
+      DesignRefinementOptions options;
+      options.max_first_round_log_ratio = max_log_ratio;
+      for (const bool true_first : {false, true}) {
+        const Rigid3 true_tilt = TiltedView(0.6, tilt, roll);
+        const Rigid3 other_tilt = TiltedView(0.6, -tilt, roll);
+        const std::vector<Rigid3> starts = true_first ? std::vector<Rigid3>{true_tilt, other_tilt}
+                                                      : std::vector<Rigid3>{other_tilt, true_tilt};
+        const std::optional<DesignRefinement> best = RefineDesignFromStarts(
+            frame.image, camera, marker, starts, 1.0, std::sqrt(0.02), options);
+        ASSERT_TRUE(best);
+        EXPECT_EQ(best->fit.cam_from_marker.translation, fits[1].fit.cam_from_marker.translation);
+      }
+    }
   }
 }
 

@@ -199,7 +199,8 @@ using RoundSettles = std::function<bool(const Rigid3&, const Result&)>;
 // solve_once(cam_from_marker, σ, FitRound) gives an optional Result with a PixelFit `fit` (a
 // first round is the result only where the second fails). With `first_settles`, the first round
 // is solved whole (as a last one, not FitRound::first_of_several) and is the result where it
-// says so; with `later_settles`, a later round ends the fit where it says so instead. A solve
+// says so; with `later_settles`, a later round ends the fit where it says so instead; with
+// `abandons`, the fit is given up (nullopt) where it says so of the first round's result. A solve
 // that ends with the marker behind the camera (the plane's mirror image, FacesTheCamera) gives
 // none: the rounds stop at the last result before it.
 template <class Result, class SolveOnce>
@@ -208,7 +209,8 @@ std::optional<Result> FitInRounds(const Rigid3& cam_from_marker,
                                   int max_rounds,
                                   const SolveOnce& solve_once,
                                   const RoundSettles<Result>& first_settles = nullptr,
-                                  const RoundSettles<Result>& later_settles = nullptr) {
+                                  const RoundSettles<Result>& later_settles = nullptr,
+                                  const std::function<bool(const Result&)>& abandons = nullptr) {
   const auto solve = [&](const Rigid3& start, double sigma, const FitRound& round) {
     std::optional<Result> solved = solve_once(start, sigma, round);
     if (solved && !FacesTheCamera(solved->fit.cam_from_marker)) solved.reset();
@@ -219,6 +221,7 @@ std::optional<Result> FitInRounds(const Rigid3& cam_from_marker,
   if (result && first_settles && first_settles(cam_from_marker, *result)) {
     return result;
   }
+  if (result && abandons && abandons(*result)) return std::nullopt;
   for (int round = 1; result && round < max_rounds; ++round) {
     std::optional<Result> next =
         solve(result->fit.cam_from_marker, result->fit.sigma_px, FitRound{false, true});

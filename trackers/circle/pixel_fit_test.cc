@@ -73,6 +73,15 @@ struct Solved {
 // 0.5 m in front of the camera, facing it: the FitInRounds tests' start.
 const Rigid3 kFacing(Eigen::Vector3d(1.0, -1.0, -1.0).asDiagonal(), Eigen::Vector3d(0.0, 0.0, 0.5));
 
+// A round of the FitInRounds tests that moves the marker 1 mm sideways.
+std::optional<Solved> MovedSideways(const Rigid3& start, double sigma_px) {
+  Solved solved;
+  solved.fit.cam_from_marker = start;
+  solved.fit.cam_from_marker.translation.x() += 1e-3;
+  solved.fit.sigma_px = sigma_px;
+  return solved;
+}
+
 // Only the first of several rounds is solved as one (FitRound::first_of_several: to the looser
 // tolerance, the next round fitting again from its result); every later round, and a fit of
 // one round, to the fit's own tolerance. Every round but the first follows another.
@@ -111,14 +120,9 @@ TEST(FitInRounds, SolvesOnlyAFirstRoundThatAnotherFollowsToTheLooserTolerance) {
 // not, the rounds go on as without it.
 TEST(FitInRounds, StopsAfterAWholeFirstRoundThatSettles) {
   std::vector<double> tolerances;
-  // Each solve moves the marker 1 mm sideways.
   const auto solve_once = [&](const Rigid3& start, double sigma_px, const FitRound& round) {
     tolerances.push_back(round.function_tolerance());
-    Solved solved;
-    solved.fit.cam_from_marker = start;
-    solved.fit.cam_from_marker.translation.x() += 1e-3;
-    solved.fit.sigma_px = sigma_px;
-    return std::optional<Solved>(solved);
+    return MovedSideways(start, sigma_px);
   };
   const Rigid3 start = kFacing;
   std::vector<Eigen::Vector3d> judged;  // the start's and the result's translations
@@ -182,6 +186,36 @@ TEST(FitInRounds, StopsAfterALaterRoundThatSettles) {
   result = FitInRounds<Solved>(start, 1.0, 5, solve_once, nullptr, later_settles);
   ASSERT_TRUE(result);
   EXPECT_EQ(solves, 5);
+}
+
+// With abandons, the fit ends with no result after its first round where abandons, given that
+// round's result, says so; where it does not, the rounds go on as without it.
+TEST(FitInRounds, GivesUpWhereTheFirstRoundSaysSo) {
+  int solves = 0;
+  const auto solve_once = [&](const Rigid3& start, double sigma_px, const FitRound&) {
+    ++solves;
+    return MovedSideways(start, sigma_px);
+  };
+  const Rigid3 start = kFacing;
+  std::vector<double> judged;  // the x of each result abandons was given
+  bool gives_up = true;
+  const std::function<bool(const Solved&)> abandons = [&](const Solved& first) {
+    judged.push_back(first.fit.cam_from_marker.translation.x());
+    return gives_up;
+  };
+  EXPECT_FALSE(FitInRounds<Solved>(start, 1.0, 3, solve_once, nullptr, nullptr, abandons));
+  EXPECT_EQ(solves, 1);
+  ASSERT_EQ(judged.size(), 1u);
+  EXPECT_NEAR(judged[0], 1e-3, 1e-15);
+  solves = 0;
+  judged.clear();
+  gives_up = false;
+  const std::optional<Solved> result =
+      FitInRounds<Solved>(start, 1.0, 3, solve_once, nullptr, nullptr, abandons);
+  ASSERT_TRUE(result);
+  EXPECT_EQ(solves, 3);
+  EXPECT_EQ(judged.size(), 1u);
+  EXPECT_NEAR(result->fit.cam_from_marker.translation.x(), 3e-3, 1e-15);
 }
 
 // The pose's move in standard errors against closed forms: with the pose's normal equations
