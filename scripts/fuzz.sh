@@ -9,8 +9,9 @@
 # the tests); without it, build-fuzz/ is configured here: clang, AddressSanitizer (with
 # LeakSanitizer) and UBSan with every check.
 # TIMEOUT is 3 s: the heaviest input known (runetag-improved on a 256x256 texture of 5000
-# dots, 0.1 s in Release) took 0.56 s a run under the sanitizers on one machine and 1.8 s on
-# another (0.9-1.1 s there since its RANSAC scans bands of rows), so 1 s failed CI on it;
+# dots, 0.1 s in Release) took 0.56 s under the sanitizers on one machine and 1.8 s on another
+# as libFuzzer printed it, the time of its two runs of a replayed input (the second looks for
+# leaks; about 1 s a run there since its RANSAC scans bands of rows), so 1 s failed CI on it;
 # 3 s still fails the ArUco texture that took 3.5 s before its fix.
 set -euo pipefail
 cd "$(dirname "$0")/.."

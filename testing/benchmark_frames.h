@@ -33,11 +33,17 @@ struct BenchmarkFrameOptions {
   uint64_t video_frame = 0;
 };
 
+// The seed of the benchmarks' frame i for `purpose` (their scenario's seed, 11), in video frame
+// `video_frame`.
+inline uint64_t BenchmarkSeed(int i, SeedPurpose purpose, uint64_t video_frame = 0) {
+  return SeedFor(11, video_frame, static_cast<uint64_t>(i), purpose);
+}
+
 // The camera's move to the next frame of a hand-held video (scenarios/sequences/handheld.yaml:
 // 0.15 m/s and 30°/s at 30 fps) with no history: moved by 5 mm and turned by 1°, each in a
 // random direction drawn for frame i.
 inline Rigid3 RandomHandheldFrameMotion(int i) {
-  Rng rng(SeedFor(11, 0, static_cast<uint64_t>(i), SeedPurpose::kMotion));
+  Rng rng(BenchmarkSeed(i, SeedPurpose::kMotion));
   constexpr double kStepM = 0.15 / 30.0, kTurnRad = (30.0 / 30.0) * M_PI / 180.0;
   const Eigen::Vector3d axis = GaussianVector(&rng);
   const Eigen::Vector3d direction = GaussianVector(&rng);
@@ -51,7 +57,7 @@ inline std::vector<Image8> BenchmarkFrames(const MarkerSpec& marker,
   std::vector<Image8> frames;
   const Eigen::Vector2d c = marker.InkBounds().center();
   for (int i = 0; i < count; ++i) {
-    Rng rng(SeedFor(11, 0, static_cast<uint64_t>(i), SeedPurpose::kPose));
+    Rng rng(BenchmarkSeed(i, SeedPurpose::kPose));
     FrameRequest request;
     request.scene.marker = &marker;
     request.scene.cam_from_marker = RandomTiltedView(options.distance_m, 0.0, 40.0, &rng);
@@ -63,8 +69,7 @@ inline std::vector<Image8> BenchmarkFrames(const MarkerSpec& marker,
     request.degradations.blur_sigma_px = options.blur_sigma_px;
     request.degradations.noise_var = options.noise_var;
     request.channels = marker.HasColor() ? 3 : 1;
-    request.noise_seed =
-        SeedFor(11, options.video_frame, static_cast<uint64_t>(i), SeedPurpose::kNoise);
+    request.noise_seed = BenchmarkSeed(i, SeedPurpose::kNoise, options.video_frame);
     frames.push_back(RenderFrame(request).image);
   }
   return frames;

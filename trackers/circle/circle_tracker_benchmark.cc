@@ -112,7 +112,7 @@ void BM_CircleTrackingMode(benchmark::State& state) {
 // 0.2-1.5 Hz), a shake drawn for each pose.
 std::function<Rigid3(int)> HandheldShakeMove(int frames) {
   return [frames](int i) {
-    Rng rng(SeedFor(11, 0, static_cast<uint64_t>(i), SeedPurpose::kMotion));
+    Rng rng(BenchmarkSeed(i, SeedPurpose::kMotion));
     const Shake shake = Shake::Draw(0.15, 30.0, &rng);
     return shake.MotionAt(frames / 30.0).Inverse() * shake.MotionAt(0.0);
   };
