@@ -95,21 +95,6 @@ bool MatchPrediction(const CircleDiagnostics& detected,
                                 max_error * EllipseFromConic(predicted_conics_px[0]).semi_minor;
 }
 
-// The fit on the pixels from each start by `refine` (an optional Fit with a PixelFit `fit`),
-// the one `best` picks among them; nullopt when no start gives one.
-template <class Fit, class Refine, class Best>
-std::optional<Rigid3> BestFitFromStarts(const std::vector<Rigid3>& cam_from_marker_starts,
-                                        const Refine& refine,
-                                        const Best& best) {
-  std::vector<Fit> fits;
-  for (const Rigid3& start : cam_from_marker_starts) {
-    std::optional<Fit> fit = refine(start);
-    if (fit) fits.push_back(std::move(*fit));
-  }
-  if (fits.empty()) return std::nullopt;
-  return fits[best(fits)].fit.cam_from_marker;
-}
-
 // RMS of the edge points' PND distances to the circles projected from a pose (px).
 double EdgeRmsPx(const RefinementProblem& problem, const Rigid3& cam_from_paper) {
   const Eigen::Matrix3d H = problem.K * RayFromPlane(cam_from_paper);
@@ -604,16 +589,16 @@ std::optional<Rigid3> CircleTracker::OnPixels(const Observation& observation,
     if (!fit) return std::nullopt;
     return fit->fit.cam_from_marker;
   }
-  const PhotometricOptions& options = options_.photometric_refinement;
-  return BestFitFromStarts<PhotometricResult>(
-      starts,
-      [&](const Rigid3& start) {
-        return RefinePhotometric(
-            image, camera, marker, start, sigma_px, diagnostics_.noise_sigma, options);
-      },
-      [&](const std::vector<PhotometricResult>& fits) {
-        return BestPhotometricFit(image, camera, marker, fits, options);
-      });
+  const std::optional<PhotometricResult> fit =
+      RefinePhotometricFromStarts(image,
+                                  camera,
+                                  marker,
+                                  starts,
+                                  sigma_px,
+                                  diagnostics_.noise_sigma,
+                                  options_.photometric_refinement);
+  if (!fit) return std::nullopt;
+  return fit->fit.cam_from_marker;
 }
 
 std::unique_ptr<Tracker> MakeCircleTracker(const CircleTrackerOptions& options) {

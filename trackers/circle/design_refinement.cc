@@ -281,25 +281,26 @@ std::optional<DesignRefinement> RefineDesignFromStarts(const Image8& image,
                                                        double sigma_px,
                                                        double noise_sigma,
                                                        const DesignRefinementOptions& options) {
-  std::vector<DesignRefinement> fits;
-  for (const Rigid3& start : starts) {
-    const auto far_less_likely = [&](const DesignRefinement& first_round) {
-      if (fits.empty()) return false;
-      std::vector<DesignRefinement> compared = fits;
-      compared.push_back(first_round);
-      const DesignCosts shared = CostsOnSharedPixels(image, camera, marker, compared, options);
-      const double best_earlier = *std::min_element(shared.costs.begin(), shared.costs.end() - 1);
-      const double log_ratio =
-          (shared.costs.back() - best_earlier) / (shared.noise_sigma * shared.noise_sigma);
-      return log_ratio > options.max_first_round_log_ratio;
-    };
-    std::optional<DesignRefinement> fit =
-        RefineDesign(image, camera, marker, start, sigma_px, noise_sigma, options, far_less_likely);
-    if (fit) fits.push_back(std::move(*fit));
-  }
-  if (fits.empty()) return std::nullopt;
-  const size_t best = BestDesignRefinement(image, camera, marker, fits, options);
-  return std::move(fits[best]);
+  return BestFitFromStarts<DesignRefinement>(
+      starts,
+      [&](const Rigid3& start, const std::vector<DesignRefinement>& earlier) {
+        const auto far_less_likely = [&](const DesignRefinement& first_round) {
+          if (earlier.empty()) return false;
+          std::vector<DesignRefinement> compared = earlier;
+          compared.push_back(first_round);
+          const DesignCosts shared = CostsOnSharedPixels(image, camera, marker, compared, options);
+          const double best_earlier =
+              *std::min_element(shared.costs.begin(), shared.costs.end() - 1);
+          const double log_ratio =
+              (shared.costs.back() - best_earlier) / (shared.noise_sigma * shared.noise_sigma);
+          return log_ratio > options.max_first_round_log_ratio;
+        };
+        return RefineDesign(
+            image, camera, marker, start, sigma_px, noise_sigma, options, far_less_likely);
+      },
+      [&](const std::vector<DesignRefinement>& fits) {
+        return BestDesignRefinement(image, camera, marker, fits, options);
+      });
 }
 
 }  // namespace markerbench

@@ -687,6 +687,23 @@ std::optional<PhotometricResult> RefinePhotometric(const Image8& image,
       moved_less_than(options.later_round_settles_within_standard_errors));
 }
 
+std::optional<PhotometricResult> RefinePhotometricFromStarts(const Image8& image,
+                                                             const Camera& camera,
+                                                             const MarkerSpec& marker,
+                                                             const std::vector<Rigid3>& starts,
+                                                             double sigma_px,
+                                                             double noise_sigma,
+                                                             const PhotometricOptions& options) {
+  return BestFitFromStarts<PhotometricResult>(
+      starts,
+      [&](const Rigid3& start, const std::vector<PhotometricResult>&) {
+        return RefinePhotometric(image, camera, marker, start, sigma_px, noise_sigma, options);
+      },
+      [&](const std::vector<PhotometricResult>& fits) {
+        return BestPhotometricFit(image, camera, marker, fits, options);
+      });
+}
+
 std::optional<PhotometricNormalEquations> PhotometricNormalEquationsAt(
     const Image8& image,
     const Camera& camera,

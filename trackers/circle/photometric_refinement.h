@@ -120,6 +120,17 @@ size_t BestPhotometricFit(const Image8& image,
                           const std::vector<PhotometricResult>& fits,
                           const PhotometricOptions& options = {});
 
+// The refinement from each start (RefinePhotometric) that explains the image best
+// (BestPhotometricFit); nullopt when no start gives one.
+std::optional<PhotometricResult> RefinePhotometricFromStarts(
+    const Image8& image,
+    const Camera& camera,
+    const MarkerSpec& marker,
+    const std::vector<Rigid3>& starts,
+    double sigma_px,
+    double noise_sigma,
+    const PhotometricOptions& options = {});
+
 // The model's cost and normal equations (pixel_fit.h) at θ = (angle-axis, translation, σ,
 // then offset and gain per channel), on the pixels chosen and tied at `cam_from_marker` for
 // `sigma_px` (as a solve from there takes them), at noise `noise_sigma`: what each

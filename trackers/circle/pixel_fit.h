@@ -238,4 +238,20 @@ std::optional<Result> FitInRounds(const Rigid3& cam_from_marker,
   return result;
 }
 
+// The fit from each start by refine(start, the fits from earlier starts) (an optional Result),
+// the one best(fits) picks among them (its index); nullopt when no start gives one. The earlier
+// fits let a refine give a start up early.
+template <class Result, class Refine, class Best>
+std::optional<Result> BestFitFromStarts(const std::vector<Rigid3>& starts,
+                                        const Refine& refine,
+                                        const Best& best) {
+  std::vector<Result> fits;
+  for (const Rigid3& start : starts) {
+    std::optional<Result> fit = refine(start, static_cast<const std::vector<Result>&>(fits));
+    if (fit) fits.push_back(std::move(*fit));
+  }
+  if (fits.empty()) return std::nullopt;
+  return std::move(fits[best(static_cast<const std::vector<Result>&>(fits))]);
+}
+
 }  // namespace markerbench

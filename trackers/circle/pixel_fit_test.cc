@@ -218,6 +218,37 @@ TEST(FitInRounds, GivesUpWhereTheFirstRoundSaysSo) {
   EXPECT_NEAR(result->fit.cam_from_marker.translation.x(), 3e-3, 1e-15);
 }
 
+// BestFitFromStarts refines each start in turn, handing it the fits of the earlier starts that
+// gave one (a start that gives none is left out), and keeps the fit `best` picks among them.
+TEST(BestFitFromStarts, RefinesEachStartWithTheEarlierFitsAndKeepsTheOneBestPicks) {
+  std::vector<Rigid3> starts(4, kFacing);
+  for (size_t i = 0; i < starts.size(); ++i) starts[i].translation.y() = static_cast<double>(i);
+  std::vector<size_t> earlier_counts;
+  const auto refine = [&](const Rigid3& start, const std::vector<Solved>& earlier) {
+    earlier_counts.push_back(earlier.size());
+    // The second start gives no fit.
+    return start.translation.y() == 1.0 ? std::nullopt : MovedSideways(start, 1.0);
+  };
+  std::vector<double> offered;  // the y of each fit best was offered
+  const auto best = [&](const std::vector<Solved>& fits) {
+    for (const Solved& fit : fits) offered.push_back(fit.fit.cam_from_marker.translation.y());
+    return size_t{1};
+  };
+  const std::optional<Solved> kept = BestFitFromStarts<Solved>(starts, refine, best);
+  ASSERT_TRUE(kept);
+  EXPECT_EQ(earlier_counts, (std::vector<size_t>{0, 1, 1, 2}));
+  EXPECT_EQ(offered, (std::vector<double>{0.0, 2.0, 3.0}));
+  EXPECT_EQ(kept->fit.cam_from_marker.translation.y(), 2.0);
+  EXPECT_EQ(kept->fit.cam_from_marker.translation.x(), 1e-3);
+  // No start gives a fit: none, and best is not asked.
+  offered.clear();
+  const auto none = [](const Rigid3&, const std::vector<Solved>&) {
+    return std::optional<Solved>();
+  };
+  EXPECT_FALSE(BestFitFromStarts<Solved>(starts, none, best));
+  EXPECT_TRUE(offered.empty());
+}
+
 // The pose's move in standard errors against closed forms: with the pose's normal equations
 // apart from σ's and the levels', √(Σ JᵀJ_ii δ_i²)/σ_n; with a pose parameter tied to σ
 // (JᵀJ [[a, b], [b, c]] on them), σ free, the parameter's information is a - b²/c.
