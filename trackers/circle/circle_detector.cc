@@ -185,6 +185,8 @@ bool CircleDetectorOptions::IsValid(std::string* error) const {
     msg << "min_contrast_snr=" << min_contrast_snr << " must be >= 0";
   } else if (!(min_area_px >= 5.0)) {
     msg << "min_area_px=" << min_area_px << " must be >= 5";
+  } else if (!(min_dot_area_px >= 1.0 && min_dot_area_px <= min_area_px)) {
+    msg << "min_dot_area_px=" << min_dot_area_px << " must be in [1, min_area_px]";
   } else if (!(max_outline_rms_px > 0.0)) {
     msg << "max_outline_rms_px=" << max_outline_rms_px << " must be > 0";
   } else if (!(min_edge_fraction > 0.0 && min_edge_fraction <= 1.0)) {
@@ -520,6 +522,10 @@ std::optional<MarkerDetection> CircleDetector::Detect(
 
   std::map<int, std::vector<Candidate>> candidates;
   CircleDetectorOptions search_options = options_;
+  // d's feature dot is a blob of its own (and found at full resolution).
+  const bool dot_is_a_blob =
+      geometry_.layout == CircleLayout::kCircleWithCenter && !geometry_.roll_from_design;
+  if (dot_is_a_blob) search_options.min_area_px = options_.min_dot_area_px;
   search_options.min_area_px /= scale * scale;
   for (const ChannelPlan& plan : plans_) {
     if (from_prediction) break;
@@ -602,6 +608,7 @@ std::optional<MarkerDetection> CircleDetector::Detect(
     case CircleLayout::kCircleWithCenter: {
       const std::vector<Candidate>& all = candidates[plans_[0].channel];
       for (const Candidate& c : all) {
+        if (c.area_px < options_.min_area_px) continue;  // a dot's size: no disk
         const double dot_area = c.area_px * std::pow(dot_radius_m_ / r[0], 2);
         const Hole* center = FindHole(
             c, c.ellipse.center, 0.3 * c.ellipse.semi_minor, 0.2 * dot_area, 4.0 * dot_area);

@@ -185,6 +185,7 @@ CircleTrackerOptions CircleTrackerOptions::FromYaml(const YamlMap& map) {
       map.GetOr<int>("max_blurred_dot_disks", o.detector.max_blurred_dot_disks);
   o.detector.max_blurred_dot_peak =
       map.GetOr<double>("max_blurred_dot_peak", o.detector.max_blurred_dot_peak);
+  o.detector.min_dot_area_px = map.GetOr<double>("min_dot_area_px", o.detector.min_dot_area_px);
   o.detector.min_blurred_dot_radius_px =
       map.GetOr<double>("min_blurred_dot_radius_px", o.detector.min_blurred_dot_radius_px);
   o.detector.blurred_dots.min_significance =
@@ -235,6 +236,7 @@ std::vector<std::pair<std::string, std::string>> CircleTracker::Parameters() con
       {"max_rays", std::to_string(o.detector.edges.max_rays)},
       {"max_blurred_dot_disks", std::to_string(o.detector.max_blurred_dot_disks)},
       {"max_blurred_dot_peak", NumberText(o.detector.max_blurred_dot_peak)},
+      {"min_dot_area_px", NumberText(o.detector.min_dot_area_px)},
       {"min_blurred_dot_radius_px", NumberText(o.detector.min_blurred_dot_radius_px)},
       {"blurred_dot_min_significance", NumberText(o.detector.blurred_dots.min_significance)},
       {"min_branch_angle_rad", NumberText(o.min_branch_angle_rad)},
