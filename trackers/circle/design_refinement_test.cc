@@ -102,10 +102,9 @@ TEST(DesignRefinement, KeepsTheTiltTheDesignShows) {
       DesignRefinementOptions options;
       options.max_first_round_log_ratio = max_log_ratio;
       for (const bool true_first : {false, true}) {
-        const Rigid3 true_tilt = TiltedView(0.6, tilt, roll);
         const Rigid3 other_tilt = TiltedView(0.6, -tilt, roll);
-        const std::vector<Rigid3> starts = true_first ? std::vector<Rigid3>{true_tilt, other_tilt}
-                                                      : std::vector<Rigid3>{other_tilt, true_tilt};
+        const std::vector<Rigid3> starts = true_first ? std::vector<Rigid3>{truth, other_tilt}
+                                                      : std::vector<Rigid3>{other_tilt, truth};
         const std::optional<DesignRefinement> best = RefineDesignFromStarts(
             frame.image, camera, marker, starts, 1.0, std::sqrt(0.02), options);
         ASSERT_TRUE(best);
