@@ -247,11 +247,11 @@ std::optional<Result> BestFitFromStarts(const std::vector<Rigid3>& starts,
                                         const Best& best) {
   std::vector<Result> fits;
   for (const Rigid3& start : starts) {
-    std::optional<Result> fit = refine(start, static_cast<const std::vector<Result>&>(fits));
+    std::optional<Result> fit = refine(start, std::as_const(fits));
     if (fit) fits.push_back(std::move(*fit));
   }
   if (fits.empty()) return std::nullopt;
-  return std::move(fits[best(static_cast<const std::vector<Result>&>(fits))]);
+  return std::move(fits[best(std::as_const(fits))]);
 }
 
 }  // namespace markerbench
