@@ -462,8 +462,8 @@ TEST(CircleTracker, FindsTheDotsOfDAndEUnderBlur) {
 // paper's distance sweep from 2 m on). Measured on these 12 poses at 2.3 m (tilt 5-38°): found
 // on 11, within 10 % of the distance on 6; with the dots held to the disks' minimum, on none.
 // The misses are the circle's other tilt (rotation errors twice the tilt), which a single disk
-// and two small dots barely tell apart there: of 11 fits started at the true pose and at its
-// mirror, the likelihood on the whole design (BestDesignRefinement) picked the mirror on 4.
+// and two small dots barely tell apart there: from the true pose and its mirror, the likelihood
+// on the whole design (BestDesignRefinement) picked the mirror on 4 of the 12 frames.
 TEST(CircleTracker, FindsTheFeatureDotOfDBeyondTwoMetres) {
   const Camera camera = FrameRequest().scene.camera;
   const MarkerSpec marker = Load("circle_d");
