@@ -10,10 +10,12 @@ namespace markerbench {
 
 IsolatedTracker::IsolatedTracker(std::unique_ptr<Tracker> local, IsolationOptions options)
     : local_(std::move(local)), options_(std::move(options)) {
+  // A worker killed while it starts (by the OOM killer, a scheduler, a user) is started once
+  // more, as after a crash on a frame; one that fails twice cannot start.
   std::string error;
-  if (!Start(&error)) {
+  if (!Start(&error) && !Start(&error)) {
     throw std::runtime_error("cannot start the worker process " + options_.worker_argv.at(0) +
-                             ": " + error);
+                             " (tried twice): " + error);
   }
 }
 

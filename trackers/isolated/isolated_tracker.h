@@ -30,7 +30,7 @@ std::vector<std::pair<std::string, std::string>> IsolationParameters(double time
 class IsolatedTracker : public Tracker {
  public:
   // `local` is the same tracker in-process: it answers CanTrack and Parameters. Throws
-  // std::runtime_error when the worker cannot start.
+  // std::runtime_error when the worker fails to start twice in a row.
   IsolatedTracker(std::unique_ptr<Tracker> local, IsolationOptions options);
   IsolatedTracker(const IsolatedTracker&) = delete;
   IsolatedTracker& operator=(const IsolatedTracker&) = delete;

@@ -188,9 +188,31 @@ TEST(IsolatedTracker, AWorkerThatCannotStartIsAnError) {
     IsolatedTracker tracker(std::make_unique<ScriptedTracker>(), silent);
     ADD_FAILURE() << "/bin/true sent no ready message";
   } catch (const std::runtime_error& e) {
-    EXPECT_THAT(e.what(), HasSubstr("no ready message"));
+    EXPECT_THAT(e.what(), HasSubstr("(tried twice): no ready message"));
     EXPECT_THAT(e.what(), HasSubstr("the worker exited with status 0"));
   }
+}
+
+// A worker killed before its ready message (here: one that kills itself on its first start) is
+// started once more, and the tracker works as one whose worker started the first time.
+TEST(IsolatedTracker, AWorkerThatDiesWhileItStartsIsStartedOnceMore) {
+  const std::filesystem::path started_once =
+      std::filesystem::temp_directory_path() /
+      ("isolated_tracker_test_started_" + std::to_string(getpid()));
+  std::filesystem::remove(started_once);
+  IsolationOptions flaky = WorkerOptions();
+  flaky.worker_argv = {"/bin/sh",
+                       "-c",
+                       "if [ -e \"$1\" ]; then exec \"$0\" --serve-test-tracker; fi; "
+                       "touch \"$1\"; kill -KILL $$",
+                       g_program,
+                       started_once.string()};
+  IsolatedTracker isolated(std::make_unique<ScriptedTracker>(), flaky);
+  EXPECT_TRUE(std::filesystem::exists(started_once)) << "the first start did not run";
+  std::filesystem::remove(started_once);
+  ScriptedTracker local;
+  const Frame frame(kPose, 3, 4);
+  ExpectSameResult(isolated.Track(frame.observation()), local.Track(frame.observation()));
 }
 
 // Workers started from several threads at once, each tracker failing on some frames: every
