@@ -199,6 +199,8 @@ bool CircleDetectorOptions::IsValid(std::string* error) const {
     msg << "max_blurred_dot_peak=" << max_blurred_dot_peak << " must be in [0, 1]";
   } else if (!(min_blurred_dot_radius_px > 0.0)) {
     msg << "min_blurred_dot_radius_px=" << min_blurred_dot_radius_px << " must be > 0";
+  } else if (!(min_dot_radius_px >= 0.0)) {
+    msg << "min_dot_radius_px=" << min_dot_radius_px << " must be >= 0";
   } else if (!(blurred_dots.min_significance > 0.0)) {
     msg << "blurred_dot_min_significance=" << blurred_dots.min_significance << " must be > 0";
   } else if (edges.max_rays < edges.min_rays || edges.min_rays < 8) {
@@ -387,14 +389,20 @@ std::optional<CircleDetector::DiskWithDots> CircleDetector::BlurredDots(
   const double r0 = geometry_.radii_m[0];
   const double per_radius = std::sqrt(e.semi_major * e.semi_minor) / r0;  // px per metre
   const double dot_px = dot_radius_m_ * per_radius;
-  if (!(dot_px >= options_.min_blurred_dot_radius_px) ||
-      !(1.0 - std::exp(-0.5 * std::pow(dot_px / sigma, 2)) < options_.max_blurred_dot_peak)) {
-    return std::nullopt;
-  }
   BlurredDisk disk;
   disk.conic_px = found.conic;
   disk.sigma_px =
       std::sqrt(std::max(0.0625, sigma * sigma - smoothing_sigma_px * smoothing_sigma_px));
+  // Dots blurred (with the smoothing) below the threshold's reach, or small but sharp in the
+  // image itself (CircleDetectorOptions).
+  const auto peak = [&](double blur_sigma_px) {
+    return 1.0 - std::exp(-0.5 * std::pow(dot_px / blur_sigma_px, 2));
+  };
+  const bool searched = dot_px >= options_.min_blurred_dot_radius_px
+                            ? peak(sigma) < options_.max_blurred_dot_peak
+                            : dot_px >= options_.min_dot_radius_px &&
+                                  peak(disk.sigma_px) >= options_.max_blurred_dot_peak;
+  if (!searched) return std::nullopt;
   disk.inside_level = edges.inside_level;
   disk.outside_level = edges.outside_level;
   // The dots' reach: the feature dot's ring at Lx (d), the disk itself (e), and the blur (the

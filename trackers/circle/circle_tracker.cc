@@ -188,6 +188,8 @@ CircleTrackerOptions CircleTrackerOptions::FromYaml(const YamlMap& map) {
   o.detector.min_dot_area_px = map.GetOr<double>("min_dot_area_px", o.detector.min_dot_area_px);
   o.detector.min_blurred_dot_radius_px =
       map.GetOr<double>("min_blurred_dot_radius_px", o.detector.min_blurred_dot_radius_px);
+  o.detector.min_dot_radius_px =
+      map.GetOr<double>("min_dot_radius_px", o.detector.min_dot_radius_px);
   o.detector.blurred_dots.min_significance =
       map.GetOr<double>("blurred_dot_min_significance", o.detector.blurred_dots.min_significance);
   o.min_branch_angle_rad = map.GetOr<double>("min_branch_angle_rad", o.min_branch_angle_rad);
@@ -238,6 +240,7 @@ std::vector<std::pair<std::string, std::string>> CircleTracker::Parameters() con
       {"max_blurred_dot_peak", NumberText(o.detector.max_blurred_dot_peak)},
       {"min_dot_area_px", NumberText(o.detector.min_dot_area_px)},
       {"min_blurred_dot_radius_px", NumberText(o.detector.min_blurred_dot_radius_px)},
+      {"min_dot_radius_px", NumberText(o.detector.min_dot_radius_px)},
       {"blurred_dot_min_significance", NumberText(o.detector.blurred_dots.min_significance)},
       {"min_branch_angle_rad", NumberText(o.min_branch_angle_rad)},
       {"max_other_tilt_log_ratio", NumberText(o.max_other_tilt_log_ratio)},
