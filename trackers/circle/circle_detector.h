@@ -60,7 +60,7 @@ struct CircleDetectorOptions {
   // detector's smoothing) leave a dot's peak, 1 - exp(-ρ²/2σ²), below this fraction of its ink
   // (the threshold sits at 0.5); smaller ones where the image's own blur leaves it above, for
   // their thresholded blobs of a few pixels split or vanish under noise (d's dots from 2.5 m
-  // on, 1.2-1.9 px: d was found on 74/27/0/0/0 % of the paper's distance sweep's frames at
+  // on, 1.2-2 px: d was found on 74/27/0/0/0 % of the paper's distance sweep's frames at
   // 2.5-3.5 m without this, 96-100 % with it; success 62/15/0/0/0 -> 83/75/68/62/56 % where the
   // bound allows 95/91/89/87/81 %; e's nose alike). Small dots blurred in the image are not looked
   // for: on the negative set (circle_false_positives_test), blurred clutter passed as d's dots

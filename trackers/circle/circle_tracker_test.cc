@@ -506,7 +506,7 @@ TEST(CircleTracker, FindsTheFeatureDotOfDBeyondTwoMetres) {
   EXPECT_EQ(d.found_otherwise, 0);
 }
 
-// d from 2.5 m on (σ² 0.02, no blur): its dots, 1.2-1.9 px in radius, are looked for by their
+// d from 2.5 m on (σ² 0.02, no blur): its dots, 1.2-2 px in radius, are looked for by their
 // images (the threshold's blobs of a few pixels split or vanish under noise). Measured on these
 // 12 poses at 3.2 m (tilt 5-38°): found on all, within 10 % of the distance on 8 (the misses: at
 // 20° and 29° the circle's other tilt, rotation errors twice the tilt, as at 2.3 m; at 5° and
