@@ -4,6 +4,14 @@
 // 1 - Q₁(s, s - z) (Marcum Q). As s → ∞, G → Φ(z - 1/(2s)): the first-order curvature bias
 // σ²/(2R); at R = 2σ the first-order form misplaces the 50% level by about 0.9 px at σ = 10.
 // Tabulated once over t = 1/s in [1/40, 2] and z in [-7, 7]; bilinear, with its gradient.
+//
+// A pixel averages the image over its area. Near a locally straight edge with outward normal
+// n, the pixel's offsets project on n as the sum of two uniforms, of half-widths a = |n_x|/2
+// and b = |n_y|/2 px (A = a/σ and B = b/σ in σ), so the pixel reads
+//   V(z) = E[G(s, z + u)] = [H(z+A+B) - H(z+A-B) - H(z-A+B) + H(z-A-B)] / 4AB,
+// with H = ∫∫G dz dz: the same table integrated twice in z (cumulative trapezoids), H
+// interpolated by cubic Hermite from its values and slopes (G's first integral), and V's
+// derivatives that interpolant's, so that they are V's own to rounding.
 #pragma once
 
 #include <Eigen/Core>
@@ -16,17 +24,40 @@ struct ProfileValue {
   double d_dz = 0.0;  // ∂G/∂z
 };
 
+// V over a pixel (above): its value and derivatives, and A ∂V/∂A + B ∂V/∂B, the change of V
+// as both half-widths grow in proportion (∂V/∂σ through them is that over -σ).
+struct PixelProfileValue {
+  double value = 0.0;
+  double d_ds = 0.0;
+  double d_dz = 0.0;
+  double d_dlog_width = 0.0;
+};
+
 // G for one disk radius s, evaluated at many z (one table row interpolation per disk).
 // s is clamped to [0.5, 40] (beyond 40 the curvature term is below σ/80).
 class BlurredDiskProfile {
  public:
   explicit BlurredDiskProfile(double s);
   ProfileValue At(double z) const;
+  // V at z averaged over a pixel whose half-widths along the normal are A and B (in σ; each
+  // taken as at least 1e-3).
+  PixelProfileValue OverPixel(double z, double a, double b) const;
 
  private:
-  const double* row0_;  // the two table rows around s
+  // H, G's second integral in z, at x, with its derivatives in x (the interpolant's, about
+  // G's first integral) and in s.
+  struct Integral {
+    double value = 0.0, d_dx = 0.0, d_ds = 0.0;
+  };
+  Integral SecondIntegralAt(double x) const;
+
+  const double* row0_;  // the two table rows around s, of G and of its two integrals
   const double* row1_;
-  double weight_ = 0.0;  // of row1_
+  const double* first0_;
+  const double* first1_;
+  const double* second0_;
+  const double* second1_;
+  double weight_ = 0.0;  // of the rows 1
   double d_weight_ds_ = 0.0;
 };
 

@@ -105,6 +105,8 @@ class DesignModel {
         noise_sigma_(noise_sigma) {}
 
   int Parameters() const { return 9; }
+  // Its σ takes the pixel's area too (variance 1/12): 0.2 px is below any image's.
+  double MinSigmaPx() const { return 0.2; }
   double noise_sigma() const { return noise_sigma_; }
   void set_noise_sigma(double noise_sigma) { noise_sigma_ = noise_sigma; }
 

@@ -71,6 +71,10 @@ double CircumRadius(const Eigen::Vector2d& a, const Eigen::Vector2d& b, const Ei
   return std::sqrt(ab.squaredNorm() * bc.squaredNorm() * ca.squaredNorm()) / (2.0 * twice_area);
 }
 
+// The model's σ is the blur alone (the pixel's area is modelled apart), which a sharp image
+// takes to 0; not quite, for the profile's z = -d/σ.
+constexpr double kMinBlurSigmaPx = 0.02;
+
 // The pose (6) and σ, the parameters differentiated by Jets.
 using PoseJet = ceres::Jet<double, 7>;
 
@@ -124,6 +128,7 @@ class PixelModel {
       : K_(K), layers_(layers), pixels_(pixels), channels_(channels), noise_sigma_(noise_sigma) {}
 
   int Parameters() const { return 7 + 2 * channels_; }
+  double MinSigmaPx() const { return kMinBlurSigmaPx; }
   double noise_sigma() const { return noise_sigma_; }
   void set_noise_sigma(double noise_sigma) { noise_sigma_ = noise_sigma; }
 
@@ -170,7 +175,9 @@ class PixelModel {
     H << R.col(0), R.col(1), t;
     H = K_.cast<Jet>() * H;
     // The layers modelled whole: each disk's image as the chords of its ellipse, and that
-    // ellipse blurred.
+    // ellipse blurred, with the pixel's area as a blur of its variance (1/12: beside a blur of
+    // a good part of the disk's size, all it changes).
+    const double whole_sigma = std::sqrt(sigma.a * sigma.a + 1.0 / 12.0);
     std::vector<EllipseChords<Jet>> whole(layers_.size());
     std::vector<std::optional<BlurredEllipse>> blurred(layers_.size());
     for (size_t l = 0; l < layers_.size(); ++l) {
@@ -183,7 +190,7 @@ class PixelModel {
         const EllipseChords<Jet>& e = *chords;
         blurred[l].emplace(
             EllipseChords<double>{e.x0.a, e.y0.a, e.slope.a, e.half_width.a, e.half_height.a},
-            sigma.a,
+            whole_sigma,
             layer.whole_nodes);
         continue;
       }
@@ -213,10 +220,11 @@ class PixelModel {
       }
     }
     // Per pixel in doubles, for each near edge: d = n·(x - e) + a²/2ρ (px, positive outside; a =
-    // t·(x - e)), z = -d/σ, inside = G(s, z), chained to the 7 Jet parameters through e, s and σ.
+    // t·(x - e)), z = -d/σ, inside = G(s, z) over the pixel, chained to the 7 Jet parameters
+    // through e, s and σ.
     const double sigma_value = sigma.a;
-    Eigen::Matrix<double, 7, 1> d_sigma = Eigen::Matrix<double, 7, 1>::Zero();
-    d_sigma[6] = 1.0;
+    Eigen::Matrix<double, 7, 1> d_whole_sigma = Eigen::Matrix<double, 7, 1>::Zero();
+    d_whole_sigma[6] = sigma_value / whole_sigma;
     // The fraction of a near edge's disk seen at a pixel, with its gradient if asked.
     const auto inside = [&](const Pixel& p, const NearEdge& near, Eigen::Matrix<double, 7, 1>* d) {
       if (near.bin < 0) {
@@ -225,15 +233,21 @@ class PixelModel {
         const BlurredEllipseValue g = blurred[near.layer]->At(p.ideal_px);
         *d = g.gradient[0] * e.x0.v + g.gradient[1] * e.y0.v + g.gradient[2] * e.slope.v +
              g.gradient[3] * e.half_width.v + g.gradient[4] * e.half_height.v +
-             g.gradient[5] * d_sigma;
+             g.gradient[5] * d_whole_sigma;
         return g.value;
       }
       const EdgeLayer& layer = layers_[near.layer];
       const double rho = layer.start_curvature_radius_px[near.bin];
-      const EdgeOffset offset = OffsetFromCurvedEdge(
-          p.ideal_px, edges_px[near.layer][near.bin], layer.start_normal[near.bin], rho);
-      const double distance = offset.distance;
-      const ProfileValue g = profiles[near.layer][near.bin].At(-distance / sigma_value);
+      const Eigen::Vector2d& normal = layer.start_normal[near.bin];
+      const EdgeOffset offset =
+          OffsetFromCurvedEdge(p.ideal_px, edges_px[near.layer][near.bin], normal, rho);
+      // Over the pixel's area (blurred_disk_profile.h): its offsets along the edge (variance
+      // 1/12) put it a²/2ρ further out on average, 1/24ρ.
+      const double distance = offset.distance + 1.0 / (24.0 * rho);
+      const PixelProfileValue g =
+          profiles[near.layer][near.bin].OverPixel(-distance / sigma_value,
+                                                   0.5 * std::abs(normal.x()) / sigma_value,
+                                                   0.5 * std::abs(normal.y()) / sigma_value);
       if (d) {
         const Eigen::Matrix<double, 7, 2>& edge_along_frame =
             edges_along_frame[near.layer][near.bin];
@@ -247,7 +261,7 @@ class PixelModel {
           (*d)[i] = along_edge * (edge_along_frame(i, 0) + along_tangent * edge_along_frame(i, 1)) +
                     along_size * size.v[i];
         }
-        (*d)[6] += along_edge * distance / sigma_value;
+        (*d)[6] += (along_edge * distance - g.d_dlog_width) / sigma_value;
       }
       return g.value;
     };
@@ -574,12 +588,13 @@ PixelSet PixelsNearEdges(const Image8& image,
   return set;
 }
 
-// The pixels near the edges at `cam_from_marker` for σ, each tied to its edges' points, with
-// the layers they are tied to; nullopt as for RefinePhotometric.
+// The pixels near the edges at `cam_from_marker` for the blur σ (the band taken for 0.3 px at
+// least), each tied to its edges' points, with the layers they are tied to; nullopt as for
+// RefinePhotometric.
 struct ModelledPixels {
   std::vector<EdgeLayer> layers;
   PixelSet pixels;
-  double sigma_px = 0.0;  // at least 0.3
+  double sigma_px = 0.0;  // the fit's start: σ, at kMinBlurSigmaPx at least
 };
 std::optional<ModelledPixels> PixelsAt(const Image8& image,
                                        const Camera& camera,
@@ -608,7 +623,7 @@ std::optional<ModelledPixels> PixelsAt(const Image8& image,
                                     options.band_sigmas * sigma + options.band_px,
                                     options.max_depth_per_curvature);
   if (pixels.pixels.size() < 20) return std::nullopt;
-  return ModelledPixels{std::move(*layers), std::move(pixels), sigma};
+  return ModelledPixels{std::move(*layers), std::move(pixels), std::max(sigma_px, kMinBlurSigmaPx)};
 }
 
 // One solve on the pixels near the edges at `cam_from_marker`, each tied to its edges' points,
@@ -675,9 +690,11 @@ std::optional<PhotometricResult> RefinePhotometric(const Image8& image,
   if (sigma_px < options.settle_below_sigma_px) {
     first_settles = moved_less_than(options.settle_within_standard_errors);
   }
+  // The edges' σ holds the pixel's area (variance 1/12); the model's σ is the blur alone.
+  const double blur_sigma_px = std::sqrt(std::max(0.0, sigma_px * sigma_px - 1.0 / 12.0));
   return FitInRoundsAtTheirNoise<PhotometricResult>(
       cam_from_marker,
-      sigma_px,
+      blur_sigma_px,
       noise_sigma,
       options.max_rounds,
       [&](const Rigid3& start, double sigma, double noise, const FitRound& round) {

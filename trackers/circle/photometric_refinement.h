@@ -3,7 +3,8 @@
 // minus what lies under it), so the design blurred by a Gaussian of σ is, at a pixel u,
 //   I_c(u) = offset_c + gain_c (base_c + Σ_k jump_kc G(ρ_k/σ, -d_k(u)/σ)),
 // summed over the disks whose edge is within reach of u, with G the exact blurred-disk profile
-// (blurred_disk_profile.h), d_k the pixel's signed distance to the disk's projected edge
+// averaged over the pixel's area (blurred_disk_profile.h: σ is the blur alone, the pixel's area
+// apart), d_k the pixel's signed distance to the disk's projected edge
 // (from its edge point nearest the pixel, to second order along the edge, with the normal and
 // curvature there at the start pose: OffsetFromCurvedEdge), ρ_k the edge's radius of
 // curvature there (the osculating disk: a tilted disk's ellipse has the blurred edge of that
@@ -100,8 +101,10 @@ struct PhotometricResult {
   double noise_sigma = 0.0;  // the image's, 0-1, as its residuals show (the model's clipping)
 };
 
-// `noise_sigma`: a first estimate of the image's, 0-1 units. nullopt for designs with layers
-// other than disks, blur beyond max_blur_per_radius, or too few pixels.
+// `sigma_px`: the edges' σ at the start (the blur with the pixel's area, as edge points measure
+// it; the fit's, PixelFit::sigma_px, is the blur alone). `noise_sigma`: a first estimate of the
+// image's, 0-1 units. nullopt for designs with layers other than disks, blur beyond
+// max_blur_per_radius, or too few pixels.
 std::optional<PhotometricResult> RefinePhotometric(const Image8& image,
                                                    const Camera& camera,
                                                    const MarkerSpec& marker,

@@ -1,7 +1,7 @@
 // Levenberg-Marquardt on the normal equations (pixel_fit.h) on a model linear in θ, whose
 // cost is exactly quadratic: the first (lightly damped) step lands next to the least-squares
 // solution, and the fit stops there without evaluating a second step, whose predicted
-// decrease is below the tolerance.
+// decrease is below the tolerance; a step held at σ's bound is the best given that bound.
 #include "trackers/circle/pixel_fit.h"
 
 #include <gtest/gtest.h>
@@ -33,6 +33,29 @@ TEST(FitPixels, StopsAtTheMinimumOfAQuadraticCostWithoutASecondStep) {
   EXPECT_EQ(model.evaluations(), 2);
   const Eigen::VectorXd theta = PixelFitParameters(fit.cam_from_marker, fit.sigma_px, fit.levels);
   EXPECT_LT((theta - model.solution()).norm(), 1e-3 * model.solution().norm());
+}
+
+// A step that would take σ (θ₆) below its bound takes it to the bound, and the other
+// parameters take the step that minimises the quadratic model given that move: its gradient
+// in them vanishes. A step that stays above the bound is the free one.
+TEST(FitPixels, StepsWithinTheSigmaBound) {
+  const LinearPixelModel model(kTwelvePixels);
+  Eigen::MatrixXd jtj;
+  Eigen::VectorXd jtr;
+  Eigen::VectorXd theta = model.solution();
+  theta[6] = 0.6;  // the least squares' σ is 1.05: the free step raises σ by 0.45
+  model.Evaluate(theta, &jtj, &jtr, nullptr);
+  const Eigen::VectorXd free = jtj.ldlt().solve(-jtr);
+  EXPECT_NEAR(free[6], 0.45, 1e-9);
+  EXPECT_LT((StepWithinSigmaBound(jtj, jtr, theta[6], 0.2) - free).norm(), 1e-12);
+  // Now from σ = 1.5 with the bound at 1.2: the free step would end at 1.05.
+  theta[6] = 1.5;
+  model.Evaluate(theta, &jtj, &jtr, nullptr);
+  const Eigen::VectorXd step = StepWithinSigmaBound(jtj, jtr, theta[6], 1.2);
+  EXPECT_NEAR(theta[6] + step[6], 1.2, 1e-12);
+  Eigen::VectorXd gradient = jtj * step + jtr;  // the quadratic model's, halved
+  gradient[6] = 0.0;
+  EXPECT_LT(gradient.norm(), 1e-9 * jtr.norm());
 }
 
 // The pixels listed at the result are those of the result (its step's evaluation), not the
