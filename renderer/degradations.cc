@@ -63,6 +63,12 @@ int Degradations::MarginPx() const {
   return margin;
 }
 
+int BlurSubsampling(double sigma_px) {
+  if (!(sigma_px > 0.0) || sigma_px >= kMinSampledBlurSigma) return 1;
+  return std::min(kMaxBlurSubsampling,
+                  static_cast<int>(std::ceil(kMinSampledBlurSigma / sigma_px)));
+}
+
 PixelRect GaussianBlur(double sigma_px, const PixelRect& roi, ImageF* image) {
   if (!(sigma_px > 0.0) || roi.Empty()) return roi;
   const int radius = static_cast<int>(std::ceil(4.0 * sigma_px));

@@ -8,6 +8,7 @@
 
 #include "core/gauss_legendre.h"
 #include "renderer/boundary_pieces.h"
+#include "renderer/subpixel_grid.h"
 
 namespace markerbench {
 namespace {
@@ -250,8 +251,12 @@ Matrix6d PoseFisherInformation(const FrameRequest& request, const CrlbOptions& o
                        std::max(deposits.y0 - pad, -margin),
                        std::min(deposits.x1 + pad, camera.width + margin),
                        std::min(deposits.y1 + pad, camera.height + margin)};
-  // Planes k · channels + c hold dI_c/dθ_k over `area`.
-  ImageF derivative(area.x1 - area.x0, area.y1 - area.y0, 6 * channels);
+  // Planes k · channels + c hold dI_c/dθ_k over `area`, first on the grid of the optics' blur
+  // (degradations.h), where a sub-pixel's area is 1/s².
+  const SubpixelGrid grid{BlurSubsampling(d.blur_sigma_px), area};
+  const int s = grid.scale;
+  const double per_area = static_cast<double>(s) * s;
+  ImageF fine(s * (area.x1 - area.x0), s * (area.y1 - area.y0), 6 * channels);
   std::vector<double> cuts;
   for (size_t j = 0; j < samples.size(); ++j) {
     const ExposureSample& sample = samples[j];
@@ -261,23 +266,34 @@ Matrix6d PoseFisherInformation(const FrameRequest& request, const CrlbOptions& o
           -ImageVelocity(camera, piece.mid_cam, sample.cam_from_marker, sample.motion_rotation)
                .transpose() *
           piece.normal_px;
-      ForEachPixelPart(piece.a_px, piece.b_px, &cuts, [&](int x, int y, double fraction) {
-        if (x < area.x0 || y < area.y0 || x >= area.x1 || y >= area.y1) return;
-        const double weight = fraction * sample.row_weight[static_cast<size_t>(y + margin)];
-        if (weight == 0.0) return;
-        const size_t at = static_cast<size_t>(y - area.y0) * derivative.width + (x - area.x0);
-        for (int k = 0; k < 6; ++k) {
-          for (int c = 0; c < channels; ++c) {
-            derivative.plane(k * channels + c)[at] +=
-                static_cast<float>(weight * rate[k] * piece.jump[static_cast<size_t>(c)]);
-          }
-        }
-      });
+      ForEachPixelPart(
+          grid.FineFromCanvas(piece.a_px),
+          grid.FineFromCanvas(piece.b_px),
+          &cuts,
+          [&](int x, int y, double fraction) {
+            x -= s * area.x0;
+            y -= s * area.y0;
+            if (x < 0 || y < 0 || x >= fine.width || y >= fine.height) return;
+            const double weight = per_area * fraction *
+                                  sample.row_weight[static_cast<size_t>(area.y0 + y / s + margin)];
+            if (weight == 0.0) return;
+            const size_t at = static_cast<size_t>(y) * fine.width + x;
+            for (int k = 0; k < 6; ++k) {
+              for (int c = 0; c < channels; ++c) {
+                fine.plane(k * channels + c)[at] +=
+                    static_cast<float>(weight * rate[k] * piece.jump[static_cast<size_t>(c)]);
+              }
+            }
+          });
     }
   }
-  const PixelRect local{
-      deposits.x0 - area.x0, deposits.y0 - area.y0, deposits.x1 - area.x0, deposits.y1 - area.y0};
-  const PixelRect blurred = GaussianBlur(d.blur_sigma_px, local, &derivative);
+  const PixelRect local{s * (deposits.x0 - area.x0),
+                        s * (deposits.y0 - area.y0),
+                        s * (deposits.x1 - area.x0),
+                        s * (deposits.y1 - area.y0)};
+  const PixelRect blurred = grid.Coarsen(GaussianBlur(s * d.blur_sigma_px, local, &fine));
+  ImageF derivative(area.x1 - area.x0, area.y1 - area.y0, 6 * channels);
+  grid.AverageInto(fine, {area.x0, area.y0}, &derivative);
   MotionBlur(d.motion_blur_px, d.motion_blur_angle_deg, blurred, &derivative);
 
   // F over the image's pixels; lighting scales the image by the gain.

@@ -4,6 +4,8 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "renderer/subpixel_grid.h"
+
 namespace markerbench {
 namespace {
 
@@ -95,17 +97,19 @@ RasterResult RasterizeRows(const Scene& scene,
       scene, channels, [&](double u) { return pose_at(start_s + u * request.exposure_s); });
 }
 
-// A moving camera's canvas: one exposure for a global shutter; with a rolling shutter, bands
-// of rows, each rendered through a camera cropped to it at its rows' time.
+// A moving camera's canvas, or the part of it on `grid` (`scene` seen through the grid's
+// camera): one exposure for a global shutter; with a rolling shutter, bands of rows, each
+// rendered through a camera cropped to it at its rows' time.
 RasterResult RasterizeMoving(const Scene& scene,
                              int channels,
                              const FrameRequest& request,
-                             int margin) {
+                             int margin,
+                             const SubpixelGrid& grid) {
   if (request.readout_s <= 0.0) return RasterizeRows(scene, channels, request, 0.0);
   const int rows = scene.camera.height;
   const int image_rows = request.scene.camera.height;
-  const auto row_start_s = [&](double v) {  // canvas row v; margin rows extrapolate
-    return request.readout_s * (v - margin) / std::max(1, image_rows - 1);
+  const auto row_start_s = [&](double v) {  // row v of the grid; margin rows extrapolate
+    return request.readout_s * (grid.CanvasRow(v) - margin) / std::max(1, image_rows - 1);
   };
   // Bands short enough that the motion within one's readout is under 1/8 px.
   constexpr double kBandMotionPx = 0.125;
@@ -132,6 +136,40 @@ RasterResult RasterizeMoving(const Scene& scene,
     canvas.nonuniform = Union(canvas.nonuniform, PixelRect{0, v0, scene.camera.width, v1});
   }
   return canvas;
+}
+
+// The canvas, or its part on `grid`: the scene from a still or a moving camera.
+RasterResult RasterizeOnGrid(const Scene& canvas_scene,
+                             const FrameRequest& request,
+                             int margin,
+                             const SubpixelGrid& grid) {
+  Scene scene = canvas_scene;
+  scene.camera = grid.FineCamera(canvas_scene.camera);
+  return request.cam_from_marker_at
+             ? RasterizeMoving(scene, request.channels, request, margin, grid)
+             : Rasterize(scene, request.channels);
+}
+
+// The optics' blur of the canvas `raster` (degradations.h, BlurSubsampling). Returns the region
+// it may have changed.
+PixelRect BlurOptics(const Scene& canvas_scene,
+                     const FrameRequest& request,
+                     int margin,
+                     RasterResult* raster) {
+  const double sigma = request.degradations.blur_sigma_px;
+  const int scale = BlurSubsampling(sigma);
+  const PixelRect& ink = raster->nonuniform;
+  if (scale == 1 || ink.Empty()) return GaussianBlur(sigma, ink, &raster->image);
+  const int reach = static_cast<int>(std::ceil(4.0 * sigma));
+  const SubpixelGrid grid{scale,
+                          {std::max(0, ink.x0 - reach),
+                           std::max(0, ink.y0 - reach),
+                           std::min(raster->image.width, ink.x1 + reach),
+                           std::min(raster->image.height, ink.y1 + reach)}};
+  RasterResult fine = RasterizeOnGrid(canvas_scene, request, margin, grid);
+  GaussianBlur(scale * sigma, fine.nonuniform, &fine.image);
+  grid.AverageInto(fine.image, Eigen::Vector2i::Zero(), &raster->image);
+  return grid.region;
 }
 
 }  // namespace
@@ -193,11 +231,10 @@ RenderedFrame RenderFrame(const FrameRequest& request) {
   canvas_scene.camera.cx += margin;
   canvas_scene.camera.cy += margin;
 
-  RasterResult raster = request.cam_from_marker_at
-                            ? RasterizeMoving(canvas_scene, request.channels, request, margin)
-                            : Rasterize(canvas_scene, request.channels);
+  const SubpixelGrid canvas_grid{1, {0, 0, canvas_scene.camera.width, canvas_scene.camera.height}};
+  RasterResult raster = RasterizeOnGrid(canvas_scene, request, margin, canvas_grid);
   const Degradations& d = request.degradations;
-  PixelRect changed = GaussianBlur(d.blur_sigma_px, raster.nonuniform, &raster.image);
+  const PixelRect changed = BlurOptics(canvas_scene, request, margin, &raster);
   MotionBlur(d.motion_blur_px, d.motion_blur_angle_deg, changed, &raster.image);
   ImageF& image = raster.image;
   CropInPlace(margin, camera.width, camera.height, &image);

@@ -5,7 +5,8 @@ Issue 21 asks that the tracker hold its accuracy on images from a renderer other
 This one re-renders each frame of a dataset that `markerbench render` wrote, from its
 ground truth alone, by other means than renderer/: each pixel's ink is the mean of 8x8 point
 samples of the marker plane (renderer/ integrates the exact area of each shape), the optics'
-blur is OpenCV's GaussianBlur, and the noise comes from numpy's generator (then clipped to
+blur is OpenCV's GaussianBlur (on the point samples below 3.5 px, where a kernel sampled at
+whole pixels would miss the continuous blur by more than half a level), and the noise comes from numpy's generator (then clipped to
 [0, 1] and rounded to 8 bits, imnoise's model). Pixel centres lie at integer coordinates.
 Markers of disks only (circles_a-c, circle_d); no motion blur, JPEG or sequences.
 
@@ -37,6 +38,8 @@ import numpy as np
 import yaml
 
 SUBSAMPLES = 8  # point samples per pixel along each axis
+# Blurs below this σ (px) act on the point samples, as renderer/degradations.h explains.
+FINE_BLUR_BELOW_PX = 3.5
 
 
 def fail(message):
@@ -62,7 +65,8 @@ def read_disks(marker_path):
 
 def ink(row, disks, background):
     """The marker seen at the row's pose: the mean of SUBSAMPLES² point samples a pixel, as
-    linear RGB in [0, 1] (height x width x 3)."""
+    linear RGB in [0, 1] (height x width x 3); the samples blurred first if the row's blur is
+    below FINE_BLUR_BELOW_PX."""
     width, height = int(row["width"]), int(row["height"])
     K = np.array([[float(row["fx"]), 0.0, float(row["cx"])],
                   [0.0, float(row["fy"]), float(row["cy"])], [0.0, 0.0, 1.0]])
@@ -88,20 +92,26 @@ def ink(row, disks, background):
     columns, rows = np.meshgrid(np.arange(u0, u1, dtype=np.float64),
                                 np.arange(v0, v1, dtype=np.float64))
     plane_from_px = np.linalg.inv(H)
-    total = np.zeros((v1 - v0, u1 - u0, 3))
+    # Sample (i, j) of pixel (u, v) is (u, v) + offsets[(i, j)], at [v·S + j, u·S + i] of `samples`.
+    samples = np.empty(((v1 - v0) * SUBSAMPLES, (u1 - u0) * SUBSAMPLES, 3))
     offsets = (np.arange(SUBSAMPLES) + 0.5) / SUBSAMPLES - 0.5
-    for du in offsets:
-        for dv in offsets:
+    for i, du in enumerate(offsets):
+        for j, dv in enumerate(offsets):
             pu, pv = columns + du, rows + dv
             h = [plane_from_px[k, 0] * pu + plane_from_px[k, 1] * pv + plane_from_px[k, 2]
                  for k in range(3)]
             x, y = h[0] / h[2], h[1] / h[2]
-            sample = np.empty_like(total)
+            sample = np.empty((v1 - v0, u1 - u0, 3))
             sample[:] = background
             for cx, cy, radius, color in disks:
                 sample[(x - cx) ** 2 + (y - cy) ** 2 <= radius * radius] = color
-            total += sample
-    image[v0:v1, u0:u1] = total / SUBSAMPLES ** 2
+            samples[j::SUBSAMPLES, i::SUBSAMPLES] = sample
+    sigma = float(row["blur_sigma_px"])
+    if 0.0 < sigma < FINE_BLUR_BELOW_PX:
+        samples = cv2.GaussianBlur(samples, (0, 0), sigmaX=SUBSAMPLES * sigma,
+                                   sigmaY=SUBSAMPLES * sigma, borderType=cv2.BORDER_REPLICATE)
+    image[v0:v1, u0:u1] = samples.reshape(v1 - v0, SUBSAMPLES, u1 - u0, SUBSAMPLES, 3).mean(
+        axis=(1, 3))
     return image
 
 
@@ -111,7 +121,7 @@ def degrade(row, linear, with_noise):
         if row[key] and float(row[key]) != 0.0:
             fail(f"frame {row['frame']}: key '{key}' is not re-rendered")
     sigma = float(row["blur_sigma_px"])
-    if sigma > 0.0:
+    if sigma >= FINE_BLUR_BELOW_PX:  # a sharper blur acted on the point samples (ink)
         linear = cv2.GaussianBlur(linear, (0, 0), sigmaX=sigma, sigmaY=sigma,
                                   borderType=cv2.BORDER_REPLICATE)
     linear = float(row["gain"]) * linear + float(row["offset"])
