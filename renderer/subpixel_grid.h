@@ -1,8 +1,9 @@
-// A finer sampling of part of a canvas, for a Gaussian blur below 2 px (BlurSubsampling).
-// The grid of scale s divides each canvas pixel (u, v), the square [u - ½, u + ½] ×
-// [v - ½, v + ½], into s×s sub-pixels; sub-pixel (i, j) is centred at canvas point
-// ((i + ½)/s - ½, (j + ½)/s - ½), so canvas pixel u holds i ∈ [su, su + s). Images on the grid
-// cover `region` only: their pixel (0, 0) is sub-pixel (s·x0, s·y0). Scale 1 is the canvas.
+// A finer sampling of part of a canvas, for a Gaussian blur below kMinSampledBlurSigma
+// (degradations.h). The grid of scale s divides each canvas pixel (u, v), the square
+// [u - ½, u + ½] × [v - ½, v + ½], into s×s sub-pixels; sub-pixel (i, j) is centred at canvas
+// point ((i + ½)/s - ½, (j + ½)/s - ½), so canvas pixel u holds i ∈ [su, su + s). Images on
+// the grid cover `region` only: their pixel (0, 0) is sub-pixel (s·x0, s·y0). Scale 1 is the
+// canvas.
 #pragma once
 
 #include <Eigen/Core>

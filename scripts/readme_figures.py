@@ -72,6 +72,12 @@ CIRCLE_ACCURACY = [
      1.0, None, 1.5),
     ("circle_accuracy_0.6m_low_noise", 1e-3, "0.6 m, σ² = 1e-3 (8 levels)", "≤ 1.5× bound", 1.0,
      None, 1.5),
+    ("circle_accuracy_0.6m_slight_blur", 0.3, "0.6 m, σ² = 2.5e-4, blur σ = 0.3", "≤ 1.5× bound",
+     1.0, None, 1.5),
+    ("circle_accuracy_0.6m_slight_blur", 0.6, "0.6 m, σ² = 2.5e-4, blur σ = 0.6", "≤ 1.5× bound",
+     1.0, None, 1.5),
+    ("circle_accuracy_0.6m_slight_blur", 1.0, "0.6 m, σ² = 2.5e-4, blur σ = 1", "≤ 1.5× bound",
+     1.0, None, 1.5),
 ]
 
 
