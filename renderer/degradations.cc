@@ -108,6 +108,63 @@ PixelRect GaussianBlur(double sigma_px, const PixelRect& roi, ImageF* image) {
   return out;
 }
 
+void BlurOntoPixels(double sigma_px,
+                    const SubpixelGrid& grid,
+                    const ImageF& fine,
+                    const Eigen::Vector2i& image_origin,
+                    ImageF* image) {
+  const int s = grid.scale;
+  const int radius = static_cast<int>(std::ceil(4.0 * s * sigma_px));
+  const std::vector<float> gauss = GaussianKernel(s * sigma_px, radius);
+  // pixel[d + radius] = (1/s) Σ_{m<s} gauss(m - d) weighs the sub-pixel d from a pixel's first
+  // one; zeros pad it to `groups` groups of s.
+  const int groups = (2 * radius + s + s - 1) / s;
+  std::vector<float> pixel(static_cast<size_t>(groups * s), 0.0f);
+  for (int d = -radius; d < radius + s; ++d) {
+    for (int m = std::max(0, d - radius); m < std::min(s, d + radius + 1); ++m) {
+      pixel[static_cast<size_t>(d + radius)] += gauss[static_cast<size_t>(m - d + radius)] / s;
+    }
+  }
+  const int w = grid.region.x1 - grid.region.x0, h = grid.region.y1 - grid.region.y0;
+  std::vector<float> columns(static_cast<size_t>(h) * fine.width);  // the vertical pass
+  // One row of it in s phases: phases[p · span + k] = row[s·k + p - radius] (clamped).
+  const int span = w + groups;
+  std::vector<float> phases(static_cast<size_t>(s) * span);
+  for (int c = 0; c < image->channels; ++c) {
+    const float* src = fine.plane(c);
+    for (int v = 0; v < h; ++v) {
+      float* out = columns.data() + static_cast<size_t>(v) * fine.width;
+      std::fill_n(out, fine.width, 0.0f);
+      for (int t = 0; t < groups * s; ++t) {
+        const float weight = pixel[static_cast<size_t>(t)];
+        const int j = std::clamp(s * v - radius + t, 0, fine.height - 1);
+        const float* in = src + static_cast<size_t>(j) * fine.width;
+        for (int i = 0; i < fine.width; ++i) out[i] += weight * in[i];
+      }
+    }
+    float* dst = image->plane(c);
+    for (int v = 0; v < h; ++v) {
+      const float* row = columns.data() + static_cast<size_t>(v) * fine.width;
+      for (int p = 0; p < s; ++p) {
+        for (int k = 0; k < span; ++k) {
+          phases[static_cast<size_t>(p * span + k)] =
+              row[std::clamp(s * k + p - radius, 0, fine.width - 1)];
+        }
+      }
+      float* out = dst + static_cast<size_t>(grid.region.y0 - image_origin.y() + v) * image->width +
+                   (grid.region.x0 - image_origin.x());
+      std::fill_n(out, w, 0.0f);
+      for (int q = 0; q < groups; ++q) {
+        for (int p = 0; p < s; ++p) {
+          const float weight = pixel[static_cast<size_t>(s * q + p)];
+          const float* in = phases.data() + static_cast<size_t>(p * span + q);
+          for (int u = 0; u < w; ++u) out[u] += weight * in[u];
+        }
+      }
+    }
+  }
+}
+
 PixelRect MotionBlur(double length_px, double angle_deg, const PixelRect& roi, ImageF* image) {
   if (!(length_px > 0.0) || roi.Empty()) return roi;
   const PixelRect out = Grow(roi, static_cast<int>(std::ceil(0.5 * length_px)) + 1, *image);

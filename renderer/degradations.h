@@ -9,6 +9,7 @@
 
 #include "core/image.h"
 #include "renderer/rasterizer.h"
+#include "renderer/subpixel_grid.h"
 
 namespace markerbench {
 
@@ -50,6 +51,16 @@ int BlurSubsampling(double sigma_px);
 // kernel radius (the image is constant outside `roi`). Borders are clamped; RenderFrame renders a
 // margin so the visible image never sees them. Returns the grown non-constant region.
 PixelRect GaussianBlur(double sigma_px, const PixelRect& roi, ImageF* image);
+// For `fine`, an image on `grid` (scale s): GaussianBlur's kernel of σ·s sub-pixels, then each
+// pixel of the grid's region the mean of its s×s sub-pixels, written into `image`, whose pixel
+// (0, 0) is canvas pixel `image_origin`. Computed at the pixels only: one pass along each axis
+// with the kernel summed over a pixel's s sub-pixels, read every s-th sub-pixel (borders
+// clamped).
+void BlurOntoPixels(double sigma_px,
+                    const SubpixelGrid& grid,
+                    const ImageF& fine,
+                    const Eigen::Vector2i& image_origin,
+                    ImageF* image);
 PixelRect MotionBlur(double length_px, double angle_deg, const PixelRect& roi, ImageF* image);
 void ApplyLighting(const Degradations& degradations, ImageF* image);
 // Adds noise (seeded) to `image` in place, clips it to [0, 1], and returns it quantised to

@@ -69,6 +69,37 @@ TEST(Degradations, BlurredEdgeIsTheContinuousModel) {
   }
 }
 
+// BlurOntoPixels is GaussianBlur on the grid, then each pixel's mean of its sub-pixels.
+TEST(Degradations, BlurOntoPixelsIsTheBlurOnTheGridAveragedOverEachPixel) {
+  constexpr float kTol = 1e-5f;               // float sums in another order
+  const SubpixelGrid grid{3, {2, 1, 12, 9}};  // 10×8 pixels, 30×24 sub-pixels
+  ImageF fine(30, 24, 2);
+  Rng rng(5);
+  for (float& value : fine.data) value = static_cast<float>(rng.Uniform(0.0, 1.0));
+  for (const double sigma : {0.4, 1.1}) {
+    ImageF blurred = fine;
+    GaussianBlur(3 * sigma, {0, 0, 30, 24}, &blurred);
+    ImageF image(14, 10, 2);  // its pixel (0, 0) is canvas pixel (1, 0)
+    std::fill(image.data.begin(), image.data.end(), -1.0f);
+    BlurOntoPixels(sigma, grid, fine, {1, 0}, &image);
+    for (int c = 0; c < 2; ++c) {
+      for (int y = 0; y < 10; ++y) {
+        for (int x = 0; x < 14; ++x) {
+          const int u = x + 1 - 2, v = y - 1;  // the pixel in the region
+          float expected = -1.0f;              // outside it: untouched
+          if (u >= 0 && u < 10 && v >= 0 && v < 8) {
+            expected = 0.0f;
+            for (int j = 3 * v; j < 3 * v + 3; ++j) {
+              for (int i = 3 * u; i < 3 * u + 3; ++i) expected += blurred.at(i, j, c) / 9.0f;
+            }
+          }
+          EXPECT_NEAR(image.at(x, y, c), expected, kTol) << sigma << ": " << x << ", " << y;
+        }
+      }
+    }
+  }
+}
+
 TEST(Degradations, MotionBlurSpreadsTheEdgeOverItsLength) {
   const MarkerSpec square = BlackSquareMarker(0.0, -0.15, 0.3);
   FrameRequest request = SquareEdgeRequest(square);

@@ -287,13 +287,18 @@ Matrix6d PoseFisherInformation(const FrameRequest& request, const CrlbOptions& o
           });
     }
   }
-  const PixelRect local{s * (deposits.x0 - area.x0),
-                        s * (deposits.y0 - area.y0),
-                        s * (deposits.x1 - area.x0),
-                        s * (deposits.y1 - area.y0)};
-  const PixelRect blurred = grid.Coarsen(GaussianBlur(s * d.blur_sigma_px, local, &fine));
-  ImageF derivative(area.x1 - area.x0, area.y1 - area.y0, 6 * channels);
-  grid.AverageInto(fine, {area.x0, area.y0}, &derivative);
+  ImageF derivative;
+  PixelRect blurred;
+  if (s == 1) {
+    const PixelRect local{
+        deposits.x0 - area.x0, deposits.y0 - area.y0, deposits.x1 - area.x0, deposits.y1 - area.y0};
+    blurred = GaussianBlur(d.blur_sigma_px, local, &fine);
+    derivative = std::move(fine);
+  } else {
+    derivative = ImageF(area.x1 - area.x0, area.y1 - area.y0, 6 * channels);
+    BlurOntoPixels(d.blur_sigma_px, grid, fine, {area.x0, area.y0}, &derivative);
+    blurred = {0, 0, derivative.width, derivative.height};
+  }
   MotionBlur(d.motion_blur_px, d.motion_blur_angle_deg, blurred, &derivative);
 
   // F over the image's pixels; lighting scales the image by the gain.

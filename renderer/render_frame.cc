@@ -166,9 +166,8 @@ PixelRect BlurOptics(const Scene& canvas_scene,
                            std::max(0, ink.y0 - reach),
                            std::min(raster->image.width, ink.x1 + reach),
                            std::min(raster->image.height, ink.y1 + reach)}};
-  RasterResult fine = RasterizeOnGrid(canvas_scene, request, margin, grid);
-  GaussianBlur(scale * sigma, fine.nonuniform, &fine.image);
-  grid.AverageInto(fine.image, Eigen::Vector2i::Zero(), &raster->image);
+  const RasterResult fine = RasterizeOnGrid(canvas_scene, request, margin, grid);
+  BlurOntoPixels(sigma, grid, fine.image, Eigen::Vector2i::Zero(), &raster->image);
   return grid.region;
 }
 

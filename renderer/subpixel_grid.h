@@ -9,7 +9,6 @@
 #include <Eigen/Core>
 
 #include "core/camera.h"
-#include "core/image.h"
 #include "renderer/rasterizer.h"
 
 namespace markerbench {
@@ -26,12 +25,6 @@ struct SubpixelGrid {
   // mapped as a point and shifted to the region (distortion acts on normalised coordinates,
   // before the intrinsics, and is unchanged).
   Camera FineCamera(const Camera& canvas_camera) const;
-  // Writes the mean of each s×s block of `fine` (an image on the grid) into the region's
-  // pixels of `image`, whose pixel (0, 0) is canvas pixel `image_origin`.
-  void AverageInto(const ImageF& fine, const Eigen::Vector2i& image_origin, ImageF* image) const;
-  // The pixels, relative to the region, that hold the sub-pixels `fine_rect` (non-negative,
-  // relative to the grid's image).
-  PixelRect Coarsen(const PixelRect& fine_rect) const;
 };
 
 }  // namespace markerbench

@@ -56,35 +56,5 @@ TEST(SubpixelGrid, ScaleOneIsTheCanvasExactly) {
   EXPECT_EQ(grid.CanvasRow(37.5), 37.5);
 }
 
-TEST(SubpixelGrid, AveragesBlocksIntoTheRegionOnly) {
-  const SubpixelGrid grid{3, {2, 1, 4, 3}};  // 2×2 pixels, 6×6 sub-pixels
-  ImageF fine(6, 6, 2);
-  for (int c = 0; c < 2; ++c) {
-    for (int j = 0; j < 6; ++j) {
-      for (int i = 0; i < 6; ++i) fine.plane(c)[j * 6 + i] = static_cast<float>(i + 10 * j + c);
-    }
-  }
-  ImageF image(5, 4, 2);  // its pixel (0, 0) is canvas pixel (1, 0)
-  std::fill(image.data.begin(), image.data.end(), -1.0f);
-  grid.AverageInto(fine, {1, 0}, &image);
-  for (int c = 0; c < 2; ++c) {
-    for (int v = 0; v < 4; ++v) {
-      for (int x = 0; x < 5; ++x) {
-        const int u = x + 1;
-        const bool inside = u >= 2 && u < 4 && v >= 1 && v < 3;
-        // The block's mean of i + 10 j: its centre's.
-        const double expected = inside ? 3 * (u - 2) + 1 + 10 * (3 * (v - 1) + 1) + c : -1.0;
-        EXPECT_NEAR(image.at(x, v, c), expected, 1e-5) << x << ", " << v << ", " << c;
-      }
-    }
-  }
-  EXPECT_EQ(grid.Coarsen({0, 0, 6, 6}).x1, 2);
-  const PixelRect partial = grid.Coarsen({1, 3, 4, 5});
-  EXPECT_EQ(partial.x0, 0);
-  EXPECT_EQ(partial.y0, 1);
-  EXPECT_EQ(partial.x1, 2);
-  EXPECT_EQ(partial.y1, 2);
-}
-
 }  // namespace
 }  // namespace markerbench
