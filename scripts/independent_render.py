@@ -6,9 +6,10 @@ This one re-renders each frame of a dataset that `markerbench render` wrote, fro
 ground truth alone, by other means than renderer/: each pixel's ink is the mean of 8x8 point
 samples of the marker plane (renderer/ integrates the exact area of each shape), the optics'
 blur is OpenCV's GaussianBlur (on the point samples below 3.5 px, where a kernel sampled at
-whole pixels would miss the continuous blur by more than half a level), and the noise comes from numpy's generator (then clipped to
-[0, 1] and rounded to 8 bits, imnoise's model). Pixel centres lie at integer coordinates.
-Markers of disks only (circles_a-c, circle_d); no motion blur, JPEG or sequences.
+whole pixels would miss the continuous blur by more than half a level), and the noise comes
+from numpy's generator (then clipped to [0, 1] and rounded to 8 bits, imnoise's model). Pixel
+centres lie at integer coordinates. Markers of disks only (circles_a-c, circle_d); no motion
+blur, JPEG or sequences.
 
   independent_render.py SCENARIO... --out DIR [--datasets DIR] [--markerbench PATH]
                         [--tracker circle]

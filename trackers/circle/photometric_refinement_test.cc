@@ -154,7 +154,7 @@ TEST(PhotometricRefinement, ModelsOverlappingHeavilyBlurredEdges) {
 // its area after a Gaussian blur, as the renderer does. Fitted from the truth at 20° and 35° of
 // tilt (measured: residuals of 0.29-0.41 grey levels RMS, the rounding's 0.29 from σ = 1 px; the
 // pose 0.008-0.028 mm off without blur, 0.007-0.025 at 1 and 2 px, where the bound is about 0.015
-// mm; 0.07-0.13 mm at 0.3 and 0.6 px, the same with the scene rendered 4× finer). With a Gaussian
+// mm; 0.07-0.13 mm at 0.3 and 0.6 px, the same on a grid 2-3× finer again). With a Gaussian
 // σ that also took the pixel's area, the residuals were 3.2 levels without blur and the pose
 // 0.08-0.19 mm off; with the renderer's former kernel sampled at whole pixels, 5 levels and
 // 0.46-0.65 mm at 0.6 px, 0.8 levels and 0.07-0.10 mm at 1 px.
