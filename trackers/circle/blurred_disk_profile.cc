@@ -13,6 +13,7 @@ constexpr double kMinT = 1.0 / kMaxS, kMaxT = 1.0 / kMinS;
 constexpr int kTSteps = 160;
 constexpr double kMaxZ = 7.0, kZStep = 0.05;
 constexpr int kZSteps = static_cast<int>(2 * kMaxZ / kZStep);
+constexpr size_t kRowSize = static_cast<size_t>(kZSteps) + 1;  // z values a table row
 
 // e^{-y} I₀(y), y >= 0 (Abramowitz and Stegun 9.8.1-9.8.2).
 double ScaledBesselI0(double y) {
@@ -54,12 +55,12 @@ double Integrate(double s, double z) {
 // G and its first and second integrals in z from -kMaxZ (cumulative trapezoids: their error,
 // h²/12 times the integrand's derivative, is below 2e-4 and smooth in z).
 struct Table {
-  static constexpr size_t kSize = static_cast<size_t>(kTSteps + 1) * (kZSteps + 1);
+  static constexpr size_t kSize = static_cast<size_t>(kTSteps + 1) * kRowSize;
   std::vector<double> values, first, second;  // (kTSteps + 1) x (kZSteps + 1), t-major
   Table() : values(kSize), first(kSize), second(kSize) {
     for (int i = 0; i <= kTSteps; ++i) {
       const double s = 1.0 / (kMinT + (kMaxT - kMinT) * i / kTSteps);
-      const size_t row = static_cast<size_t>(i) * (kZSteps + 1);
+      const size_t row = Row(i);
       for (int j = 0; j <= kZSteps; ++j) {
         values[row + j] = Integrate(s, -kMaxZ + j * kZStep);
         if (j == 0) continue;
@@ -70,7 +71,7 @@ struct Table {
       }
     }
   }
-  static size_t Row(int i) { return static_cast<size_t>(i) * (kZSteps + 1); }
+  static size_t Row(int i) { return static_cast<size_t>(i) * kRowSize; }
 };
 
 const Table& TheTable() {
@@ -85,12 +86,9 @@ BlurredDiskProfile::BlurredDiskProfile(double s) {
   const double t = 1.0 / (s > kMinS ? std::min(s, kMaxS) : kMinS);  // NaN: the smallest
   const double ti = (t - kMinT) / (kMaxT - kMinT) * kTSteps;
   const int i = std::min(static_cast<int>(ti), kTSteps - 1);
-  row0_ = table.values.data() + Table::Row(i);
-  row1_ = table.values.data() + Table::Row(i + 1);
-  first0_ = table.first.data() + Table::Row(i);
-  first1_ = table.first.data() + Table::Row(i + 1);
-  second0_ = table.second.data() + Table::Row(i);
-  second1_ = table.second.data() + Table::Row(i + 1);
+  values_ = table.values.data() + Table::Row(i);
+  first_ = table.first.data() + Table::Row(i);
+  second_ = table.second.data() + Table::Row(i);
   weight_ = ti - i;
   // dt/ds = -1/s² (zero where s is clamped).
   if (s > kMinS && s < kMaxS) d_weight_ds_ = kTSteps / (kMaxT - kMinT) * (-t * t);
@@ -106,7 +104,8 @@ ProfileValue BlurredDiskProfile::At(double z) const {
   const double zj = (z + kMaxZ) / kZStep;
   const int j = std::min(static_cast<int>(zj), kZSteps - 1);
   const double fz = zj - j, ft = weight_;
-  const double g00 = row0_[j], g01 = row0_[j + 1], g10 = row1_[j], g11 = row1_[j + 1];
+  const double* next = values_ + kRowSize;
+  const double g00 = values_[j], g01 = values_[j + 1], g10 = next[j], g11 = next[j + 1];
   out.value = (1 - ft) * ((1 - fz) * g00 + fz * g01) + ft * ((1 - fz) * g10 + fz * g11);
   out.d_dz = ((1 - ft) * (g01 - g00) + ft * (g11 - g10)) / kZStep;
   out.d_ds = ((1 - fz) * (g10 - g00) + fz * (g11 - g01)) * d_weight_ds_;
@@ -134,13 +133,13 @@ BlurredDiskProfile::Integral BlurredDiskProfile::SecondIntegralAt(double x) cons
         d_value0 * second[j] + d_slope0 * first[j] + d_value1 * second[j + 1] +
             d_slope1 * first[j + 1] + beyond};
   };
-  const auto [value_row0, slope_row0] = row_integral(first0_, second0_);
+  const auto [value_row0, slope_row0] = row_integral(first_, second_);
   if (weight_ == 0.0 && d_weight_ds_ == 0.0) {  // s at its clamp (a sharp edge): one row
     out.value = value_row0;
     out.d_dx = slope_row0;
     return out;
   }
-  const auto [value_row1, slope_row1] = row_integral(first1_, second1_);
+  const auto [value_row1, slope_row1] = row_integral(first_ + kRowSize, second_ + kRowSize);
   out.value = (1.0 - weight_) * value_row0 + weight_ * value_row1;
   out.d_dx = (1.0 - weight_) * slope_row0 + weight_ * slope_row1;
   out.d_ds = (value_row1 - value_row0) * d_weight_ds_;

@@ -51,13 +51,12 @@ class BlurredDiskProfile {
   };
   Integral SecondIntegralAt(double x) const;
 
-  const double* row0_;  // the two table rows around s, of G and of its two integrals
-  const double* row1_;
-  const double* first0_;
-  const double* first1_;
-  const double* second0_;
-  const double* second1_;
-  double weight_ = 0.0;  // of the rows 1
+  // The first of the two table rows around s, of G and of its two integrals in z (the second
+  // follows it).
+  const double* values_;
+  const double* first_;
+  const double* second_;
+  double weight_ = 0.0;  // of the second rows
   double d_weight_ds_ = 0.0;
 };
 
