@@ -15,13 +15,6 @@ namespace {
 
 constexpr double kPi = 3.14159265358979323846;
 
-PixelRect Grow(const PixelRect& r, int by, const ImageF& image) {
-  return {std::max(0, r.x0 - by),
-          std::max(0, r.y0 - by),
-          std::min(image.width, r.x1 + by),
-          std::min(image.height, r.y1 + by)};
-}
-
 std::vector<float> GaussianKernel(double sigma, int radius) {
   std::vector<float> kernel(static_cast<size_t>(2 * radius + 1));
   double sum = 0.0;
@@ -63,6 +56,13 @@ int Degradations::MarginPx() const {
   return margin;
 }
 
+PixelRect GrowWithin(const PixelRect& r, int by, const ImageF& image) {
+  return {std::max(0, r.x0 - by),
+          std::max(0, r.y0 - by),
+          std::min(image.width, r.x1 + by),
+          std::min(image.height, r.y1 + by)};
+}
+
 int BlurSubsampling(double sigma_px) {
   if (!(sigma_px > 0.0) || sigma_px >= kMinSampledBlurSigma) return 1;
   return std::min(kMaxBlurSubsampling,
@@ -73,7 +73,7 @@ PixelRect GaussianBlur(double sigma_px, const PixelRect& roi, ImageF* image) {
   if (!(sigma_px > 0.0) || roi.Empty()) return roi;
   const int radius = static_cast<int>(std::ceil(4.0 * sigma_px));
   const std::vector<float> kernel = GaussianKernel(sigma_px, radius);
-  const PixelRect out = Grow(roi, radius, *image);
+  const PixelRect out = GrowWithin(roi, radius, *image);
   const int w = image->width, h = image->height;
   const int span = out.x1 - out.x0;
   std::vector<float> row(static_cast<size_t>(span + 2 * radius));
@@ -167,7 +167,7 @@ void BlurOntoPixels(double sigma_px,
 
 PixelRect MotionBlur(double length_px, double angle_deg, const PixelRect& roi, ImageF* image) {
   if (!(length_px > 0.0) || roi.Empty()) return roi;
-  const PixelRect out = Grow(roi, static_cast<int>(std::ceil(0.5 * length_px)) + 1, *image);
+  const PixelRect out = GrowWithin(roi, static_cast<int>(std::ceil(0.5 * length_px)) + 1, *image);
   // Midpoint rule along the segment, 4 bilinear samples per pixel of length.
   const int samples = std::max(2, static_cast<int>(std::ceil(4.0 * length_px)));
   const double a = angle_deg * kPi / 180.0;

@@ -36,6 +36,9 @@ struct Degradations {
   int MarginPx() const;
 };
 
+// `r` grown by `by` pixels on every side, within `image`.
+PixelRect GrowWithin(const PixelRect& r, int by, const ImageF& image);
+
 // The optics blur the scene continuously and each pixel averages the result over its area.
 // A Gaussian kernel sampled at integers (radius ceil(4σ)) on the pixel-averaged scene is within
 // 0.42 of an 8-bit level of that on a full-contrast edge from σ = kMinSampledBlurSigma (1.2 at

@@ -160,12 +160,8 @@ PixelRect BlurOptics(const Scene& canvas_scene,
   const int scale = BlurSubsampling(sigma);
   const PixelRect& ink = raster->nonuniform;
   if (scale == 1 || ink.Empty()) return GaussianBlur(sigma, ink, &raster->image);
-  const int reach = static_cast<int>(std::ceil(4.0 * sigma));
   const SubpixelGrid grid{scale,
-                          {std::max(0, ink.x0 - reach),
-                           std::max(0, ink.y0 - reach),
-                           std::min(raster->image.width, ink.x1 + reach),
-                           std::min(raster->image.height, ink.y1 + reach)}};
+                          GrowWithin(ink, static_cast<int>(std::ceil(4.0 * sigma)), raster->image)};
   const RasterResult fine = RasterizeOnGrid(canvas_scene, request, margin, grid);
   BlurOntoPixels(sigma, grid, fine.image, Eigen::Vector2i::Zero(), &raster->image);
   return grid.region;
