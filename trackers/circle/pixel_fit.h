@@ -87,16 +87,19 @@ inline Eigen::VectorXd StepWithinSigmaBound(const Eigen::MatrixXd& damped,
                                             double min_sigma) {
   Eigen::VectorXd step = damped.ldlt().solve(-jtr);
   if (sigma + step[6] >= min_sigma) return step;
-  const int n = static_cast<int>(jtr.size());
-  std::vector<int> others;
-  for (int i = 0; i < n; ++i) {
-    if (i != 6) others.push_back(i);
-  }
+  // The equations without σ's row and column (an index list for Eigen's indexed views takes
+  // GCC 12 to a false -Wfree-nonheap-object where this is inlined).
+  const int others = static_cast<int>(jtr.size()) - 1;
+  const auto other = [](int i) { return i < 6 ? i : i + 1; };
   const double sigma_step = min_sigma - sigma;
-  const Eigen::MatrixXd reduced = damped(others, others);
-  const Eigen::VectorXd rest =
-      reduced.ldlt().solve(-(jtr(others) + damped(others, 6) * sigma_step));
-  step(others) = rest;
+  Eigen::MatrixXd reduced(others, others);
+  Eigen::VectorXd rhs(others);
+  for (int i = 0; i < others; ++i) {
+    for (int j = 0; j < others; ++j) reduced(i, j) = damped(other(i), other(j));
+    rhs[i] = -(jtr[other(i)] + damped(other(i), 6) * sigma_step);
+  }
+  const Eigen::VectorXd rest = reduced.ldlt().solve(rhs);
+  for (int i = 0; i < others; ++i) step[other(i)] = rest[i];
   step[6] = sigma_step;
   return step;
 }
