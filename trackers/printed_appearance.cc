@@ -45,6 +45,29 @@ Rgb BlurredColor(const MarkerSpec& marker,
   return sum;
 }
 
+// A part's shared residual: the mean of its blocks' products of two means, each weighted by
+// its samples (an estimate of the squared misfit over the part), and its standard error.
+struct SharedResidual {
+  double weight = 0.0, sum = 0.0;
+  double sum_w2 = 0.0, sum_w2_product = 0.0, sum_w2_product2 = 0.0;  // weights squared
+  void Add(double samples, double product) {
+    weight += samples;
+    sum += samples * product;
+    const double w2 = samples * samples;
+    sum_w2 += w2;
+    sum_w2_product += w2 * product;
+    sum_w2_product2 += w2 * product * product;
+  }
+  double Mean() const { return sum / weight; }
+  // sqrt(Σ w² (product - mean)²) / Σ w.
+  double StandardError() const {
+    const double mean = Mean();
+    return std::sqrt(std::max(
+               0.0, sum_w2_product2 - 2.0 * mean * sum_w2_product + mean * mean * sum_w2)) /
+           weight;
+  }
+};
+
 // The fit on a grid x grid lattice.
 AppearanceFit FitOnGrid(const Image8& image,
                         const Camera& camera,
@@ -80,10 +103,14 @@ AppearanceFit FitOnGrid(const Image8& image,
     double x[2];
     double y[2];
     int part;  // the top-most layer at the sample + 1; 0: the paper
+    int i, j;  // the sample's lattice point
+    int channel;
+    bool in_blocks;  // in blocks of more than one: no pair in them read its pixels before
   };
   std::vector<Pair> pairs;
   pairs.reserve(static_cast<size_t>(grid * grid * image.channels));
-  std::unordered_set<int64_t> read;  // pixels already read, v * width + u
+  // Pixels read as a pair's first; by pairs in blocks. Each v * width + u.
+  std::unordered_set<int64_t> read_first, read_in_blocks;
   AppearanceFit fit;
   fit.grid = grid;
   for (int i = 0; i < grid; ++i) {
@@ -100,9 +127,15 @@ AppearanceFit FitOnGrid(const Image8& image,
       }
       const int u = static_cast<int>(std::lround(px.x()));
       const int v = static_cast<int>(std::lround(px.y()));
-      // Where the lattice is finer than the pixels (a far marker), a pixel is read once: the
-      // standard errors count independent readings.
-      if (!read.insert(static_cast<int64_t>(v) * image.width + u).second) continue;
+      // Where the lattice is finer than the pixels (a far marker), a pixel is read once as a
+      // pair's first: the standard errors count independent readings. A pixel may be one
+      // pair's second and another's first; the blocks (below) take only pairs whose pixels no
+      // pair in blocks read before, so that no block's two means share a pixel's noise.
+      const int64_t first = static_cast<int64_t>(v) * image.width + u;
+      if (!read_first.insert(first).second) continue;
+      const bool in_blocks =
+          read_in_blocks.count(first) == 0 && read_in_blocks.count(first + 2) == 0;
+      if (in_blocks) read_in_blocks.insert({first, first + 2});
       Eigen::Matrix2d px_from_plane;
       px_from_plane << (lattice_px[right] - px) / spacing.x(), (lattice_px[up] - px) / spacing.y();
       ++fit.samples;
@@ -122,6 +155,10 @@ AppearanceFit FitOnGrid(const Image8& image,
       for (int c = 0; c < image.channels; ++c) {
         Pair pair;
         pair.part = at_p.layer + 1;
+        pair.i = i;
+        pair.j = j;
+        pair.channel = c;
+        pair.in_blocks = in_blocks;
         for (int k = 0; k < 2; ++k) {
           pair.x[k] = image.channels == 3 ? printed[k][c] : Luma(printed[k]);
           pair.y[k] = image.at(u + 2 * k, v, c) / 255.0;
@@ -149,38 +186,69 @@ AppearanceFit FitOnGrid(const Image8& image,
   const double offset = (sy - fit.contrast * sx) / n;
   if (!(fit.contrast > 0.0)) return fit;
   fit.surely_misfits = false;
-  // The shared residual per part of the design, and over all of it: a missing dot is a small
-  // part of the whole, but the whole of its part.
-  struct Shared {
-    double sum = 0.0, sum_squares = 0.0, count = 0.0;
-  };
-  std::vector<Shared> parts(marker.layers.size() + 2);  // the last: everything
-  for (const Pair& pair : pairs) {
-    const double product = (pair.y[0] - offset - fit.contrast * pair.x[0]) *
-                           (pair.y[1] - offset - fit.contrast * pair.x[1]);
-    for (Shared* shared : {&parts[pair.part], &parts.back()}) {
-      shared->sum += product;
-      shared->sum_squares += product * product;
-      shared->count += 1;
-    }
-  }
   fit.misfit = 0.0;
   fit.misfit_upper = 0.0;
-  for (const Shared& shared : parts) {
-    if (shared.count < options.min_part_values) continue;
-    const double mean = shared.sum / shared.count;
-    const double standard_error =
-        std::sqrt(std::max(0.0, shared.sum_squares / shared.count - mean * mean) / shared.count);
-    const double misfit = std::sqrt(std::max(0.0, mean)) / fit.contrast;
-    const double significance = standard_error > 0.0 ? mean / standard_error : 0.0;
-    const double upper =
-        std::sqrt(std::max(0.0, mean + options.min_significance * standard_error)) / fit.contrast;
-    fit.misfit_upper = std::max(fit.misfit_upper, upper);
-    fit.surely_misfits |= misfit > options.max_misfit && significance > options.min_significance;
-    // Report the part that misfits most surely.
-    if (significance * misfit > fit.significance * fit.misfit) {
-      fit.misfit = misfit;
-      fit.significance = significance;
+  // The shared residual per part of the design, and over all of it: a missing dot is a small
+  // part of the whole, but the whole of its part.
+  const int parts = static_cast<int>(marker.layers.size()) + 2;  // the last: everything
+  std::vector<int> block_sides = {1};  // in lattice points; 1: each pair alone
+  if (options.blocks_per_side > 0 && grid / options.blocks_per_side > 1) {
+    block_sides.push_back(grid / options.blocks_per_side);
+  }
+  for (const int block : block_sides) {
+    // The residuals' means over each block of block x block lattice points, per part and
+    // channel, at the pairs' first and second pixels: a wrong design misfits alike over a
+    // block, the noise averages out. Pairs come row by row, so blocks fill a row at a time.
+    struct Means {
+      double sum[2] = {0.0, 0.0};
+      double count = 0.0;
+    };
+    const int blocks_per_row = (grid + block - 1) / block;
+    std::vector<Means> row(static_cast<size_t>(blocks_per_row * parts * image.channels));
+    std::vector<SharedResidual> shared(static_cast<size_t>(parts));
+    auto add_row = [&]() {
+      for (size_t e = 0; e < row.size(); ++e) {
+        Means& m = row[e];
+        if (m.count == 0.0) continue;
+        shared[(e / image.channels) % parts].Add(m.count,
+                                                 m.sum[0] * m.sum[1] / (m.count * m.count));
+        m = Means();
+      }
+    };
+    int row_of_blocks = 0;
+    for (const Pair& pair : pairs) {
+      if (block > 1 && !pair.in_blocks) continue;
+      if (pair.i / block != row_of_blocks) {
+        add_row();
+        row_of_blocks = pair.i / block;
+      }
+      for (const int part : {pair.part, parts - 1}) {
+        Means& m = row[(static_cast<size_t>(pair.j / block) * parts + part) * image.channels +
+                       pair.channel];
+        for (int k = 0; k < 2; ++k) m.sum[k] += pair.y[k] - offset - fit.contrast * pair.x[k];
+        m.count += 1;
+      }
+    }
+    add_row();
+    for (const SharedResidual& part : shared) {
+      if (part.weight < options.min_part_values) continue;
+      const double mean = part.Mean();
+      const double standard_error = part.StandardError();
+      const double misfit = std::sqrt(std::max(0.0, mean)) / fit.contrast;
+      const double significance = standard_error > 0.0 ? mean / standard_error : 0.0;
+      if (block == 1) {  // a bound of the misfit; the blocks' bounds that of its smooth part
+        const double upper =
+            std::sqrt(std::max(0.0, mean + options.min_significance * standard_error)) /
+            fit.contrast;
+        fit.misfit_upper = std::max(fit.misfit_upper, upper);
+      }
+      const double max_misfit = block == 1 ? options.max_misfit : options.max_block_misfit;
+      fit.surely_misfits |= misfit > max_misfit && significance > options.min_significance;
+      // Report the part that misfits most surely.
+      if (significance * misfit > fit.significance * fit.misfit) {
+        fit.misfit = misfit;
+        fit.significance = significance;
+      }
     }
   }
   return fit;
