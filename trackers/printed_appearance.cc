@@ -4,7 +4,6 @@
 #include <array>
 #include <cmath>
 #include <limits>
-#include <unordered_set>
 #include <vector>
 
 namespace markerbench {
@@ -109,8 +108,26 @@ AppearanceFit FitOnGrid(const Image8& image,
   };
   std::vector<Pair> pairs;
   pairs.reserve(static_cast<size_t>(grid * grid * image.channels));
-  // Pixels read as a pair's first; by pairs in blocks. Each v * width + u.
-  std::unordered_set<int64_t> read_first, read_in_blocks;
+  // Both pixels of a pair at px, (u, v) and (u + 2, v), in the image (compared before any
+  // rounding, so that points far off it, or not finite, never reach an integer).
+  auto pair_in_image = [&](const Eigen::Vector2d& px) {
+    return px.x() > -0.5 && px.y() > -0.5 && px.x() < image.width - 2.5 &&
+           px.y() < image.height - 0.5;
+  };
+  // Per pixel of the rectangle the pairs read: read as a pair's first (bit 1), by a pair in
+  // blocks (bit 2).
+  Eigen::AlignedBox2i pixels_read;
+  for (size_t k = 0; k < lattice_px.size(); ++k) {
+    if (!in_front[k] || !pair_in_image(lattice_px[k])) continue;
+    const Eigen::Vector2i first(static_cast<int>(std::lround(lattice_px[k].x())),
+                                static_cast<int>(std::lround(lattice_px[k].y())));
+    pixels_read.extend(first);
+    pixels_read.extend(first + Eigen::Vector2i(2, 0));
+  }
+  const int read_width = pixels_read.isEmpty() ? 0 : pixels_read.sizes().x() + 1;
+  constexpr uint8_t kReadFirst = 1, kReadInBlocks = 2;
+  std::vector<uint8_t> read(
+      pixels_read.isEmpty() ? 0 : static_cast<size_t>(read_width) * (pixels_read.sizes().y() + 1));
   AppearanceFit fit;
   fit.grid = grid;
   for (int i = 0; i < grid; ++i) {
@@ -119,23 +136,22 @@ AppearanceFit FitOnGrid(const Image8& image,
       if (!in_front[here] || !in_front[right] || !in_front[up]) continue;
       const Eigen::Vector2d p = lattice_point(i, j);
       const Eigen::Vector2d& px = lattice_px[here];
-      // Both pixels, (u, v) and (u + 2, v), in the image (compared before any rounding, so
-      // that points far off it, or not finite, never reach an integer).
-      if (!(px.x() > -0.5 && px.y() > -0.5 && px.x() < image.width - 2.5 &&
-            px.y() < image.height - 0.5)) {
-        continue;
-      }
+      if (!pair_in_image(px)) continue;
       const int u = static_cast<int>(std::lround(px.x()));
       const int v = static_cast<int>(std::lround(px.y()));
       // Where the lattice is finer than the pixels (a far marker), a pixel is read once as a
       // pair's first: the standard errors count independent readings. A pixel may be one
       // pair's second and another's first; the blocks (below) take only pairs whose pixels no
       // pair in blocks read before, so that no block's two means share a pixel's noise.
-      const int64_t first = static_cast<int64_t>(v) * image.width + u;
-      if (!read_first.insert(first).second) continue;
-      const bool in_blocks =
-          read_in_blocks.count(first) == 0 && read_in_blocks.count(first + 2) == 0;
-      if (in_blocks) read_in_blocks.insert({first, first + 2});
+      uint8_t* first = &read[static_cast<size_t>(v - pixels_read.min().y()) * read_width + u -
+                             pixels_read.min().x()];
+      if (*first & kReadFirst) continue;
+      *first |= kReadFirst;
+      const bool in_blocks = !(first[0] & kReadInBlocks) && !(first[2] & kReadInBlocks);
+      if (in_blocks) {
+        first[0] |= kReadInBlocks;
+        first[2] |= kReadInBlocks;
+      }
       Eigen::Matrix2d px_from_plane;
       px_from_plane << (lattice_px[right] - px) / spacing.x(), (lattice_px[up] - px) / spacing.y();
       ++fit.samples;
