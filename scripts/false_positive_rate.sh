@@ -25,7 +25,8 @@ out=results/circle_false_positives.md
   echo
   echo "Each find: the marker, the frame, the image's noise σ as the tracker estimated it (0-1)"
   echo "and the design's misfit at the pose found (printed_appearance.h: a fraction of the"
-  echo "contrast; the check rejects only a misfit above 0.1 by more than 4 standard errors)."
+  echo "contrast, over pixel pairs or blocks of them; the check rejects only a misfit above 0.1,"
+  echo "over blocks 0.25, by more than 4 standard errors)."
   echo
   sed -n 's/^FIND /- /p' "$log"
 } > "$out.tmp"

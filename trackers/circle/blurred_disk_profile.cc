@@ -8,8 +8,8 @@
 namespace markerbench {
 namespace {
 
-constexpr double kMinS = 0.5, kMaxS = 40.0;
-constexpr double kMinT = 1.0 / kMaxS, kMaxT = 1.0 / kMinS;
+constexpr double kMinS = 0.5;
+constexpr double kMinT = 0.0, kMaxT = 1.0 / kMinS;  // t = 1/s; t = 0 a straight edge
 constexpr int kTSteps = 160;
 constexpr double kMaxZ = 7.0, kZStep = 0.05;
 constexpr int kZSteps = static_cast<int>(2 * kMaxZ / kZStep);
@@ -59,10 +59,11 @@ struct Table {
   std::vector<double> values, first, second;  // (kTSteps + 1) x (kZSteps + 1), t-major
   Table() : values(kSize), first(kSize), second(kSize) {
     for (int i = 0; i <= kTSteps; ++i) {
-      const double s = 1.0 / (kMinT + (kMaxT - kMinT) * i / kTSteps);
+      const double t = kMinT + (kMaxT - kMinT) * i / kTSteps;
       const size_t row = Row(i);
       for (int j = 0; j <= kZSteps; ++j) {
-        values[row + j] = Integrate(s, -kMaxZ + j * kZStep);
+        const double z = -kMaxZ + j * kZStep;
+        values[row + j] = t > 0.0 ? Integrate(1.0 / t, z) : 0.5 * std::erfc(-z / std::sqrt(2.0));
         if (j == 0) continue;
         first[row + j] =
             first[row + j - 1] + 0.5 * kZStep * (values[row + j - 1] + values[row + j]);
@@ -83,19 +84,27 @@ const Table& TheTable() {
 
 BlurredDiskProfile::BlurredDiskProfile(double s) {
   const Table& table = TheTable();
-  const double t = 1.0 / (s > kMinS ? std::min(s, kMaxS) : kMinS);  // NaN: the smallest
+  const double t = 1.0 / (s > kMinS ? s : kMinS);  // NaN: the smallest s
   const double ti = (t - kMinT) / (kMaxT - kMinT) * kTSteps;
   const int i = std::min(static_cast<int>(ti), kTSteps - 1);
   values_ = table.values.data() + Table::Row(i);
   first_ = table.first.data() + Table::Row(i);
   second_ = table.second.data() + Table::Row(i);
+  if (i == 0) {
+    // Wider than the first row after the straight edge's (s > 80): that edge moved by t/2,
+    // one row where interpolating two would cost more (a sharp image's disks are all here).
+    shift_ = 0.5 * t;
+    d_shift_ds_ = -0.5 * t * t;
+    return;
+  }
   weight_ = ti - i;
   // dt/ds = -1/s² (zero where s is clamped).
-  if (s > kMinS && s < kMaxS) d_weight_ds_ = kTSteps / (kMaxT - kMinT) * (-t * t);
+  if (s > kMinS) d_weight_ds_ = kTSteps / (kMaxT - kMinT) * (-t * t);
 }
 
 ProfileValue BlurredDiskProfile::At(double z) const {
   ProfileValue out;
+  z -= shift_;
   if (z <= -kMaxZ) return out;
   if (z >= kMaxZ) {
     out.value = 1.0;
@@ -108,12 +117,13 @@ ProfileValue BlurredDiskProfile::At(double z) const {
   const double g00 = values_[j], g01 = values_[j + 1], g10 = next[j], g11 = next[j + 1];
   out.value = (1 - ft) * ((1 - fz) * g00 + fz * g01) + ft * ((1 - fz) * g10 + fz * g11);
   out.d_dz = ((1 - ft) * (g01 - g00) + ft * (g11 - g10)) / kZStep;
-  out.d_ds = ((1 - fz) * (g10 - g00) + fz * (g11 - g01)) * d_weight_ds_;
+  out.d_ds = ((1 - fz) * (g10 - g00) + fz * (g11 - g01)) * d_weight_ds_ - out.d_dz * d_shift_ds_;
   return out;
 }
 
 BlurredDiskProfile::Integral BlurredDiskProfile::SecondIntegralAt(double x) const {
   Integral out;
+  x -= shift_;
   if (x <= -kMaxZ) return out;
   // Each row's H at x: cubic Hermite from its values and slopes (the first integral) at the
   // nodes around x, and that cubic's derivative; beyond kMaxZ, G = 1.
@@ -134,9 +144,10 @@ BlurredDiskProfile::Integral BlurredDiskProfile::SecondIntegralAt(double x) cons
             d_slope1 * first[j + 1] + beyond};
   };
   const auto [value_row0, slope_row0] = row_integral(first_, second_);
-  if (weight_ == 0.0 && d_weight_ds_ == 0.0) {  // s at its clamp (a sharp edge): one row
+  if (weight_ == 0.0 && d_weight_ds_ == 0.0) {  // one row: a straight edge moved, or s on a row
     out.value = value_row0;
     out.d_dx = slope_row0;
+    out.d_ds = -slope_row0 * d_shift_ds_;
     return out;
   }
   const auto [value_row1, slope_row1] = row_integral(first_ + kRowSize, second_ + kRowSize);
