@@ -16,14 +16,13 @@ namespace markerbench {
 // 8 frames of `marker` from the default camera at 1 m, tilted 10-40° at any roll, blurred by
 // `blur` px with noise of variance 0.02 (the paper's blur sweep). refine(image, truth, σ,
 // noise σ) gives an optional fit with `noise_sigma` and `fit.sigma_px`; each is expected to
-// find the noise within 10 %. Returns the mean of its σ over the image's edge σ (the blur and
-// the pixel's area, variance 1/12).
+// find the noise within 10 %. Returns the mean of its σ over the blur (both fits take the
+// pixel's area apart from the optics' σ).
 template <class Refine>
 double MeanBlurRatioUnderClippedNoise(const MarkerSpec& marker, double blur, const Refine& refine) {
   constexpr double kNoiseVar = 0.02;
   constexpr double kDetectorNoiseSigma = 0.06;  // the detector's estimate for these 0.14
   constexpr int kFrames = 8;
-  const double edge_sigma = std::sqrt(blur * blur + 1.0 / 12.0);
   Rng rng(5);
   double ratio = 0.0;
   for (int i = 0; i < kFrames; ++i) {
@@ -33,7 +32,7 @@ double MeanBlurRatioUnderClippedNoise(const MarkerSpec& marker, double blur, con
     EXPECT_TRUE(refined) << "frame " << i;
     if (!refined) return NAN;
     EXPECT_NEAR(refined->noise_sigma, std::sqrt(kNoiseVar), 0.1 * std::sqrt(kNoiseVar));
-    ratio += refined->fit.sigma_px / edge_sigma / kFrames;
+    ratio += refined->fit.sigma_px / blur / kFrames;
   }
   return ratio;
 }

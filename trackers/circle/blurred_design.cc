@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <limits>
 #include <utility>
 
 namespace markerbench {
@@ -21,9 +22,14 @@ constexpr std::array<double, 5> kWeights = {0.2955242247147529,
                                             0.1494513491505806,
                                             0.0666713443086881};
 
-// Edges nearer than this (in σ) to a point make a corner with its nearest edge.
+// Edges nearer than this (in σc, below) to a point make a corner with its nearest edge.
 constexpr double kCornerSigmas = 5.0;
 constexpr double kSharpSigmas = 9.0;
+// A pixel's variance along any direction (its side 1 px).
+constexpr double kPixelVariance = 1.0 / 12.0;
+
+// The σ of the Gaussian the corners take: the blur's and the pixel's variance, σc² = σ² + 1/12.
+double CornerSigma(double sigma_px) { return std::sqrt(sigma_px * sigma_px + kPixelVariance); }
 
 // One edge of a layer at a point: its distance in σ (positive outside), d(that)/dp and
 // d(that)/dσ.
@@ -34,7 +40,19 @@ struct Edge {
   Eigen::Vector2d normal_px = Eigen::Vector2d::UnitX();  // unit, in pixels
 };
 
-// A layer's blurred indicator at a point from its edges there, with its derivatives.
+// An edge's cover of a pixel: the straight edge's blurred step averaged over the pixel
+// (blurred_disk_profile.h at s = ∞), with its derivatives in the edge's distance a and in σ
+// through the pixel's width in σ.
+struct PixelCover {
+  double value = 0.0, d_a = 0.0, d_sigma = 0.0;
+};
+PixelCover CoverOfPixel(const BlurredDiskProfile& straight_edge, const Edge& e, double sigma_px) {
+  const PixelProfileValue v = straight_edge.OverPixel(
+      -e.a, 0.5 * std::abs(e.normal_px.x()) / sigma_px, 0.5 * std::abs(e.normal_px.y()) / sigma_px);
+  return {v.value, -v.d_dz, -v.d_dlog_width / sigma_px};
+}
+
+// A layer's blurred indicator over a pixel from its edges there, with its derivatives.
 struct Cover {
   double value = 1.0;
   Eigen::Vector2d gradient = Eigen::Vector2d::Zero();
@@ -42,7 +60,8 @@ struct Cover {
 };
 Cover BlurredCover(const BoundaryDistances& b,
                    const Eigen::Matrix2d& marker_from_px,
-                   double sigma_px) {
+                   double sigma_px,
+                   const BlurredDiskProfile& straight_edge) {
   Cover cover;
   std::array<Edge, 3> edges;
   const Eigen::Matrix2d px_from_marker = marker_from_px.inverse();
@@ -51,18 +70,20 @@ Cover BlurredCover(const BoundaryDistances& b,
     const EdgeDistance& term = b.terms[i];
     const Eigen::Vector2d across = marker_from_px.transpose() * term.gradient;
     const double per_metre = 1.0 / (across.norm() * sigma_px);
-    // A circle's blurred edge has its midpoint σ²/2ρ towards its centre (ρ its radius of
-    // curvature in the image, κ|det A|/|A t|³ for the map A and tangent t): to first order
-    // in σ/ρ, a straight edge that much moved.
+    // A circle's blurred edge has its midpoint v/2ρ towards its centre, v the variance of the
+    // blur and the pixel along its tangent (σ² + 1/12; ρ its radius of curvature in the image,
+    // κ|det A|/|A t|³ for the map A and tangent t): to first order in σ/ρ, a straight edge
+    // that much moved.
     const Eigen::Vector2d tangent_px =
         px_from_marker * Eigen::Vector2d(-term.gradient.y(), term.gradient.x());
     const double tangent_norm = tangent_px.norm();
     const double curvature_px =
         term.curvature_per_m * area_px / (tangent_norm * tangent_norm * tangent_norm);
     const double distance = term.metres * per_metre;
-    edges[i] = {distance + 0.5 * sigma_px * curvature_px,
+    const double area_per_sigma = kPixelVariance / sigma_px;
+    edges[i] = {distance + 0.5 * (sigma_px + area_per_sigma) * curvature_px,
                 per_metre * term.gradient,
-                -distance / sigma_px + 0.5 * curvature_px,
+                -distance / sigma_px + 0.5 * (1.0 - area_per_sigma / sigma_px) * curvature_px,
                 across.normalized()};
   }
   // The two nearest edges as a corner, the others as straight edges (an insertion sort of
@@ -72,35 +93,60 @@ Cover BlurredCover(const BoundaryDistances& b,
       std::swap(edges[j], edges[j - 1]);
     }
   }
-  // A factor of the cover, with its derivatives in the distances of the edges it uses.
-  auto multiply = [&](double factor, double d_a1, const Edge& e1, double d_a2, const Edge& e2) {
-    cover.gradient = cover.gradient * factor + cover.value * (d_a1 * e1.da_dp + d_a2 * e2.da_dp);
-    cover.d_sigma =
-        cover.d_sigma * factor + cover.value * (d_a1 * e1.da_dsigma + d_a2 * e2.da_dsigma);
-    cover.value *= factor;
-  };
-  // Beyond kSharpSigmas of an edge its step is 0 or 1 and its slope 0 in double precision
-  // (Φ(-9) = 1e-19): most edges of a layer are that far from most of its pixels.
+  // A factor of the cover, with its derivatives in the distances of the edges it uses and in
+  // σ otherwise.
+  auto multiply =
+      [&](double factor, double d_a1, const Edge& e1, double d_a2, const Edge& e2, double d_sigma) {
+        cover.gradient =
+            cover.gradient * factor + cover.value * (d_a1 * e1.da_dp + d_a2 * e2.da_dp);
+        cover.d_sigma = cover.d_sigma * factor +
+                        cover.value * (d_a1 * e1.da_dsigma + d_a2 * e2.da_dsigma + d_sigma);
+        cover.value *= factor;
+      };
+  // Beyond kSharpSigmas of an edge, with the pixel's reach, its step is 0 or 1 and its slope
+  // 0 in double precision (Φ(-9) = 1e-19): most edges of a layer are that far from most of
+  // its pixels.
   auto multiply_edge = [&](const Edge& e) {
-    if (e.a < -kSharpSigmas) return;
-    if (e.a > kSharpSigmas) {
+    const double reach = (std::abs(e.normal_px.x()) + std::abs(e.normal_px.y())) / (2.0 * sigma_px);
+    if (e.a < -kSharpSigmas - reach) return;
+    if (e.a > kSharpSigmas + reach) {
       cover = {0.0, Eigen::Vector2d::Zero(), 0.0};
       return;
     }
-    multiply(NormalCdf(-e.a), -NormalDensity(e.a), e, 0.0, e);
+    const PixelCover c = CoverOfPixel(straight_edge, e, sigma_px);
+    multiply(c.value, c.d_a, e, 0.0, e, c.d_sigma);
   };
-  // Beyond kCornerSigmas of the second edge its step is 0 or 1 within 3e-7, and so is
-  // the corner's difference from the product of the two steps.
+  // A corner over a pixel: the product of its two edges' covers, which is exact where the
+  // edges are far apart (and for two edges along the pixel's sides), plus what the corner of
+  // the two half-planes adds to the product of their steps under a Gaussian of the blur and the
+  // pixel's variance, σc (the pixel taken as Gaussian in that small part):
+  // Φ2(h, k; ρ) - Φ(h) Φ(k), h = -a1 σ/σc, k = -a2 σ/σc, ρ the cosine between their normals in
+  // pixels (exact for two straight edges at a blur much wider than the pixel; a product alone
+  // would bias a sector's apex). Beyond kCornerSigmas σc of the second edge that is below 3e-7.
+  const double corner_sigma = CornerSigma(sigma_px);
+  const double to_corner = sigma_px / corner_sigma;
   size_t first_straight = 0;
-  if (b.count >= 2 && std::abs(edges[1].a) < kCornerSigmas) {
+  if (b.count >= 2 && std::abs(edges[1].a) * to_corner < kCornerSigmas) {
     const Edge& e1 = edges[0];
     const Edge& e2 = edges[1];
+    const PixelCover c1 = CoverOfPixel(straight_edge, e1, sigma_px);
+    const PixelCover c2 = CoverOfPixel(straight_edge, e2, sigma_px);
     const double rho = std::clamp(e1.normal_px.dot(e2.normal_px), -0.999, 0.999);
     const double root = std::sqrt(1.0 - rho * rho);
-    // d Φ2(h, k) / dh = φ(h) Φ((k - ρ h) / √(1 - ρ²)), with h = -a1, k = -a2.
-    const double d_a1 = -NormalDensity(e1.a) * NormalCdf((-e2.a + rho * e1.a) / root);
-    const double d_a2 = -NormalDensity(e2.a) * NormalCdf((-e1.a + rho * e2.a) / root);
-    multiply(BivariateNormalCdf(-e1.a, -e2.a, rho), d_a1, e1, d_a2, e2);
+    const double h = -e1.a * to_corner, k = -e2.a * to_corner;
+    // d Φ2(h, k) / dh = φ(h) Φ((k - ρ h) / √(1 - ρ²)); less the product's φ(h) Φ(k).
+    const double d_h = NormalDensity(h) * (NormalCdf((k - rho * h) / root) - NormalCdf(k));
+    const double d_k = NormalDensity(k) * (NormalCdf((h - rho * k) / root) - NormalCdf(h));
+    const double excess = BivariateNormalCdf(h, k, rho) - NormalCdf(h) * NormalCdf(k);
+    // d(σ/σc)/dσ = (1/12)/σc³.
+    const double d_to_corner = kPixelVariance / (corner_sigma * corner_sigma * corner_sigma);
+    multiply(
+        c1.value * c2.value + excess,
+        c1.d_a * c2.value - d_h * to_corner,
+        e1,
+        c1.value * c2.d_a - d_k * to_corner,
+        e2,
+        c1.d_sigma * c2.value + c1.value * c2.d_sigma - (d_h * e1.a + d_k * e2.a) * d_to_corner);
     first_straight = 2;
   }
   for (size_t i = first_straight; i < b.count; ++i) multiply_edge(edges[i]);
@@ -127,7 +173,8 @@ double BivariateNormalCdf(double h, double k, double rho) {
   return NormalCdf(h) * NormalCdf(k) + 0.5 * end * integral / (2.0 * M_PI);
 }
 
-BlurredDesign::BlurredDesign(const MarkerSpec& marker) : marker_(marker) {
+BlurredDesign::BlurredDesign(const MarkerSpec& marker)
+    : marker_(marker), straight_edge_(std::numeric_limits<double>::infinity()) {
   // What each layer is painted on: the layers below it at its deepest point on a grid.
   constexpr int kSteps = 32;
   for (size_t i = 0; i < marker.layers.size(); ++i) {
@@ -159,10 +206,11 @@ BlurredLuma BlurredDesign::At(const Eigen::Vector2d& p,
                               const Eigen::Matrix2d& marker_from_px,
                               double sigma_px) const {
   BlurredLuma out{Luma(marker_.background), Eigen::Vector2d::Zero(), 0.0};
-  // An edge farther than this from p is farther than kSharpSigmas + 1 σ in the image (the
-  // map's Frobenius norm bounds the metres a pixel spans; the 1 σ covers the curvature's
-  // shift of a circle's blurred edge, σ/2ρ σ for ρ ≥ σ).
-  const double sharp_beyond_m = (kSharpSigmas + 1.0) * sigma_px * marker_from_px.norm();
+  // An edge farther than this from p is farther than kSharpSigmas + 1 σc and a pixel in the
+  // image (the map's Frobenius norm bounds the metres a pixel spans; the 1 σc covers the
+  // curvature's shift of a circle's blurred edge, σc/2ρ σc for ρ ≥ σc).
+  const double sharp_beyond_m =
+      ((kSharpSigmas + 1.0) * CornerSigma(sigma_px) + 1.0) * marker_from_px.norm();
   for (size_t l = 0; l < marker_.layers.size(); ++l) {
     const PaintedShape& layer = marker_.layers[l];
     const BoundaryDistances b = DistancesTo(layer.shape, p);
@@ -180,7 +228,7 @@ BlurredLuma BlurredDesign::At(const Eigen::Vector2d& p,
       if (inside) out.luma += steps_[l];
       continue;
     }
-    const Cover cover = BlurredCover(b, marker_from_px, sigma_px);
+    const Cover cover = BlurredCover(b, marker_from_px, sigma_px, straight_edge_);
     out.luma += steps_[l] * cover.value;
     out.gradient += steps_[l] * cover.gradient;
     out.d_sigma += steps_[l] * cover.d_sigma;

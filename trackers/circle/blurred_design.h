@@ -1,22 +1,25 @@
-// A circle marker's printed design (its disks, crescents and sectors; paper Fig. 3) as the
-// image sees it under a Gaussian blur, as a smooth function of the marker-plane point: what
-// the fits of roll_feature.h and design_refinement.h compare with the pixels. Blur is linear,
-// so the blurred design is the background plus each layer's colour step (its colour minus the
-// one it is painted on) times its blurred indicator; each layer of these markers lies on one
-// colour (a wedge on the disk, a nose on the face), so the steps are constants, and edges
-// that two layers share (the wedge's arc on the disk's rim) add up exactly. Through the local
-// map from pixels to the plane, each circle and line that bounds a layer is a straight edge
-// at signed distance d (in σ across it; a circle's moved by its curvature), covered Φ(-d);
-// where two of them are near (a
-// crescent's tips, a sector's apex) the pair is the corner of two half-planes, covered
-// Φ2(-d1, -d2; ρ) with ρ the cosine between their normals in pixels (exact for two straight
-// edges; a product of steps would bias the apex).
+// A circle marker's printed design (its disks, crescents and sectors; paper Fig. 3) as a
+// pixel sees it under a Gaussian blur, as a smooth function of the marker-plane point at the
+// pixel's centre: what the fit of design_refinement.h compares with the pixels. Blur and the
+// pixel's average are linear, so the blurred design is the background plus each layer's colour
+// step (its colour minus the one it is painted on) times its blurred indicator; each layer of
+// these markers lies on one colour (a wedge on the disk, a nose on the face), so the steps are
+// constants, and edges that two layers share (the wedge's arc on the disk's rim) add up
+// exactly. Through the local map from pixels to the plane, each circle and line that bounds a
+// layer is a straight edge at signed distance d (in σ across it; a circle's moved by its
+// curvature), whose step the pixel averages over its square (blurred_disk_profile.h's straight
+// edge over a pixel); where two of them are near (a crescent's tips, a sector's apex) the pair
+// is the corner of two half-planes: the product of their covers plus the corner's excess over
+// that product under a Gaussian, Φ2(-d1, -d2; ρ) - Φ(-d1) Φ(-d2) with ρ the cosine between their
+// normals in pixels (exact for two straight edges where the blur is much wider than the pixel;
+// a product of steps alone would bias the apex).
 #pragma once
 
 #include <Eigen/Core>
 #include <vector>
 
 #include "core/marker_spec.h"
+#include "trackers/circle/blurred_disk_profile.h"
 
 namespace markerbench {
 
@@ -38,16 +41,18 @@ class BlurredDesign {
   // `marker` must outlive this.
   explicit BlurredDesign(const MarkerSpec& marker);
 
-  // The design's luma around marker point `p` under an image Gaussian of `sigma_px`, through
-  // the local map marker_from_px (metres per pixel). Layers other than disks, crescents and
-  // sectors (grids) are taken at their sharp colour.
+  // The design's luma averaged over the pixel whose centre sees marker point `p`, under an
+  // image Gaussian of `sigma_px` (the optics' alone), through the local map marker_from_px
+  // (metres per pixel). Layers other than disks, crescents and sectors (grids) are taken at
+  // their sharp colour.
   BlurredLuma At(const Eigen::Vector2d& p,
                  const Eigen::Matrix2d& marker_from_px,
                  double sigma_px) const;
 
  private:
   const MarkerSpec& marker_;
-  std::vector<double> steps_;  // per layer: its luma minus the luma it is painted on
+  std::vector<double> steps_;         // per layer: its luma minus the luma it is painted on
+  BlurredDiskProfile straight_edge_;  // s = ∞
 };
 
 }  // namespace markerbench

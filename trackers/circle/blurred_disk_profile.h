@@ -16,6 +16,8 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <algorithm>
+#include <cmath>
 
 namespace markerbench {
 
@@ -33,6 +35,14 @@ struct PixelProfileValue {
   double d_dz = 0.0;
   double d_dlog_width = 0.0;
 };
+
+// The blur σ of a model that averages over each pixel (as OverPixel does) from the σ of the
+// image's edges, which holds the pixel's area too (variance 1/12).
+inline double BlurSigmaOfEdges(double edge_sigma_px) {
+  return std::sqrt(std::max(0.0, edge_sigma_px * edge_sigma_px - 1.0 / 12.0));
+}
+// Such a model's least σ: a sharp image takes it to 0; not quite, for z = -d/σ.
+constexpr double kMinBlurSigmaPx = 0.02;
 
 // G for one disk radius s, evaluated at many z (one table row interpolation per disk).
 // s below 0.5 is taken as 0.5; beyond 80 (the table's first step in t) G is the straight edge's

@@ -47,6 +47,8 @@ struct DesignRefinement {
   double noise_sigma = 0.0;  // the image's, 0-1, as its residuals show (the model's clipping)
 };
 
+// `sigma_px`: the edges' σ at the start (the blur with the pixel's area, as edge points measure
+// it; the fit's, PixelFit::sigma_px, is the blur alone, the model averaging over each pixel).
 // `noise_sigma`: a first estimate of the image's, 0-1 units. nullopt when too few pixels near the
 // design's edges are in front of the camera and in the image, or where `abandons` says so of
 // the first round's result.
@@ -74,7 +76,7 @@ std::optional<DesignRefinement> RefineDesignFromStarts(const Image8& image,
 
 // Which of several refinements explains the image best: the least cost (the clipped pixels'
 // likelihood) over the pixels near the design's edges at any of them (each fit judged on the
-// same pixels). `fits` not empty.
+// same pixels, at the least noise any fit leaves). `fits` not empty.
 size_t BestDesignRefinement(const Image8& image,
                             const Camera& camera,
                             const MarkerSpec& marker,

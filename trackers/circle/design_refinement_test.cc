@@ -45,12 +45,13 @@ TEST(DesignRefinement, RecoversThePoseAndTheBlurFromAPerturbedStart) {
           frame.image, camera, marker, SlightlyPerturbed(truth, &rng), 1.0, std::sqrt(0.005));
       ASSERT_TRUE(refined);
       const Rigid3& pose = refined->fit.cam_from_marker;
-      // Measured: 0.37-0.51 mm and 0.04-0.05° sharp, 1.0-1.1 mm and 0.10-0.11° at blur 2.
-      EXPECT_LE(PositionError(pose, truth), 1.5e-3);
-      EXPECT_LE(RotationErrorDeg(pose, truth), 0.15);
-      // The image's edge σ: the blur and the pixel's area (variance 1/12); measured within
-      // 0.035 px.
-      EXPECT_NEAR(refined->fit.sigma_px, std::sqrt(blur * blur + 1.0 / 12.0), 0.05 + 0.03 * blur);
+      // Measured: 0.15-0.22 mm and 0.015-0.022° sharp (0.37-0.51 mm and 0.04-0.05° with the
+      // pixel's area taken as a Gaussian), 1.0 mm and 0.10° at blur 2.
+      EXPECT_LE(PositionError(pose, truth), blur == 0.0 ? 0.4e-3 : 1.5e-3);
+      EXPECT_LE(RotationErrorDeg(pose, truth), blur == 0.0 ? 0.04 : 0.15);
+      // The optics' σ (the model averages over the pixel): measured 0.02-0.048 px sharp, within
+      // 0.007 px at blur 2.
+      EXPECT_NEAR(refined->fit.sigma_px, blur, 0.08);
       EXPECT_GT(refined->pixels, 500);
     }
   }
@@ -114,19 +115,49 @@ TEST(DesignRefinement, KeepsTheTiltTheDesignShows) {
   }
 }
 
-// Near fronto-parallel and far, or blurred, f's design tells its two tilts apart only weakly:
-// at 1.5 m (the circle 40 px across) and 3-8° of tilt, the best fit at the mirrored pose
-// differs from the true pose's image by about one noise σ in all (0.7-1.6 σ on noise-free
-// renders), and so at 1 m under blur σ = 2 px and 5-15° of tilt (the wedge's sides blurred
-// over a quarter of the circle's radius). The least cost between fits started at the true
-// pose and at its mirror (no search: the best a likelihood can do with the right basins) is
-// then wrong on several frames, and the tracker, which finds its starts itself, about as
-// often. Measured, of 30: at 1.5 m 4 from the truth, 4 ours (before the clipped likelihood,
-// seeds 14-18: 6, 11, 12, 4, 9 from the truth, ours the same or one more); at 1 m and blur 2,
-// 3 and 3 (seeds 15-17: 4, 3, 7 from the truth, ours 3, 2, 6). No choice by likelihood reaches
-// 95 % success on such poses with this design (results/paper: f at 1.5 m and at blur 2, where
-// the same choice from the truth misses 9 of the sweep's 100 frames and ours 8). Not under
-// the sanitizers (testing/sanitized_build.h).
+// Without noise the true tilt's fit leaves about 0.6 levels (8-bit rounding and the model's
+// error), the other tilt's 80-90: it takes a gain near 3 and a σ near 1 px, so that the ink
+// falls far below black and the paper far above white, where the clipped likelihood takes a
+// pixel as certain. Judged at the mean of the two fits' noise (0.17), that made the clipped
+// pixels cheaper than the true fit's and the other tilt won on 28 of the paper's 100 noise-free
+// frames of e (3 of 100 of f); judged at the least noise any fit leaves, never. Measured on
+// these 12 frames of e at the paper's ink area: the mean chose the other tilt on 8 (on two, both
+// starts end at the true tilt).
+TEST(DesignRefinement, KeepsTheTrueTiltWithoutNoise) {
+  const Camera camera;
+  const MarkerSpec raw = Load("circle_e");
+  const MarkerSpec marker = ScaledMarker(raw, EqualAreaFactor(raw, 0.01));
+  Rng rng(21);
+  for (int i = 0; i < 12; ++i) {
+    const Rigid3 truth = RandomTiltedView(0.6, 0.0, 40.0, &rng);
+    const RenderedFrame frame = RenderMarker(marker, truth, 0.0, 0.0, 1);
+    std::vector<DesignRefinement> fits;
+    for (const Rigid3& start : {OtherTilt(truth), truth}) {
+      const std::optional<DesignRefinement> refined =
+          RefineDesign(frame.image, camera, marker, start, std::sqrt(1.0 / 12.0), 0.0);
+      ASSERT_TRUE(refined);
+      fits.push_back(*refined);
+    }
+    ASSERT_LT(PositionError(fits[1].fit.cam_from_marker, truth), 1e-3) << "frame " << i;
+    // (Near a frontal view both starts end at the true tilt.)
+    const size_t best = BestDesignRefinement(frame.image, camera, marker, fits);
+    EXPECT_LT(PositionError(fits[best].fit.cam_from_marker, truth), 1e-3) << "frame " << i;
+  }
+}
+
+// Near fronto-parallel and far, or blurred, f's design tells its two tilts apart only weakly: at
+// 1.5 m (the circle 40 px across) and 3-8° of tilt, the best fit at the mirrored pose differs from
+// the true pose's image by about one noise σ in all (0.7-1.6 σ on noise-free renders), and so at 1
+// m under blur σ = 2 px and 5-15° of tilt (the wedge's sides blurred over a quarter of the circle's
+// radius). The least cost between fits started at the true pose and at its mirror (no search: the
+// best a likelihood can do with the right basins) is then wrong on several frames, and the tracker,
+// which finds its starts itself, about as often. Measured, of 30: at 1.5 m 2 from the truth, 3
+// ours; at 1 m and blur 2, 3 and 4. With the pixel's area taken as a Gaussian (blurred_design.h), 4
+// and 4, and 3 and 3; before the clipped likelihood, seeds 14-18 at 1.5 m: 6, 11, 12, 4, 9 from the
+// truth, ours the same or one more; seeds 15-17 at blur 2: 4, 3, 7 from the truth, ours 3, 2, 6. No
+// choice by likelihood reaches 95 % success on such poses with this design (results/paper: the
+// tracker misses 8 and 6 of the sweep's 100 frames of f at 1.5 m and at blur 2, most on the other
+// tilt). Not under the sanitizers (testing/sanitized_build.h).
 TEST(DesignRefinement, ChoosesTheTiltAsOftenAsFromTheTruePoseAndItsMirror) {
   if (kSanitizedBuild) GTEST_SKIP() << "counts over 60 frames: the optimised build's";
   const MarkerSpec marker = Load("circle_f");
@@ -159,7 +190,7 @@ TEST(DesignRefinement, ChoosesTheTiltAsOftenAsFromTheTruePoseAndItsMirror) {
       const size_t best = BestDesignRefinement(frame.image, camera, marker, fits);
       from_truth_wrong += PositionError(fits[best].fit.cam_from_marker, truth) > wrong_m;
     }
-    EXPECT_GE(from_truth_wrong, 3);
+    EXPECT_GE(from_truth_wrong, 2);
     EXPECT_LE(ours_wrong, from_truth_wrong + 2);
   }
 }

@@ -71,10 +71,6 @@ double CircumRadius(const Eigen::Vector2d& a, const Eigen::Vector2d& b, const Ei
   return std::sqrt(ab.squaredNorm() * bc.squaredNorm() * ca.squaredNorm()) / (2.0 * twice_area);
 }
 
-// The model's σ is the blur alone (the pixel's area is modelled apart), which a sharp image
-// takes to 0; not quite, for the profile's z = -d/σ.
-constexpr double kMinBlurSigmaPx = 0.02;
-
 // The pose (6) and σ, the parameters differentiated by Jets.
 using PoseJet = ceres::Jet<double, 7>;
 
@@ -690,11 +686,9 @@ std::optional<PhotometricResult> RefinePhotometric(const Image8& image,
   if (sigma_px < options.settle_below_sigma_px) {
     first_settles = moved_less_than(options.settle_within_standard_errors);
   }
-  // The edges' σ holds the pixel's area (variance 1/12); the model's σ is the blur alone.
-  const double blur_sigma_px = std::sqrt(std::max(0.0, sigma_px * sigma_px - 1.0 / 12.0));
   return FitInRoundsAtTheirNoise<PhotometricResult>(
       cam_from_marker,
-      blur_sigma_px,
+      BlurSigmaOfEdges(sigma_px),
       noise_sigma,
       options.max_rounds,
       [&](const Rigid3& start, double sigma, double noise, const FitRound& round) {

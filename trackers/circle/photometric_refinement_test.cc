@@ -103,7 +103,7 @@ TEST(PhotometricRefinement, TellsTheTwoTiltsApartFarAway) {
 // measured 13 % low, the median over the sweep's 100 frames at σ 5, and the disks' size, and
 // so the distance, off with it). From the detector's noise estimate (0.06 for these 0.14) the
 // fit on the clipped pixels' likelihood finds the noise from its residuals (measured within
-// 4.1 %) and the σ right (measured 0.2 % low on average, 2.1 % low to 3.1 % high per frame).
+// 4.1 %) and the σ right (measured 0.5 % low on average, 2.6 % low to 1.5 % high per frame).
 TEST(PhotometricRefinement, ModelsTheNoiseClippedAtWhitePaper) {
   const Camera camera;
   const MarkerSpec marker = Load("circles_a");

@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "core/shapes.h"
+#include "trackers/circle/blurred_disk_profile.h"
 #include "trackers/circle/plane_view.h"
 #include "trackers/upper_median.h"
 
@@ -122,7 +123,7 @@ struct DesignModel {
   const BlurredDesign& design;
   Eigen::Matrix2d marker_rotation;  // marker_from_paper's
   Eigen::Vector2d marker_shift;
-  double sigma_px;
+  double sigma_px;  // the blur alone: the design is averaged over each pixel
 
   Eigen::Matrix2d ToMarker(double turn) const {
     return marker_rotation * Eigen::Rotation2Dd(-turn).matrix();
@@ -297,7 +298,7 @@ std::optional<RollAlignment> RollFeature::Align(const Image8& image,
   const DesignModel model{blurred_,
                           marker_from_paper_.rotation.topLeftCorner<2, 2>(),
                           marker_from_paper_.translation.head<2>(),
-                          std::max(blur_sigma_px, 0.3)};
+                          std::max(BlurSigmaOfEdges(blur_sigma_px), kMinBlurSigmaPx)};
   std::vector<const WindowPixel*> near_ink;
   for (const WindowPixel& pixel : pixels) {
     const PaintSample sample =

@@ -76,8 +76,9 @@ class RollFeature {
               const RollFeatureOptions& options = {});
 
   // `cam_from_paper` right up to its roll (and, with `fit_center`, its centre); `paper_level`
-  // the paper's grey level and `noise_sigma` the image's noise (0-255); `blur_sigma_px` its
-  // blur. nullopt when the image's moment is too weak, or the window leaves the image.
+  // the paper's grey level and `noise_sigma` the image's noise (0-255); `blur_sigma_px` the σ of
+  // its edges (the blur with the pixel's area, as edge points measure it). nullopt when the
+  // image's moment is too weak, or the window leaves the image.
   // `marker` must outlive this.
   std::optional<RollAlignment> Align(const Image8& image,
                                      const Camera& camera,
