@@ -28,21 +28,23 @@ struct AppearanceOptions {
   // Pixel pairs x channels for a part of the design to be judged; fewer over the whole
   // design, and it cannot be checked.
   int min_part_values = 24;
-  // The shared residual is taken over each pair, and over blocks of samples, this many per
-  // side of the sampled box (0: pairs alone; 12: 2x2 lattice points on the coarse grid, 4x4
-  // on the fine one, about the size of circle_d's dots). On grey squares that circle_d's pose
-  // put its disk on (noise 46 grey levels, 1.6 m), the paper part misfit by 0.27 at 3.8
-  // standard errors over pairs, 0.32 at 7.5 over blocks.
+  // The shared residual is taken over each pair, and over blocks of samples, this many per side of
+  // the sampled box (0: pairs alone; 12: 2x2 lattice points on the coarse grid, 4x4 on the fine
+  // one, about the size of circle_d's dots; the circle tracker's `appearance_blocks_per_side`). On
+  // grey squares that circle_d's pose put its disk on (noise 46 grey levels, 1.6 m), the paper part
+  // misfit by 0.27 at 3.8 standard errors over pairs, 0.32 at 7.5 over blocks.
   int blocks_per_side = 12;
   // The blocks' threshold of the misfit: the model's own errors that are alike over a block
   // (heavy noise clipped at black and white, the quadrature under heavy blur) show there at
   // correct poses, 0.10-0.21 in the 17 correct circle_d poses of the paper sweeps that 0.1
-  // rejected; at 0.25 the sweeps' 39,600 frames get the decisions of the pairs alone.
+  // rejected; at 0.25 the sweeps' 39,600 frames get the decisions of the pairs alone (the circle
+  // tracker's `max_appearance_block_misfit`).
   double max_block_misfit = 0.25;
   // The design is not shown where the misfit exceeds max_misfit by more than min_significance
   // standard errors. Measured on the paper sweeps (3600 frames of circles_a), correct poses
   // misfit by at most 0.06 where that is significant; the negative set's marker-like clutter
-  // (an orange disk for the red one, a black disk without b's dot) by 0.15 or more.
+  // (an orange disk for the red one, a black disk without b's dot) by 0.15 or more (the circle
+  // tracker's `max_appearance_misfit` and `appearance_min_significance`).
   double max_misfit = 0.1;
   double min_significance = 4.0;
 };

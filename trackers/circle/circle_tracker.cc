@@ -124,6 +124,12 @@ bool CircleTrackerOptions::IsValid(std::string* error) const {
     msg << "max_edge_rms_px=" << max_edge_rms_px << " must be > 0";
   } else if (!(appearance.max_misfit > 0.0)) {
     msg << "max_appearance_misfit=" << appearance.max_misfit << " must be > 0";
+  } else if (!(appearance.max_block_misfit > 0.0)) {
+    msg << "max_appearance_block_misfit=" << appearance.max_block_misfit << " must be > 0";
+  } else if (!(appearance.blocks_per_side >= 0)) {
+    msg << "appearance_blocks_per_side=" << appearance.blocks_per_side << " must be >= 0";
+  } else if (!(appearance.min_significance > 0.0)) {
+    msg << "appearance_min_significance=" << appearance.min_significance << " must be > 0";
   } else if (!(min_branch_angle_rad >= 0.0 && min_branch_angle_rad < 0.5 * M_PI)) {
     msg << "min_branch_angle_rad=" << min_branch_angle_rad << " must be in [0, pi/2)";
   } else if (!(max_other_tilt_log_ratio >= 0.0)) {
@@ -178,6 +184,12 @@ CircleTrackerOptions CircleTrackerOptions::FromYaml(const YamlMap& map) {
   o.max_prediction_error = map.GetOr<double>("max_prediction_error", o.max_prediction_error);
   o.max_edge_rms_px = map.GetOr<double>("max_edge_rms_px", o.max_edge_rms_px);
   o.appearance.max_misfit = map.GetOr<double>("max_appearance_misfit", o.appearance.max_misfit);
+  o.appearance.max_block_misfit =
+      map.GetOr<double>("max_appearance_block_misfit", o.appearance.max_block_misfit);
+  o.appearance.blocks_per_side =
+      map.GetOr<int>("appearance_blocks_per_side", o.appearance.blocks_per_side);
+  o.appearance.min_significance =
+      map.GetOr<double>("appearance_min_significance", o.appearance.min_significance);
   o.detector.min_contrast = map.GetOr<double>("min_contrast", o.detector.min_contrast);
   o.detector.edge_passes = map.GetOr<int>("edge_passes", o.detector.edge_passes);
   o.detector.edges.max_rays = map.GetOr<int>("max_rays", o.detector.edges.max_rays);
@@ -233,6 +245,9 @@ std::vector<std::pair<std::string, std::string>> CircleTracker::Parameters() con
       {"max_prediction_error", NumberText(o.max_prediction_error)},
       {"max_edge_rms_px", NumberText(o.max_edge_rms_px)},
       {"max_appearance_misfit", NumberText(o.appearance.max_misfit)},
+      {"max_appearance_block_misfit", NumberText(o.appearance.max_block_misfit)},
+      {"appearance_blocks_per_side", std::to_string(o.appearance.blocks_per_side)},
+      {"appearance_min_significance", NumberText(o.appearance.min_significance)},
       {"min_contrast", NumberText(o.detector.min_contrast)},
       {"edge_passes", std::to_string(o.detector.edge_passes)},
       {"max_rays", std::to_string(o.detector.edges.max_rays)},

@@ -543,7 +543,9 @@ TEST(CircleTracker, OptionsFromYamlNameTheBadKey) {
                     " blurred_dot_min_significance: 8,"
                     " pixel_band_sigmas: 3, pixel_band_px: 1,"
                     " design_band_sigmas: 2, design_band_px: 0.5,"
-                    " design_max_other_tilt_log_ratio: 50}\n"
+                    " design_max_other_tilt_log_ratio: 50,"
+                    " max_appearance_block_misfit: 0.3, appearance_blocks_per_side: 0,"
+                    " appearance_min_significance: 5}\n"
                     "bad_value: {huber_px: -1}\n"
                     "bad_cost: {cost: sampson}\n"
                     "unknown: {hubr_px: 1}\n"
@@ -558,7 +560,10 @@ TEST(CircleTracker, OptionsFromYamlNameTheBadKey) {
                     "bad_margin: {pixel_band_px: -0.5}\n"
                     "bad_design_band: {design_band_sigmas: 0}\n"
                     "bad_design_margin: {design_band_px: -1}\n"
-                    "bad_design_tilt: {design_max_other_tilt_log_ratio: -1}\n");
+                    "bad_design_tilt: {design_max_other_tilt_log_ratio: -1}\n"
+                    "bad_block_misfit: {max_appearance_block_misfit: 0}\n"
+                    "bad_blocks: {appearance_blocks_per_side: -2}\n"
+                    "bad_significance: {appearance_min_significance: -1}\n");
   const YamlMap root = YamlMap::LoadFile(path);
   const CircleTrackerOptions good = CircleTrackerOptions::FromYaml(root.GetMap("good"));
   EXPECT_EQ(good.refinement.cost, RefinementCost::kConics);
@@ -577,6 +582,9 @@ TEST(CircleTracker, OptionsFromYamlNameTheBadKey) {
   EXPECT_EQ(good.design_refinement.band_sigmas, 2.0);
   EXPECT_EQ(good.design_refinement.band_px, 0.5);
   EXPECT_EQ(good.design_refinement.max_first_round_log_ratio, 50.0);
+  EXPECT_EQ(good.appearance.max_block_misfit, 0.3);
+  EXPECT_EQ(good.appearance.blocks_per_side, 0);
+  EXPECT_EQ(good.appearance.min_significance, 5.0);
   for (const char* key : {"bad_value",
                           "bad_cost",
                           "unknown",
@@ -591,7 +599,10 @@ TEST(CircleTracker, OptionsFromYamlNameTheBadKey) {
                           "bad_margin",
                           "bad_design_band",
                           "bad_design_margin",
-                          "bad_design_tilt"}) {
+                          "bad_design_tilt",
+                          "bad_block_misfit",
+                          "bad_blocks",
+                          "bad_significance"}) {
     try {
       CircleTrackerOptions::FromYaml(root.GetMap(key));
       ADD_FAILURE() << key << " was accepted";
