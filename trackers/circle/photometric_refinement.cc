@@ -238,12 +238,17 @@ class PixelModel {
       const EdgeOffset offset =
           OffsetFromCurvedEdge(p.ideal_px, edges_px[near.layer][near.bin], normal, rho);
       // Over the pixel's area (blurred_disk_profile.h): its offsets along the edge (variance
-      // 1/12) put it a²/2ρ further out on average, 1/24ρ.
+      // 1/12) put it a²/2ρ further out on average, 1/24ρ; and across it, along the normal at
+      // the pixel's own foot on the edge, turned from the edge point's by a/ρ (with the edge
+      // point's, 2 px apart on a sharp disk of 40 px, the model sat 0.23 grey levels RMS from
+      // the exact cover of the pixels it crosses; with the pixel's, 0.10).
       const double distance = offset.distance + 1.0 / (24.0 * rho);
+      const Eigen::Vector2d pixel_normal =
+          (normal + (offset.along / rho) * Eigen::Vector2d(-normal.y(), normal.x())).normalized();
       const PixelProfileValue g =
           profiles[near.layer][near.bin].OverPixel(-distance / sigma_value,
-                                                   0.5 * std::abs(normal.x()) / sigma_value,
-                                                   0.5 * std::abs(normal.y()) / sigma_value);
+                                                   0.5 * std::abs(pixel_normal.x()) / sigma_value,
+                                                   0.5 * std::abs(pixel_normal.y()) / sigma_value);
       if (d) {
         const Eigen::Matrix<double, 7, 2>& edge_along_frame =
             edges_along_frame[near.layer][near.bin];
