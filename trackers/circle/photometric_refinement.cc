@@ -12,6 +12,7 @@
 #include "trackers/circle/blurred_ellipse.h"
 #include "trackers/circle/clipped_noise.h"
 #include "trackers/circle/conic.h"
+#include "trackers/circle/pixel_chord_term.h"
 #include "trackers/circle/pixel_fit.h"
 
 namespace markerbench {
@@ -120,8 +121,14 @@ class PixelModel {
              const std::vector<EdgeLayer>& layers,
              const PixelSet& pixels,
              int channels,
-             double noise_sigma)
-      : K_(K), layers_(layers), pixels_(pixels), channels_(channels), noise_sigma_(noise_sigma) {}
+             double noise_sigma,
+             double chords_below_noise)
+      : K_(K),
+        layers_(layers),
+        pixels_(pixels),
+        channels_(channels),
+        noise_sigma_(noise_sigma),
+        chords_below_noise_(chords_below_noise) {}
 
   int Parameters() const { return 7 + 2 * channels_; }
   double MinSigmaPx() const { return kMinBlurSigmaPx; }
@@ -219,6 +226,7 @@ class PixelModel {
     // t·(x - e)), z = -d/σ, inside = G(s, z) over the pixel, chained to the 7 Jet parameters
     // through e, s and σ.
     const double sigma_value = sigma.a;
+    const bool with_chords = noise_sigma_ < chords_below_noise_;
     Eigen::Matrix<double, 7, 1> d_whole_sigma = Eigen::Matrix<double, 7, 1>::Zero();
     d_whole_sigma[6] = sigma_value / whole_sigma;
     // The fraction of a near edge's disk seen at a pixel, with its gradient if asked.
@@ -249,22 +257,28 @@ class PixelModel {
           profiles[near.layer][near.bin].OverPixel(-distance / sigma_value,
                                                    0.5 * std::abs(pixel_normal.x()) / sigma_value,
                                                    0.5 * std::abs(pixel_normal.y()) / sigma_value);
+      // And what the square's chords add beyond the mean shift (pixel_chord_term.h).
+      const PixelChordTerm chord = with_chords
+                                       ? PixelChordTermAt(distance, sigma_value, pixel_normal, rho)
+                                       : PixelChordTerm{};
       if (d) {
         const Eigen::Matrix<double, 7, 2>& edge_along_frame =
             edges_along_frame[near.layer][near.bin];
         // ∂G/∂θ = G_z ∂z/∂θ + G_s ρ ∂(s/ρ)/∂θ, z = -d/σ, ∂d/∂θ = -(n + (a/ρ) t)·∂e/∂θ (and
         // ∂σ/∂θ = e₇).
         const double along_edge = g.d_dz / sigma_value;
+        const double across_edge = along_edge - chord.d_distance;  // -∂V/∂d
         const double along_tangent = offset.along / rho;
         const double along_size = g.d_ds * rho;
         const Jet& size = size_per_sigma[near.layer];
         for (int i = 0; i < 7; ++i) {
-          (*d)[i] = along_edge * (edge_along_frame(i, 0) + along_tangent * edge_along_frame(i, 1)) +
-                    along_size * size.v[i];
+          (*d)[i] =
+              across_edge * (edge_along_frame(i, 0) + along_tangent * edge_along_frame(i, 1)) +
+              along_size * size.v[i];
         }
-        (*d)[6] += (along_edge * distance - g.d_dlog_width) / sigma_value;
+        (*d)[6] += (along_edge * distance - g.d_dlog_width) / sigma_value + chord.d_sigma;
       }
-      return g.value;
+      return g.value + chord.value;
     };
     if (modelled) modelled->reserve(modelled->size() + pixels_.pixels.size() * channels_);
     for (const Pixel& p : pixels_.pixels) {
@@ -347,7 +361,8 @@ class PixelModel {
   const std::vector<EdgeLayer>& layers_;
   const PixelSet& pixels_;
   int channels_;
-  double noise_sigma_;  // the image's, 0-1 units, for the clipping
+  double noise_sigma_;         // the image's, 0-1 units, for the clipping
+  double chords_below_noise_;  // PhotometricOptions::chords_below_noise
 };
 
 // The colour in the channels used: RGB, or its luma in the first for a grey image.
@@ -642,8 +657,12 @@ std::optional<PhotometricResult> RefineOnce(const Image8& image,
   const std::optional<ModelledPixels> at =
       PixelsAt(image, camera, marker, cam_from_marker, sigma_px, round_options);
   if (!at) return std::nullopt;
-  PixelModel model(
-      camera.K(), at->layers, at->pixels, image.channels, ModelNoiseSigma(noise_sigma));
+  PixelModel model(camera.K(),
+                   at->layers,
+                   at->pixels,
+                   image.channels,
+                   ModelNoiseSigma(noise_sigma),
+                   options.chords_below_noise);
   const PixelFit fit =
       FitPixelsAtTheirNoise(model, cam_from_marker, at->sigma_px, options.max_iterations, round);
   return PhotometricResult{fit, static_cast<int>(at->pixels.pixels.size()), model.noise_sigma()};
@@ -664,7 +683,8 @@ size_t BestPhotometricFit(const Image8& image,
     const std::optional<ModelledPixels> at =
         PixelsAt(image, camera, marker, at_fit.fit.cam_from_marker, at_fit.fit.sigma_px, options);
     if (!at) continue;  // no fit's pixels: the same for all
-    const PixelModel model(camera.K(), at->layers, at->pixels, image.channels, noise);
+    const PixelModel model(
+        camera.K(), at->layers, at->pixels, image.channels, noise, options.chords_below_noise);
     for (size_t i = 0; i < fits.size(); ++i) {
       const PixelFit& fit = fits[i].fit;
       costs[i] += model.Evaluate(
@@ -732,8 +752,12 @@ std::optional<PhotometricNormalEquations> PhotometricNormalEquationsAt(
   const std::optional<ModelledPixels> at =
       PixelsAt(image, camera, marker, cam_from_marker, sigma_px, options);
   if (!at) return std::nullopt;
-  const PixelModel model(
-      camera.K(), at->layers, at->pixels, image.channels, ModelNoiseSigma(noise_sigma));
+  const PixelModel model(camera.K(),
+                         at->layers,
+                         at->pixels,
+                         image.channels,
+                         ModelNoiseSigma(noise_sigma),
+                         options.chords_below_noise);
   PhotometricNormalEquations equations;
   equations.cost = model.Evaluate(theta, &equations.jtj, &equations.jtr);
   return equations;
