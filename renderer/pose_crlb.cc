@@ -163,6 +163,59 @@ double GaussianNormCdf(double r, double l1, double l2, double l3) {
   return total;  // (2/π) ∫ da over [0, π/2] = the mean over the quadrant
 }
 
+// Below this noise (8-bit levels) the rounding's covariance is its noiseless sum (the series
+// would need more than 10^4 terms).
+constexpr double kNoiselessLevels = 1e-4;
+// F takes a pixel's channels jointly only where their rounding's covariance is above this
+// (levels²; it falls to it at about 0.55 levels of noise, 1e-5 of the variance).
+constexpr double kLeastRoundingCovariance = 1e-6;
+
+// The frame's noise-free linear image: its channels' values, for their rounding.
+ImageF NoiseFreeImage(const FrameRequest& request) {
+  FrameRequest noise_free = request;
+  noise_free.degradations.noise_var = 0.0;
+  noise_free.keep_linear = true;
+  return RenderFrame(noise_free).linear;
+}
+
+// F = Σ_pixels ∇θIᵀ Σ⁻¹ ∇θI over `pixels`, Σ the channels' noise covariance: the frame's noise
+// and rounding, shared by channels of equal noise-free `values`; `derivative`'s planes
+// k · channels + c hold ∂I_c/∂θ_k over `area` (RGB: frames have 1 channel or 3).
+Matrix6d JointChannelsFisher(const ImageF& derivative,
+                             const PixelRect& area,
+                             const PixelRect& pixels,
+                             const ImageF& values,
+                             const Degradations& d) {
+  constexpr int channels = 3;
+  const double shared =
+      EqualChannelsRoundingCovariance(255.0 * std::sqrt(d.noise_var)) / (255.0 * 255.0);
+  Matrix6d fisher = Matrix6d::Zero();
+  Eigen::Matrix<double, channels, 6> gradient;
+  Eigen::Matrix3d covariance;
+  for (int y = pixels.y0; y < pixels.y1; ++y) {
+    for (int x = pixels.x0; x < pixels.x1; ++x) {
+      const size_t at = static_cast<size_t>(y - area.y0) * derivative.width + (x - area.x0);
+      for (int c = 0; c < channels; ++c) {
+        for (int k = 0; k < 6; ++k) gradient(c, k) = derivative.plane(k * channels + c)[at];
+      }
+      if (gradient.isZero(0.0)) continue;
+      const size_t value_at = static_cast<size_t>(y) * values.width + x;
+      for (int a = 0; a < channels; ++a) {
+        covariance(a, a) = d.noise_var + kQuantisationVariance;
+        for (int b = a + 1; b < channels; ++b) {
+          const bool equal = values.plane(a)[value_at] == values.plane(b)[value_at];
+          covariance(a, b) = covariance(b, a) = equal ? shared : 0.0;
+        }
+      }
+      // Σ is singular where channels are equal without noise: its pseudo-inverse takes each
+      // group of equal channels as one observation.
+      const Eigen::Matrix<double, channels, 6> information =
+          covariance.completeOrthogonalDecomposition().solve(gradient);
+      fisher += gradient.transpose() * information;
+    }
+  }
+  return fisher;
+}
 }  // namespace
 
 double ProbabilityNormWithin(double r, const Eigen::Vector3d& variances) {
@@ -302,9 +355,13 @@ Matrix6d PoseFisherInformation(const FrameRequest& request, const CrlbOptions& o
   MotionBlur(d.motion_blur_px, d.motion_blur_angle_deg, blurred, &derivative);
 
   // F over the image's pixels; lighting scales the image by the gain.
-  const double scale = d.gain * d.gain / (d.noise_var + kQuantisationVariance);
   const int x0 = std::max(area.x0, 0), x1 = std::min(area.x1, camera.width);
   const int y0 = std::max(area.y0, 0), y1 = std::min(area.y1, camera.height);
+  const double noise_levels = 255.0 * std::sqrt(d.noise_var);
+  if (channels > 1 && EqualChannelsRoundingCovariance(noise_levels) > kLeastRoundingCovariance) {
+    return d.gain * d.gain *
+           JointChannelsFisher(derivative, area, {x0, y0, x1, y1}, NoiseFreeImage(request), d);
+  }
   Matrix6d fisher = Matrix6d::Zero();
   for (int c = 0; c < channels; ++c) {
     for (int k = 0; k < 6; ++k) {
@@ -323,7 +380,19 @@ Matrix6d PoseFisherInformation(const FrameRequest& request, const CrlbOptions& o
     }
   }
   fisher = fisher.selfadjointView<Eigen::Upper>();
-  return scale * fisher;
+  return d.gain * d.gain / (d.noise_var + kQuantisationVariance) * fisher;
+}
+
+double EqualChannelsRoundingCovariance(double noise_levels) {
+  // Terms until exp(-4π²k²s²) < 1e-17; without noise their sum, π²/6 / 2π².
+  if (noise_levels < kNoiselessLevels) return 1.0 / 12.0;
+  double sum = 0.0;
+  for (int k = 1;; ++k) {
+    const double damping = std::exp(-4.0 * kPi * kPi * k * k * noise_levels * noise_levels);
+    if (damping < 1e-17) break;
+    sum += damping / (2.0 * kPi * kPi * k * k);
+  }
+  return sum;
 }
 
 PoseBound PoseCrlb(const FrameRequest& request, const CrlbOptions& options) {

@@ -2,10 +2,16 @@
 // rendered image allows (crlb.md).
 //
 // Model: the image is I(θ) + n, I the renderer's noise-free linear image (exact pixel-area
-// average, Gaussian and motion blur, lighting gain), n i.i.d. Gaussian per pixel and channel
-// with the frame's noise variance plus the 8-bit quantisation variance 1/(12·255²). Clipping
-// and JPEG are left out. θ = (ω, t) with R = exp([ω]×)·R0: a rotation increment in the camera
-// frame (radians) and the translation (metres).
+// average, Gaussian and motion blur, lighting gain), n Gaussian, independent from pixel to
+// pixel, with the frame's noise variance plus the 8-bit quantisation variance 1/(12·255²) in
+// each channel. A pixel's channels are independent but for their rounding: where the noise
+// is below a level, channels of equal values round alike (EqualChannelsRoundingCovariance; a
+// grey design rendered in RGB is one image three times, and without noise its rounding is one
+// error, not three), and F takes each pixel's channels jointly. (Channels of unequal values
+// are taken as rounding independently, though within a small fraction of a level they do
+// not quite: the bound does not count the information such near coincidences would add.)
+// Clipping and JPEG are left out. θ = (ω, t) with R = exp([ω]×)·R0: a rotation increment in the
+// camera frame (radians) and the translation (metres).
 //
 // ∇θI is exact, not a finite difference: the colour jump across each printed edge times the
 // edge's normal image velocity, integrated along the edge (boundary_pieces.h) and assigned to
@@ -18,7 +24,8 @@
 // bounds a tracker that does not know the motion too.
 //
 // Fisher information
-// F = Σ_pixels Σ_channels ∇θI ∇θIᵀ / σ², cov(θ) ≥ F⁻¹, and the camera centre C = -Rᵀt has
+// F = Σ_pixels ∇θIᵀ Σ⁻¹ ∇θI (the pixel's channels × θ; Σ their noise's covariance, σ² I
+// where the noise is more than a level), cov(θ) ≥ F⁻¹, and the camera centre C = -Rᵀt has
 // cov(C) ≥ J F⁻¹ Jᵀ.
 #pragma once
 
@@ -30,6 +37,12 @@ namespace markerbench {
 
 // The variance of 8-bit rounding in [0, 1] units: the noise floor of a noise-free frame.
 inline constexpr double kQuantisationVariance = 1.0 / (12.0 * 255.0 * 255.0);
+
+// The covariance (8-bit levels²) of the rounding errors of two channels of a pixel with equal
+// noise-free values, each with independent Gaussian noise of s = `noise_levels`, over values
+// uniform within a level: from the sawtooth's Fourier series, Σ_k≥1 exp(-4π²k²s²) / 2π²k²;
+// 1/12, the rounding's variance, without noise (the channels round alike), 2.6e-6 at s = ½.
+double EqualChannelsRoundingCovariance(double noise_levels);
 
 struct CrlbOptions {
   // Longest edge piece in the image (px). Pieces are split at pixel borders, so the bound

@@ -165,6 +165,68 @@ TEST(PoseCrlbTest, ScalesWithTheNoiseAndRisesWithBlur) {
   }
 }
 
+// E_v[(E_n e(v + n))²] for the rounding error e(x) = round(x) - x, v uniform within a level
+// and n ~ N(0, s²) (levels): two channels of equal value with independent noise, by direct
+// quadrature over v and n.
+double EqualChannelsRoundingCovarianceByQuadrature(double noise_levels) {
+  constexpr int kValues = 400, kNoises = 4000;
+  double sum = 0.0;
+  for (int i = 0; i < kValues; ++i) {
+    const double v = (i + 0.5) / kValues;
+    double mean = 0.0, weights = 0.0;
+    for (int j = 0; j < kNoises; ++j) {
+      const double n = noise_levels * (-8.0 + 16.0 * (j + 0.5) / kNoises);
+      const double weight = std::exp(-0.5 * (n / noise_levels) * (n / noise_levels));
+      mean += weight * (std::round(v + n) - (v + n));
+      weights += weight;
+    }
+    sum += (mean / weights) * (mean / weights);
+  }
+  return sum / kValues;
+}
+
+TEST(PoseCrlbTest, EqualChannelsRoundingCovarianceIsTheAverageOverValuesAndNoise) {
+  EXPECT_DOUBLE_EQ(EqualChannelsRoundingCovariance(0.0), 1.0 / 12.0);
+  for (const double noise_levels : {0.05, 0.15, 0.3, 0.5}) {
+    EXPECT_NEAR(EqualChannelsRoundingCovariance(noise_levels),
+                EqualChannelsRoundingCovarianceByQuadrature(noise_levels),
+                1e-5)
+        << "noise " << noise_levels;
+  }
+  EXPECT_LT(EqualChannelsRoundingCovariance(1.0), 1e-17);
+}
+
+// A grey design rendered in RGB is one image three times: without noise its rounding is one
+// error per pixel, and the bound is the grey frame's; with noise the channels' noise is
+// independent, and it is 1/√3 of it. circles_a's disks each change two equal channels (green
+// and blue for the red disk, red and green for the blue one): without noise they hold half the
+// information that independent rounding would give them.
+TEST(PoseCrlbTest, ChannelsOfEqualValuesRoundAlikeWithoutNoise) {
+  const MarkerSpec square = BlackSquareMarker(-0.05, -0.05, 0.1);
+  const Rigid3 pose = LookAt(square.InkBounds().center(), 0.6, 30.0, 75.0, 20.0);
+  for (const double blur : {0.0, 1.5}) {
+    SCOPED_TRACE("blur " + std::to_string(blur));
+    const double grey = PoseCrlb(MarkerFrameRequest(square, pose, 0.0, blur, 1)).position_rms_m;
+    const double rgb = PoseCrlb(MarkerFrameRequest(square, pose, 0.0, blur, 3)).position_rms_m;
+    EXPECT_NEAR(rgb, grey, 1e-6 * grey);
+    const double noisy_grey =
+        PoseCrlb(MarkerFrameRequest(square, pose, 0.02, blur, 1)).position_rms_m;
+    const double noisy_rgb =
+        PoseCrlb(MarkerFrameRequest(square, pose, 0.02, blur, 3)).position_rms_m;
+    EXPECT_NEAR(noisy_rgb, noisy_grey / std::sqrt(3.0), 1e-6 * noisy_grey);
+  }
+  const MarkerSpec circles = CrlbCirclesA();
+  const Rigid3 circles_pose = LookAt(circles.InkBounds().center(), 0.6, 25.0, 40.0, 10.0);
+  const Matrix6d joint =
+      PoseFisherInformation(MarkerFrameRequest(circles, circles_pose, 0.0, 0.0, 3));
+  // Two levels of noise: the channels independent, F the noiseless one's × q/(noise + q).
+  const double noise_var = 4.0 / (255.0 * 255.0);
+  const Matrix6d independent =
+      PoseFisherInformation(MarkerFrameRequest(circles, circles_pose, noise_var, 0.0, 3)) *
+      ((noise_var + kQuantisationVariance) / kQuantisationVariance);
+  EXPECT_LT((joint - 0.5 * independent).norm(), 1e-6 * independent.norm());
+}
+
 TEST(PoseCrlbTest, DoesNotChangeWhenTheEdgesAreSampledFiner) {
   constexpr double kTol = 1e-3;  // relative
   const MarkerSpec circles = CrlbCirclesA();
