@@ -4,6 +4,7 @@
 #include <array>
 #include <cmath>
 #include <limits>
+#include <optional>
 #include <vector>
 
 namespace markerbench {
@@ -114,15 +115,17 @@ AppearanceFit FitOnGrid(const Image8& image,
     return px.x() > -0.5 && px.y() > -0.5 && px.x() < image.width - 2.5 &&
            px.y() < image.height - 0.5;
   };
-  // Per pixel of the rectangle the pairs read: read as a pair's first (bit 1), by a pair in
-  // blocks (bit 2).
+  // Each lattice point's pair's first pixel, where both its pixels are in the image; and per
+  // pixel of the rectangle the pairs read: read as a pair's first (bit 1), by a pair in blocks
+  // (bit 2).
+  std::vector<std::optional<Eigen::Vector2i>> first_pixel(lattice_px.size());
   Eigen::AlignedBox2i pixels_read;
   for (size_t k = 0; k < lattice_px.size(); ++k) {
     if (!in_front[k] || !pair_in_image(lattice_px[k])) continue;
-    const Eigen::Vector2i first(static_cast<int>(std::lround(lattice_px[k].x())),
-                                static_cast<int>(std::lround(lattice_px[k].y())));
-    pixels_read.extend(first);
-    pixels_read.extend(first + Eigen::Vector2i(2, 0));
+    first_pixel[k] = Eigen::Vector2i(static_cast<int>(std::lround(lattice_px[k].x())),
+                                     static_cast<int>(std::lround(lattice_px[k].y())));
+    pixels_read.extend(*first_pixel[k]);
+    pixels_read.extend(*first_pixel[k] + Eigen::Vector2i(2, 0));
   }
   const int read_width = pixels_read.isEmpty() ? 0 : pixels_read.sizes().x() + 1;
   constexpr uint8_t kReadFirst = 1, kReadInBlocks = 2;
@@ -133,12 +136,10 @@ AppearanceFit FitOnGrid(const Image8& image,
   for (int i = 0; i < grid; ++i) {
     for (int j = 0; j < grid; ++j) {
       const int here = i * side + j, right = here + side, up = here + 1;
-      if (!in_front[here] || !in_front[right] || !in_front[up]) continue;
+      if (!first_pixel[here] || !in_front[right] || !in_front[up]) continue;
       const Eigen::Vector2d p = lattice_point(i, j);
       const Eigen::Vector2d& px = lattice_px[here];
-      if (!pair_in_image(px)) continue;
-      const int u = static_cast<int>(std::lround(px.x()));
-      const int v = static_cast<int>(std::lround(px.y()));
+      const int u = first_pixel[here]->x(), v = first_pixel[here]->y();
       // Where the lattice is finer than the pixels (a far marker), a pixel is read once as a
       // pair's first: the standard errors count independent readings. A pixel may be one
       // pair's second and another's first; the blocks (below) take only pairs whose pixels no
