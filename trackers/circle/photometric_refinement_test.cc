@@ -202,12 +202,12 @@ TEST(PhotometricRefinement, FitsANoiseFreeFrameFromAStartMillimetresOff) {
   }
 }
 
-// The normal equations the steps work from are the cost's: Jᵀr is half its gradient, to the
-// central differences of the cost, in every parameter (pose, σ, each channel's offset and gain)
-// and on every path of the model: osculating disks with noise clipped at white paper (a and
-// the grey d), without noise (the pixels' chords modelled), blurred edges overlapping, and
-// disks modelled whole under heavy blur. θ is
-// off the pixels' ties (pose, σ and levels) so that no component of the gradient vanishes.
+// The normal equations the steps work from are the cost's: Jᵀr is half its gradient, to the central
+// differences of the cost, in every parameter (pose, σ, each channel's offset and gain) and on
+// every path of the model: osculating disks with noise clipped at white paper (a and the grey d),
+// without noise (the pixels' chords modelled), blurred edges overlapping, and disks modelled whole
+// under heavy blur. θ is off the pixels' ties (pose, σ and levels) so that no component of the
+// gradient vanishes.
 TEST(PhotometricRefinement, NormalEquationsAreTheCostsDerivatives) {
   const Camera camera;
   struct Case {
