@@ -167,7 +167,7 @@ double GaussianNormCdf(double r, double l1, double l2, double l3) {
 // would need more than 10^4 terms).
 constexpr double kNoiselessLevels = 1e-4;
 // F takes a pixel's channels jointly only where their rounding's covariance is above this
-// (levels²; it falls to it at about 0.55 levels of noise, 1e-5 of the variance).
+// (levels²; it falls to it at about 0.53 levels of noise, 1.2e-5 of the rounding's variance).
 constexpr double kLeastRoundingCovariance = 1e-6;
 
 // The frame's noise-free linear image: its channels' values, for their rounding.
