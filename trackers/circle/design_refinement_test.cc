@@ -9,6 +9,8 @@
 
 #include <Eigen/Geometry>
 #include <cmath>
+#include <functional>
+#include <optional>
 
 #include "core/marker_scaling.h"
 #include "core/marker_yaml.h"
@@ -20,6 +22,7 @@
 #include "testing/paired_tracking.h"
 #include "testing/sanitized_build.h"
 #include "testing/square_tracker_testing.h"
+#include "testing/tilt_choice.h"
 #include "trackers/circle/circle_geometry.h"
 #include "trackers/circle/circle_tracker.h"
 #include "trackers/circle/conic.h"
@@ -145,6 +148,23 @@ TEST(DesignRefinement, KeepsTheTrueTiltWithoutNoise) {
   }
 }
 
+// The likelier of the design's fits from the true pose and from its mirror (tilt_choice.h),
+// started at blur `sigma_px`.
+std::function<std::optional<Rigid3>(const Image8&, const Rigid3&)> FromTruthAndMirror(
+    const Camera& camera, const MarkerSpec& marker, double sigma_px) {
+  return [&camera, &marker, sigma_px](const Image8& image, const Rigid3& truth) {
+    std::vector<DesignRefinement> fits;
+    for (const Rigid3& start : {truth, OtherTilt(truth)}) {
+      const std::optional<DesignRefinement> fit =
+          RefineDesign(image, camera, marker, start, sigma_px, std::sqrt(0.02));
+      if (!fit) return std::optional<Rigid3>();
+      fits.push_back(*fit);
+    }
+    return std::optional<Rigid3>(
+        fits[BestDesignRefinement(image, camera, marker, fits)].fit.cam_from_marker);
+  };
+}
+
 // Near fronto-parallel and far, or blurred, f's design tells its two tilts apart only weakly: at
 // 1.5 m (the circle 40 px across) and 3-8° of tilt, the best fit at the mirrored pose differs from
 // the true pose's image by about one noise σ in all (0.7-1.6 σ on noise-free renders), and so at 1
@@ -169,29 +189,53 @@ TEST(DesignRefinement, ChoosesTheTiltAsOftenAsFromTheTruePoseAndItsMirror) {
   };
   for (const Case& c : {Case{1.5, 3.0, 8.0, 0.0, 13}, Case{1.0, 5.0, 15.0, 2.0, 14}}) {
     SCOPED_TRACE("distance " + std::to_string(c.distance_m) + " blur " + std::to_string(c.blur));
-    Rng rng(c.pose_seed);
-    int ours_wrong = 0, from_truth_wrong = 0;
-    constexpr int kFrames = 30;
-    for (int i = 0; i < kFrames; ++i) {
-      const Rigid3 truth = RandomTiltedView(c.distance_m, c.min_tilt_deg, c.max_tilt_deg, &rng);
-      const RenderedFrame frame = RenderMarker(marker, truth, 0.02, c.blur, 200 + i);
-      const double wrong_m = 0.1 * c.distance_m;  // the benchmark's success criterion
-      tracker.Reset();
-      const TrackResult ours = tracker.Track({&frame.image, &camera, &marker});
-      ours_wrong += ours.status != TrackStatus::kOk ||
-                    PositionError(ours.hypotheses.front(), truth) > wrong_m;
-      std::vector<DesignRefinement> fits;
-      for (const Rigid3& start : {truth, OtherTilt(truth)}) {
-        const std::optional<DesignRefinement> fit = RefineDesign(
-            frame.image, camera, marker, start, std::max(c.blur, 0.3), std::sqrt(0.02));
-        ASSERT_TRUE(fit);
-        fits.push_back(*fit);
-      }
-      const size_t best = BestDesignRefinement(frame.image, camera, marker, fits);
-      from_truth_wrong += PositionError(fits[best].fit.cam_from_marker, truth) > wrong_m;
-    }
-    EXPECT_GE(from_truth_wrong, 2);
-    EXPECT_LE(ours_wrong, from_truth_wrong + 2);
+    TiltedFrames views;
+    views.distance_m = c.distance_m;
+    views.min_tilt_deg = c.min_tilt_deg;
+    views.max_tilt_deg = c.max_tilt_deg;
+    views.blur_sigma_px = c.blur;
+    views.pose_seed = c.pose_seed;
+    views.first_noise_seed = 200;
+    const TiltChoiceCounts counts = CountTiltChoices(
+        marker, tracker, views, FromTruthAndMirror(camera, marker, std::max(c.blur, 0.3)));
+    EXPECT_GE(counts.from_truth_wrong, 2);
+    EXPECT_LE(counts.ours_wrong, counts.from_truth_wrong + 2);
+  }
+}
+
+// The same at the far end of the paper's distance sweep (equal ink area, noise variance 0.02, tilts
+// of 0-40°), where the paper cells below find 54-77 % of frames, their median errors 1.5-2.8× the
+// median bound: the fits from the truth and its mirror keep the mirror about as often as ours.
+// Measured of 100 frames: e at 3 m 29 wrong from the truth and its mirror, wrong only ours 1, only
+// from the truth 1; f at 3 m 44, 2 and 1; f at 3.5 m 46, 0 and 1. Not e at 3.5 m, where ours falls
+// short: wrong only ours 8 (the mirror kept, within 0.5-3.7° of it), only from the truth 1
+// (p 0.02); fitted again from our pose and its mirror, three of those eight keep the truth from
+// σ 0.3 px at the frame's noise and the mirror from the tracker's start σ and noise estimate (0.058
+// for 0.141). Not under the sanitizers (testing/sanitized_build.h).
+TEST(DesignRefinement, FarAwayChoosesTheTiltAsOftenAsFromTheTruePoseAndItsMirror) {
+  if (kSanitizedBuild) GTEST_SKIP() << "counts over 300 frames: the optimised build's";
+  const Camera camera;
+  CircleTracker tracker;
+  struct Case {
+    const char* kind;
+    double distance_m;
+  };
+  for (const Case& c : {Case{"circle_e", 3.0}, Case{"circle_f", 3.0}, Case{"circle_f", 3.5}}) {
+    SCOPED_TRACE(std::string(c.kind) + " distance " + std::to_string(c.distance_m));
+    const MarkerSpec loaded = Load(c.kind);
+    const MarkerSpec marker = ScaledMarker(loaded, EqualAreaFactor(loaded, 0.01));
+    TiltedFrames views;
+    views.distance_m = c.distance_m;
+    views.frames = 100;
+    views.pose_seed = 32;
+    views.first_noise_seed = 500;
+    const TiltChoiceCounts counts =
+        CountTiltChoices(marker, tracker, views, FromTruthAndMirror(camera, marker, 0.3));
+    // The premise: the likelier of the two fits is often the mirror.
+    EXPECT_GE(counts.from_truth_wrong, views.frames / 10);
+    EXPECT_GT(counts.OursWrongMoreOftenP(), 0.05)
+        << counts.only_ours_wrong << " frames wrong only ours, " << counts.only_from_truth_wrong
+        << " only from the truth";
   }
 }
 
