@@ -149,14 +149,15 @@ TEST(DesignRefinement, KeepsTheTrueTiltWithoutNoise) {
 }
 
 // The likelier of the design's fits from the true pose and from its mirror (tilt_choice.h),
-// started at blur `sigma_px`.
+// started at blur `sigma_px` and the frames' noise.
 std::function<std::optional<Rigid3>(const Image8&, const Rigid3&)> FromTruthAndMirror(
-    const Camera& camera, const MarkerSpec& marker, double sigma_px) {
-  return [&camera, &marker, sigma_px](const Image8& image, const Rigid3& truth) {
+    const Camera& camera, const MarkerSpec& marker, const TiltedFrames& views, double sigma_px) {
+  const double noise_sigma = std::sqrt(views.noise_var);
+  return [&camera, &marker, sigma_px, noise_sigma](const Image8& image, const Rigid3& truth) {
     std::vector<DesignRefinement> fits;
     for (const Rigid3& start : {truth, OtherTilt(truth)}) {
       const std::optional<DesignRefinement> fit =
-          RefineDesign(image, camera, marker, start, sigma_px, std::sqrt(0.02));
+          RefineDesign(image, camera, marker, start, sigma_px, noise_sigma);
       if (!fit) return std::optional<Rigid3>();
       fits.push_back(*fit);
     }
@@ -197,7 +198,7 @@ TEST(DesignRefinement, ChoosesTheTiltAsOftenAsFromTheTruePoseAndItsMirror) {
     views.pose_seed = c.pose_seed;
     views.first_noise_seed = 200;
     const TiltChoiceCounts counts = CountTiltChoices(
-        marker, tracker, views, FromTruthAndMirror(camera, marker, std::max(c.blur, 0.3)));
+        marker, tracker, views, FromTruthAndMirror(camera, marker, views, std::max(c.blur, 0.3)));
     EXPECT_GE(counts.from_truth_wrong, 2);
     EXPECT_LE(counts.ours_wrong, counts.from_truth_wrong + 2);
   }
@@ -233,7 +234,7 @@ TEST(DesignRefinement, FarAwayChoosesTheTiltAsOftenAsFromTheTruePoseAndItsMirror
     views.pose_seed = 32;
     views.first_noise_seed = 500;
     const TiltChoiceCounts counts =
-        CountTiltChoices(marker, tracker, views, FromTruthAndMirror(camera, marker, 0.3));
+        CountTiltChoices(marker, tracker, views, FromTruthAndMirror(camera, marker, views, 0.3));
     // The premise: the likelier of the two fits is often the mirror.
     EXPECT_GE(counts.from_truth_wrong, views.frames / 10);
     EXPECT_GT(counts.OursWrongMoreOftenP(), 0.05 / cases.size())

@@ -1,12 +1,13 @@
 // The photometric refinement (issue 21) on rendered frames with known ground truth: from a
-// perturbed start it recovers the pose and the blur; over the same frames it beats the edge-
-// point refinement (a paired comparison) and tells the two tilts apart far away; the clipping of
-// noise at white paper, at the noise its residuals show, keeps its blur unbiased; under heavy blur,
-// with overlapping edges, it stays within its model's bias; it fits a noise-free frame to the
-// 8-bit rounding, sharp (each pixel averaged over its area) or blurred, from the truth or from a
-// start millimetres off; its normal equations are its cost's derivatives; its band of pixels
-// keeps nearly all of the pose's information; a round that settles the fit (the first, or a later
-// one) ends it within a standard error of more rounds; it declines designs other than disks.
+// perturbed start it recovers the pose and the blur; over the same frames it beats the edge-point
+// refinement (a paired comparison) and tells the two tilts apart far away, as often as fits from
+// the true pose and its mirror; the clipping of noise at white paper, at the noise its residuals
+// show, keeps its blur unbiased; under heavy blur, with overlapping edges, it stays within its
+// model's bias; it fits a noise-free frame to the 8-bit rounding, sharp (each pixel averaged over
+// its area) or blurred, from the truth or from a start millimetres off; its normal equations are
+// its cost's derivatives; its band of pixels keeps nearly all of the pose's information; a round
+// that settles the fit (the first, or a later one) ends it within a standard error of more rounds;
+// it declines designs other than disks.
 #include "trackers/circle/photometric_refinement.h"
 
 #include <gtest/gtest.h>
@@ -127,7 +128,7 @@ TEST(PhotometricRefinement, ChoosesTheTiltAsOftenAsFromTheTruePoseAndItsMirror) 
     const TiltChoiceCounts counts =
         CountTiltChoices(marker, tracker, views, [&](const Image8& image, const Rigid3& truth) {
           const std::optional<PhotometricResult> fit = RefinePhotometricFromStarts(
-              image, camera, marker, {truth, OtherTilt(truth)}, 0.3, std::sqrt(0.02));
+              image, camera, marker, {truth, OtherTilt(truth)}, 0.3, std::sqrt(views.noise_var));
           return fit ? std::optional<Rigid3>(fit->fit.cam_from_marker) : std::nullopt;
         });
     // The premise: the likelier of the two fits is often the mirror.
