@@ -271,7 +271,11 @@ void WriteReport(const std::string& dir, const ReportOptions& options) {
         "algorithm cannot go below it, only a bigger marker, a closer camera or less noise "
         "can); `success at bound` is the success rate such an estimator would have on the "
         "same frames (its error Gaussian with the bound's covariance; a ceiling for unbiased "
-        "trackers, reached only by efficient ones).\n\n";
+        "trackers, reached only by efficient ones). Both are local: they take the estimate to "
+        "be in the true pose's basin. Far away or near face-on a planar marker looks nearly "
+        "the same from its tilt mirrored about the line of sight (the planar two-fold "
+        "ambiguity); frames whose likelier fit is that mirror fail where the bound foresees "
+        "success, so there the limit is below `success at bound`.\n\n";
   const std::vector<ClaimResult> claims = ReproduceClaims(summary, options.summary);
   if (!claims.empty()) {
     md += "## The paper's claims beside ours\n\n" + ReproductionTableMarkdown(claims) + "\n";
