@@ -10,6 +10,7 @@
 #include <Eigen/Geometry>
 #include <cmath>
 #include <functional>
+#include <limits>
 #include <optional>
 
 #include "core/marker_scaling.h"
@@ -149,20 +150,17 @@ TEST(DesignRefinement, KeepsTheTrueTiltWithoutNoise) {
 }
 
 // The likelier of the design's fits from the true pose and from its mirror (tilt_choice.h),
-// started at blur `sigma_px` and the frames' noise.
+// started at blur `sigma_px` and the frames' noise, each fit to its end.
 std::function<std::optional<Rigid3>(const Image8&, const Rigid3&)> FromTruthAndMirror(
     const Camera& camera, const MarkerSpec& marker, const TiltedFrames& views, double sigma_px) {
   const double noise_sigma = std::sqrt(views.noise_var);
-  return [&camera, &marker, sigma_px, noise_sigma](const Image8& image, const Rigid3& truth) {
-    std::vector<DesignRefinement> fits;
-    for (const Rigid3& start : {truth, OtherTilt(truth)}) {
-      const std::optional<DesignRefinement> fit =
-          RefineDesign(image, camera, marker, start, sigma_px, noise_sigma);
-      if (!fit) return std::optional<Rigid3>();
-      fits.push_back(*fit);
-    }
-    return std::optional<Rigid3>(
-        fits[BestDesignRefinement(image, camera, marker, fits)].fit.cam_from_marker);
+  DesignRefinementOptions to_the_end;
+  to_the_end.max_first_round_log_ratio = std::numeric_limits<double>::infinity();
+  return [&camera, &marker, sigma_px, noise_sigma, to_the_end](const Image8& image,
+                                                               const Rigid3& truth) {
+    const std::optional<DesignRefinement> fit = RefineDesignFromStarts(
+        image, camera, marker, {truth, OtherTilt(truth)}, sigma_px, noise_sigma, to_the_end);
+    return fit ? std::optional<Rigid3>(fit->fit.cam_from_marker) : std::nullopt;
   };
 }
 
