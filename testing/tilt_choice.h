@@ -41,34 +41,53 @@ struct TiltedFrames {
   uint64_t pose_seed = 1, first_noise_seed = 1;
 };
 
-// `fit_from_truth_and_mirror(image, truth)`: the kept fit's pose (nullopt counts as wrong). A
-// pose is wrong beyond a tenth of the distance (the benchmark's success criterion), or where
-// the tracker (Reset before each frame) finds none.
-inline TiltChoiceCounts CountTiltChoices(
-    const MarkerSpec& marker,
-    Tracker& tracker,
-    const TiltedFrames& views,
-    const std::function<std::optional<Rigid3>(const Image8&, const Rigid3&)>&
-        fit_from_truth_and_mirror) {
+// `fit_from_truth_and_mirror(image, truth)`: the kept fit's pose (nullopt counts as wrong).
+using FitFromTruthAndMirror = std::function<std::optional<Rigid3>(const Image8&, const Rigid3&)>;
+
+// One frame counted, seen from `distance_m`: a pose is wrong beyond a tenth of it (the
+// benchmark's success criterion), or where the tracker (Reset first) finds none.
+inline void CountTiltChoice(const Image8& image,
+                            const Camera& camera,
+                            const MarkerSpec& marker,
+                            const Rigid3& truth,
+                            double distance_m,
+                            Tracker& tracker,
+                            const FitFromTruthAndMirror& fit_from_truth_and_mirror,
+                            TiltChoiceCounts* counts) {
+  const double wrong_m = 0.1 * distance_m;
+  tracker.Reset();
+  const TrackResult ours = tracker.Track({&image, &camera, &marker});
+  const bool ours_wrong = ours.status != TrackStatus::kOk ||
+                          !(PositionError(ours.hypotheses.front(), truth) <= wrong_m);
+  const std::optional<Rigid3> kept = fit_from_truth_and_mirror(image, truth);
+  const bool truth_wrong = !kept || !(PositionError(*kept, truth) <= wrong_m);
+  counts->from_truth_wrong += truth_wrong;
+  counts->ours_wrong += ours_wrong;
+  counts->only_ours_wrong += ours_wrong && !truth_wrong;
+  counts->only_from_truth_wrong += truth_wrong && !ours_wrong;
+}
+
+// The frames of `views`, from the default camera.
+inline TiltChoiceCounts CountTiltChoices(const MarkerSpec& marker,
+                                         Tracker& tracker,
+                                         const TiltedFrames& views,
+                                         const FitFromTruthAndMirror& fit_from_truth_and_mirror) {
   const Camera camera;
   Rng rng(views.pose_seed);
   TiltChoiceCounts counts;
-  const double wrong_m = 0.1 * views.distance_m;
   for (int i = 0; i < views.frames; ++i) {
     const Rigid3 truth =
         RandomTiltedView(views.distance_m, views.min_tilt_deg, views.max_tilt_deg, &rng);
     const RenderedFrame frame = RenderMarker(
         marker, truth, views.noise_var, views.blur_sigma_px, views.first_noise_seed + i);
-    tracker.Reset();
-    const TrackResult ours = tracker.Track({&frame.image, &camera, &marker});
-    const bool ours_wrong = ours.status != TrackStatus::kOk ||
-                            !(PositionError(ours.hypotheses.front(), truth) <= wrong_m);
-    const std::optional<Rigid3> kept = fit_from_truth_and_mirror(frame.image, truth);
-    const bool truth_wrong = !kept || !(PositionError(*kept, truth) <= wrong_m);
-    counts.from_truth_wrong += truth_wrong;
-    counts.ours_wrong += ours_wrong;
-    counts.only_ours_wrong += ours_wrong && !truth_wrong;
-    counts.only_from_truth_wrong += truth_wrong && !ours_wrong;
+    CountTiltChoice(frame.image,
+                    camera,
+                    marker,
+                    truth,
+                    views.distance_m,
+                    tracker,
+                    fit_from_truth_and_mirror,
+                    &counts);
   }
   return counts;
 }
