@@ -14,6 +14,8 @@
 #include "core/random.h"
 #include "renderer/test_scenes.h"
 #include "testing/square_tracker_testing.h"
+#include "trackers/circle/circle_geometry.h"
+#include "trackers/circle/photometric_refinement.h"
 #include "trackers/tracker.h"
 
 namespace markerbench {
@@ -43,6 +45,22 @@ struct TiltedFrames {
 
 // `fit_from_truth_and_mirror(image, truth)`: the kept fit's pose (nullopt counts as wrong).
 using FitFromTruthAndMirror = std::function<std::optional<Rigid3>(const Image8&, const Rigid3&)>;
+
+// That fit for the disks of a-d: the likelier of the fits on their pixels
+// (RefinePhotometricFromStarts) from the truth and from OtherTilt(truth), started at the edges'
+// σ `edge_sigma_px` and noise σ `noise_sigma` (0-1). `camera` and `marker` must outlive it.
+inline FitFromTruthAndMirror PixelFitFromTruthAndMirror(const Camera& camera,
+                                                        const MarkerSpec& marker,
+                                                        double edge_sigma_px,
+                                                        double noise_sigma) {
+  return [&camera, &marker, edge_sigma_px, noise_sigma](
+             const Image8& image, const Rigid3& truth) -> std::optional<Rigid3> {
+    const std::optional<PhotometricResult> fit = RefinePhotometricFromStarts(
+        image, camera, marker, {truth, OtherTilt(truth)}, edge_sigma_px, noise_sigma);
+    if (!fit) return std::nullopt;
+    return fit->fit.cam_from_marker;
+  };
+}
 
 // One frame counted, seen from `distance_m`: a pose is wrong beyond a tenth of it (the
 // benchmark's success criterion), or where the tracker (Reset first) finds none.

@@ -15,9 +15,7 @@
 #include "bench/plan/scenario.h"
 #include "testing/sanitized_build.h"
 #include "testing/tilt_choice.h"
-#include "trackers/circle/circle_geometry.h"
 #include "trackers/circle/circle_tracker.h"
-#include "trackers/circle/photometric_refinement.h"
 
 namespace markerbench {
 namespace {
@@ -52,16 +50,7 @@ std::map<double, TiltChoiceCounts> CountPaperBlurFrames(MarkerKind kind,
         planned.cam_from_marker,
         scenario.poses.distance_m,
         tracker,
-        [&](const Image8& image, const Rigid3& truth) {
-          const std::optional<PhotometricResult> fit =
-              RefinePhotometricFromStarts(image,
-                                          scenario.camera,
-                                          *marker,
-                                          {truth, OtherTilt(truth)},
-                                          edge_sigma_px,
-                                          noise_sigma);
-          return fit ? std::optional<Rigid3>(fit->fit.cam_from_marker) : std::nullopt;
-        },
+        PixelFitFromTruthAndMirror(scenario.camera, *marker, edge_sigma_px, noise_sigma),
         &cells[planned.sweep_value]);
   }
   return cells;

@@ -28,7 +28,6 @@
 #include "testing/sanitized_build.h"
 #include "testing/square_tracker_testing.h"
 #include "testing/tilt_choice.h"
-#include "trackers/circle/circle_geometry.h"
 #include "trackers/circle/circle_tracker.h"
 #include "trackers/upper_median.h"
 
@@ -125,12 +124,11 @@ TEST(PhotometricRefinement, ChoosesTheTiltAsOftenAsFromTheTruePoseAndItsMirror) 
     views.frames = 200;
     views.pose_seed = 31;
     views.first_noise_seed = 400;
-    const TiltChoiceCounts counts =
-        CountTiltChoices(marker, tracker, views, [&](const Image8& image, const Rigid3& truth) {
-          const std::optional<PhotometricResult> fit = RefinePhotometricFromStarts(
-              image, camera, marker, {truth, OtherTilt(truth)}, 0.3, std::sqrt(views.noise_var));
-          return fit ? std::optional<Rigid3>(fit->fit.cam_from_marker) : std::nullopt;
-        });
+    const TiltChoiceCounts counts = CountTiltChoices(
+        marker,
+        tracker,
+        views,
+        PixelFitFromTruthAndMirror(camera, marker, 0.3, std::sqrt(views.noise_var)));
     // The premise: the likelier of the two fits is often the mirror.
     EXPECT_GE(counts.from_truth_wrong, views.frames / 10);
     EXPECT_GT(counts.OursWrongMoreOftenP(), 0.05 / distances_m.size())
