@@ -130,7 +130,7 @@ void AddColourDots(Rng* rng, MarkerSpec* sheet) {
 
 }  // namespace
 
-NegativeFrame RenderNegative(int index, int set) {
+NegativeFrame RenderNegative(int index, int set, const NegativeSceneOptions& options) {
   Clutter clutter = Clutter::kPaper;
   int within = index;
   for (const auto& [kind, count] : kCounts) {
@@ -175,12 +175,13 @@ NegativeFrame RenderNegative(int index, int set) {
   request.scene.cam_from_marker.translation.x() += rng.Uniform(-0.15, 0.15) * distance;
   request.scene.cam_from_marker.translation.y() += rng.Uniform(-0.15, 0.15) * distance;
   const double noise_vars[] = {0.0, 0.01, 0.02, 0.05, 0.1, 0.3};
-  const double blur_sigmas[] = {0.0, 0.0, 1.0, 2.0, 4.0};
+  const std::vector<double>& blur_sigmas = options.blur_sigmas_px;
   request.degradations.noise_var = noise_vars[static_cast<size_t>(rng.Uniform(0.0, 6.0))];
-  request.degradations.blur_sigma_px = blur_sigmas[static_cast<size_t>(rng.Uniform(0.0, 5.0))];
+  const double blur = rng.Uniform(0.0, static_cast<double>(blur_sigmas.size()));
+  request.degradations.blur_sigma_px = blur_sigmas.at(static_cast<size_t>(blur));
   request.channels = 3;
   request.noise_seed = SeedFor(seed, static_cast<uint64_t>(index), 0, SeedPurpose::kNoise);
-  return {label, RenderFrame(request)};
+  return {label, RenderFrame(request), request.degradations};
 }
 
 }  // namespace markerbench

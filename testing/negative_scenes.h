@@ -8,6 +8,7 @@
 #pragma once
 
 #include <string>
+#include <vector>
 
 #include "renderer/render_frame.h"
 
@@ -18,13 +19,22 @@ constexpr int kNegativeSetSize = 560;
 struct NegativeFrame {
   std::string label;  // what it shows, e.g. "checkerboard 37"
   RenderedFrame frame;
+  Degradations degradations;  // drawn for it
 };
+
+struct NegativeSceneOptions {
+  // The optics' blur σ (px) of a frame: one of these (not none), each equally likely. The set's
+  // own reach 4 px; the paper's blur sweep reaches 10 (kPaperBlurSigmasPx: its heavier half).
+  std::vector<double> blur_sigmas_px = {0.0, 0.0, 1.0, 2.0, 4.0};
+};
+inline const std::vector<double> kPaperBlurSigmasPx = {5.0, 6.0, 7.0, 8.0, 9.0, 10.0};
 
 // Frame `index` (0 <= index < kNegativeSetSize) of the set, RGB, from the default camera.
 // Marker files of the other systems are read from scenarios/markers/ (the working directory
 // is the source root, as in every test). Set 0 is the committed set the tests use; sets 1, 2,
 // ... are fresh draws of the same kinds (other poses, sheets and noise), for the false-positive
-// rate out of the sample the trackers were checked on.
-NegativeFrame RenderNegative(int index, int set = 0);
+// rate out of the sample the trackers were checked on. Other blurs leave every other draw of a
+// frame as it is.
+NegativeFrame RenderNegative(int index, int set = 0, const NegativeSceneOptions& options = {});
 
 }  // namespace markerbench

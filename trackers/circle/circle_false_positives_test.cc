@@ -99,12 +99,18 @@ TEST(CircleFalsePositives, BlocksOfTheDesignCheckRejectGreySquares) {
 // MARKERBENCH_FRESH_NEGATIVE_SETS (the committed set above is the one the tracker was checked
 // on while it was built). Prints each find and a markdown table of the rate per marker with
 // its 95 % Wilson interval, which must lie below 1 %. Skipped unless the variable is set: a
-// measurement of minutes, not a check for every build.
+// measurement of minutes, not a check for every build. MARKERBENCH_NEGATIVE_BLUR=paper draws
+// the blur from the heavier half of the paper's sweep (5-10 px) instead of the set's 0-4.
 TEST(CircleFalsePositives, RateOnFreshDraws) {
   const char* sets_text = std::getenv("MARKERBENCH_FRESH_NEGATIVE_SETS");
   if (!sets_text) GTEST_SKIP() << "MARKERBENCH_FRESH_NEGATIVE_SETS=N measures on N fresh sets";
   const int sets = std::atoi(sets_text);
   ASSERT_GT(sets, 0) << sets_text;
+  NegativeSceneOptions scenes;
+  if (const char* blur = std::getenv("MARKERBENCH_NEGATIVE_BLUR")) {
+    ASSERT_EQ(std::string(blur), "paper") << "MARKERBENCH_NEGATIVE_BLUR: 'paper' or unset";
+    scenes.blur_sigmas_px = kPaperBlurSigmasPx;
+  }
   const Camera camera = FrameRequest().scene.camera;
   std::vector<MarkerSpec> markers;
   for (const char* kind : kKinds) {
@@ -113,7 +119,7 @@ TEST(CircleFalsePositives, RateOnFreshDraws) {
   std::vector<int> found(markers.size(), 0), tries(markers.size(), 0);
   for (int set = 1; set <= sets; ++set) {
     for (int i = 0; i < kNegativeSetSize; ++i) {
-      const NegativeFrame negative = RenderNegative(i, set);
+      const NegativeFrame negative = RenderNegative(i, set, scenes);
       for (size_t k = 0; k < markers.size(); ++k) {
         if (ShowsKind(negative, kKinds[k])) continue;
         CircleTracker tracker;
@@ -122,10 +128,11 @@ TEST(CircleFalsePositives, RateOnFreshDraws) {
         if (result.status != TrackStatus::kOk) continue;
         ++found[k];
         const CircleDiagnostics& d = tracker.diagnostics();
-        std::printf("FIND %s in set %d, %s: noise sigma %.3f, design misfit %.3f\n",
+        std::printf("FIND %s in set %d, %s: blur %g px, noise sigma %.3f, design misfit %.3f\n",
                     kKinds[k],
                     set,
                     negative.label.c_str(),
+                    negative.degradations.blur_sigma_px,
                     d.noise_sigma,
                     d.appearance_misfit);
       }
