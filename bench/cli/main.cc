@@ -149,6 +149,10 @@ int main(int argc, char** argv) {
   track->add_option("--overlay",
                     track_options.overlay_path,
                     "Also write a video (MP4) of the frames with the pose's axes and a cube drawn");
+  track->add_option("--gamma",
+                    track_options.gamma,
+                    "The frames' encoding gamma (sRGB cameras: about 2.2): each value v is taken "
+                    "as 255 (v/255)^gamma before tracking; 1 (default): frames are linear");
   track->add_option("inputs", track_options.inputs, "Images or videos")->required();
 
   CLI::App* sweep = app.add_subcommand(

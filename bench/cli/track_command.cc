@@ -19,6 +19,7 @@
 #include "bench/run/pose_columns.h"
 #include "bench/run/pose_overlay.h"
 #include "core/camera_yaml.h"
+#include "core/gamma_curve.h"
 #include "core/marker_yaml.h"
 #include "core/number_text.h"
 #include "core/regular_file.h"
@@ -132,6 +133,9 @@ std::unique_ptr<Tracker> MakeCommandTracker(const TrackCommandOptions& o,
 }  // namespace
 
 void RunTrackCommand(const TrackCommandOptions& o) {
+  if (!(o.gamma > 0.0 && std::isfinite(o.gamma))) {
+    throw ConfigError("--gamma " + NumberText(o.gamma) + ": must be a number > 0");
+  }
   CheckFiles(o);
   const MarkerSpec marker = LoadMarkerYaml(o.marker_path);
   const Camera camera = LoadCameraYaml(o.camera_path);
@@ -158,8 +162,14 @@ void RunTrackCommand(const TrackCommandOptions& o) {
                 NAN);
       return;
     }
+    Image8 linear;
+    if (o.gamma != 1.0) {
+      linear = image;
+      ApplyGammaCurve(o.gamma, &linear);
+    }
     const auto start = std::chrono::steady_clock::now();
-    const TrackResult result = TrackCatchingExceptions(tracker.get(), {&image, &camera, &marker});
+    const TrackResult result = TrackCatchingExceptions(
+        tracker.get(), {o.gamma != 1.0 ? &linear : &image, &camera, &marker});
     const double ms =
         std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
     csv.Write(name, o.tracker, result, ms);

@@ -26,6 +26,12 @@ struct TrackCommandOptions {
   // A video of every frame of the camera's size with the pose drawn (bench/run/pose_overlay.h),
   // at the video's frame rate, or 1 frame/s for images. Empty: none.
   std::string overlay_path;
+  // The frames' encoding gamma: each 8-bit value v becomes round(255 (v/255)^gamma) before the
+  // tracker sees it (core/gamma_curve.h; the overlay draws the frame as read). The circle tracker
+  // models intensities linear in the light, as the renderer makes them; a camera's sRGB-like
+  // encoding (about 2.2) bends every blurred edge, and its poses go centimetres off or its design
+  // checks reject the marker (circle_tracker_test.cc). 1: taken as linear.
+  double gamma = 1.0;
 };
 
 // Checks the tracker, its options, the marker, the camera and the files before any frame

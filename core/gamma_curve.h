@@ -1,0 +1,22 @@
+// A power curve on 8-bit values: v -> round(255 (v/255)^exponent). A camera's encoding with gamma
+// G is the exponent 1/G, and taking such a frame back to values linear in the light, G.
+#pragma once
+
+#include <array>
+#include <cmath>
+#include <cstdint>
+
+#include "core/image.h"
+
+namespace markerbench {
+
+// Every pixel and channel of `image` through the curve; `exponent` > 0.
+inline void ApplyGammaCurve(double exponent, Image8* image) {
+  std::array<uint8_t, 256> curve;
+  for (int v = 0; v < 256; ++v) {
+    curve[v] = static_cast<uint8_t>(std::lround(255.0 * std::pow(v / 255.0, exponent)));
+  }
+  for (uint8_t& v : image->pixels) v = curve[v];
+}
+
+}  // namespace markerbench
