@@ -40,6 +40,8 @@ bool Degradations::IsValid(std::string* error) const {
     msg << "lighting gain=" << gain << " must be in [0, 100], offset and gradient finite";
   } else if (!(noise_var >= 0.0 && noise_var <= 10.0)) {
     msg << "noise_var=" << noise_var << " must be in [0, 10]";
+  } else if (!(gamma >= 0.1 && gamma <= 10.0)) {
+    msg << "gamma=" << gamma << " must be in [0.1, 10]";
   } else if (jpeg_quality < 0 || jpeg_quality > 100) {
     msg << "jpeg_quality=" << jpeg_quality << " must be 0 (off) or 1..100";
   } else {
@@ -218,7 +220,7 @@ void ApplyLighting(const Degradations& d, ImageF* image) {
   }
 }
 
-Image8 AddNoiseAndQuantize(double noise_var, uint64_t seed, ImageF* image) {
+Image8 AddNoiseAndQuantize(double noise_var, double gamma, uint64_t seed, ImageF* image) {
   Image8 out;
   out.width = image->width;
   out.height = image->height;
@@ -243,7 +245,12 @@ Image8 AddNoiseAndQuantize(double noise_var, uint64_t seed, ImageF* image) {
       for (size_t i = 0; i < n; ++i) value[i] = std::clamp(value[i], 0.0f, 1.0f);
     }
     uint8_t* dst = out.pixels.data() + c;
-    if (channels == 1) {
+    if (gamma != 1.0) {
+      const double exponent = 1.0 / gamma;
+      for (size_t i = 0; i < n; ++i) {
+        dst[i * channels] = static_cast<uint8_t>(255.0 * std::pow(value[i], exponent) + 0.5);
+      }
+    } else if (channels == 1) {
       for (size_t i = 0; i < n; ++i) dst[i] = static_cast<uint8_t>(value[i] * 255.0f + 0.5f);
     } else {
       for (size_t i = 0; i < n; ++i) {

@@ -28,6 +28,9 @@ struct Degradations {
   Eigen::Vector2d gradient = Eigen::Vector2d::Zero();
   // imnoise(I, 'gaussian', 0, var) on [0, 1] intensities, per channel, then clip.
   double noise_var = 0.0;
+  // The camera's response after the noise, before 8-bit rounding: each clipped value v in
+  // [0, 1] is written as v^(1/gamma) (1: linear; cameras encode with about 2.2).
+  double gamma = 1.0;
   // JPEG quality 1..100 after quantisation; 0: no JPEG.
   int jpeg_quality = 0;
 
@@ -66,9 +69,10 @@ void BlurOntoPixels(double sigma_px,
                     ImageF* image);
 PixelRect MotionBlur(double length_px, double angle_deg, const PixelRect& roi, ImageF* image);
 void ApplyLighting(const Degradations& degradations, ImageF* image);
-// Adds noise (seeded) to `image` in place, clips it to [0, 1], and returns it quantised to
-// 8 bits (interleaved channels). `image` keeps the clipped float values.
-Image8 AddNoiseAndQuantize(double noise_var, uint64_t seed, ImageF* image);
+// Adds noise (seeded) to `image` in place, clips it to [0, 1], and returns it encoded with
+// `gamma` (Degradations::gamma) and quantised to 8 bits (interleaved channels). `image` keeps
+// the clipped linear values.
+Image8 AddNoiseAndQuantize(double noise_var, double gamma, uint64_t seed, ImageF* image);
 // Encodes and decodes with OpenCV's JPEG codec at `quality`.
 void JpegRoundTrip(int quality, Image8* image);
 

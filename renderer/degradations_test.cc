@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <Eigen/Geometry>
+#include <cmath>
 
 #include "core/marker_yaml.h"
 #include "core/random.h"
@@ -210,12 +211,42 @@ TEST(Degradations, JpegKeepsTheImageClose) {
   EXPECT_LT(mse / clean.pixels.size(), 20.0);  // quality 50: PSNR above 35 dB
 }
 
+// The camera's response after the noise: each written value is the clipped linear one (noise
+// included) to the power 1/gamma, rounded; gamma 1 writes the linear values as before.
+TEST(Degradations, GammaEncodesTheNoisyLinearValues) {
+  const MarkerSpec square = BlackSquareMarker(-0.05, -0.05, 0.1);
+  FrameRequest request = MarkerFrameRequest(square, TiltedView(0.6, 20.0, 10.0), 0.01, 1.5, 1);
+  request.keep_linear = true;
+  request.degradations.gain = 0.8;  // the paper mostly below white, where noise is not clipped
+  request.degradations.offset = 0.05;
+  const RenderedFrame linear = RenderFrame(request);
+  request.degradations.gamma = 2.2;
+  const RenderedFrame encoded = RenderFrame(request);
+  EXPECT_EQ(encoded.linear.data, linear.linear.data);  // the same noise, clipped
+  int differing = 0;
+  for (int y = 0; y < 480; ++y) {
+    for (int x = 0; x < 640; ++x) {
+      const double v = linear.linear.at(x, y);
+      EXPECT_NEAR(encoded.image.at(x, y), 255.0 * std::pow(v, 1.0 / 2.2), 0.5 + 1e-6);
+      EXPECT_NEAR(linear.image.at(x, y), 255.0 * v, 0.5 + 1e-4);
+      differing += encoded.image.at(x, y) != linear.image.at(x, y);
+    }
+  }
+  EXPECT_GT(differing, 640 * 480 / 2);
+}
+
 TEST(Degradations, InvalidValuesAreRejected) {
   Degradations d;
   std::string error;
   d.noise_var = -0.1;
   EXPECT_FALSE(d.IsValid(&error));
   EXPECT_NE(error.find("noise_var"), std::string::npos);
+  for (const double gamma : {0.0, 0.05, 11.0, std::nan("")}) {
+    d = Degradations();
+    d.gamma = gamma;
+    EXPECT_FALSE(d.IsValid(&error)) << gamma;
+    EXPECT_NE(error.find("gamma"), std::string::npos);
+  }
 }
 
 }  // namespace

@@ -170,7 +170,8 @@ constexpr double kNoiselessLevels = 1e-4;
 // (levels²; it falls to it at about 0.53 levels of noise, 1.2e-5 of the rounding's variance).
 constexpr double kLeastRoundingCovariance = 1e-6;
 
-// The frame's noise-free linear image: its channels' values, for their rounding.
+// The frame's noise-free linear image (lit and clipped): its channels' values, for their
+// rounding and the camera's response.
 ImageF NoiseFreeImage(const FrameRequest& request) {
   FrameRequest noise_free = request;
   noise_free.degradations.noise_var = 0.0;
@@ -178,20 +179,33 @@ ImageF NoiseFreeImage(const FrameRequest& request) {
   return RenderFrame(noise_free).linear;
 }
 
-// F = Σ_pixels ∇θIᵀ Σ⁻¹ ∇θI over `pixels`, Σ the channels' noise covariance: the frame's noise
-// and rounding, shared by channels of equal noise-free `values`; `derivative`'s planes
-// k · channels + c hold ∂I_c/∂θ_k over `area` (RGB: frames have 1 channel or 3).
-Matrix6d JointChannelsFisher(const ImageF& derivative,
-                             const PixelRect& area,
-                             const PixelRect& pixels,
-                             const ImageF& values,
-                             const Degradations& d) {
-  constexpr int channels = 3;
-  const double shared =
-      EqualChannelsRoundingCovariance(255.0 * std::sqrt(d.noise_var)) / (255.0 * 255.0);
+// de/dv of the camera's response e = v^(1/γ) (Degradations::gamma) at a linear value v, taken
+// at v >= 1e-6 (infinite at 0 for γ > 1, where the clipping the bound leaves out rules).
+double ResponseSlope(double gamma, double v) {
+  if (gamma == 1.0) return 1.0;
+  const double exponent = 1.0 / gamma;
+  return exponent * std::pow(std::max(v, 1e-6), exponent - 1.0);
+}
+
+// F = Σ_pixels ∇θeᵀ Σ⁻¹ ∇θe over `pixels`, e a pixel's written values: the lit noise-free
+// `values` v through the camera's response, ∇θe = g'(v)·∇θv. Σ is the channels' noise g'(v)²σ²
+// plus their rounding, shared by channels of equal values; `derivative`'s planes k · channels
+// + c hold ∂I_c/∂θ_k over `area`, and ∇θv = gain·∇θI (the caller multiplies F by gain²).
+Matrix6d PixelwiseFisher(const ImageF& derivative,
+                         const PixelRect& area,
+                         const PixelRect& pixels,
+                         const ImageF& values,
+                         const Degradations& d) {
+  const int channels = values.channels;
+  const double noise_levels = 255.0 * std::sqrt(d.noise_var);
+  const auto shared_rounding = [&](double slope) {
+    return EqualChannelsRoundingCovariance(slope * noise_levels) / (255.0 * 255.0);
+  };
+  const double linear_shared_rounding = shared_rounding(1.0);
   Matrix6d fisher = Matrix6d::Zero();
-  Eigen::Matrix<double, channels, 6> gradient;
-  Eigen::Matrix3d covariance;
+  Eigen::Matrix<double, Eigen::Dynamic, 6, 0, 3, 6> gradient(channels, 6);
+  Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, 0, 3, 3> covariance(channels, channels);
+  Eigen::Vector3d slope;
   for (int y = pixels.y0; y < pixels.y1; ++y) {
     for (int x = pixels.x0; x < pixels.x1; ++x) {
       const size_t at = static_cast<size_t>(y - area.y0) * derivative.width + (x - area.x0);
@@ -200,16 +214,23 @@ Matrix6d JointChannelsFisher(const ImageF& derivative,
       }
       if (gradient.isZero(0.0)) continue;
       const size_t value_at = static_cast<size_t>(y) * values.width + x;
+      for (int c = 0; c < channels; ++c) {
+        slope(c) = ResponseSlope(d.gamma, values.plane(c)[value_at]);
+        gradient.row(c) *= slope(c);
+      }
       for (int a = 0; a < channels; ++a) {
-        covariance(a, a) = d.noise_var + kQuantisationVariance;
+        covariance(a, a) = slope(a) * slope(a) * d.noise_var + kQuantisationVariance;
         for (int b = a + 1; b < channels; ++b) {
-          const bool equal = values.plane(a)[value_at] == values.plane(b)[value_at];
-          covariance(a, b) = covariance(b, a) = equal ? shared : 0.0;
+          double shared = 0.0;
+          if (values.plane(a)[value_at] == values.plane(b)[value_at]) {
+            shared = d.gamma == 1.0 ? linear_shared_rounding : shared_rounding(slope(a));
+          }
+          covariance(a, b) = covariance(b, a) = shared;
         }
       }
       // Σ is singular where channels are equal without noise: its pseudo-inverse takes each
       // group of equal channels as one observation.
-      const Eigen::Matrix<double, channels, 6> information =
+      const Eigen::Matrix<double, Eigen::Dynamic, 6, 0, 3, 6> information =
           covariance.completeOrthogonalDecomposition().solve(gradient);
       fisher += gradient.transpose() * information;
     }
@@ -358,9 +379,10 @@ Matrix6d PoseFisherInformation(const FrameRequest& request, const CrlbOptions& o
   const int x0 = std::max(area.x0, 0), x1 = std::min(area.x1, camera.width);
   const int y0 = std::max(area.y0, 0), y1 = std::min(area.y1, camera.height);
   const double noise_levels = 255.0 * std::sqrt(d.noise_var);
-  if (channels > 1 && EqualChannelsRoundingCovariance(noise_levels) > kLeastRoundingCovariance) {
+  if (d.gamma != 1.0 ||
+      (channels > 1 && EqualChannelsRoundingCovariance(noise_levels) > kLeastRoundingCovariance)) {
     return d.gain * d.gain *
-           JointChannelsFisher(derivative, area, {x0, y0, x1, y1}, NoiseFreeImage(request), d);
+           PixelwiseFisher(derivative, area, {x0, y0, x1, y1}, NoiseFreeImage(request), d);
   }
   Matrix6d fisher = Matrix6d::Zero();
   for (int c = 0; c < channels; ++c) {

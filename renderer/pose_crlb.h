@@ -10,6 +10,9 @@
 // error, not three), and F takes each pixel's channels jointly. (Channels of unequal values
 // are taken as rounding independently, though within a small fraction of a level they do
 // not quite: the bound does not count the information such near coincidences would add.)
+// The camera's response e = g(v) (Degradations::gamma) comes after the noise and before the
+// rounding: being invertible it changes F only through the rounding, whose variance in v is
+// 1/(12·255²·g'(v)²), so F is then summed pixel by pixel with the noise-free lit values v.
 // Clipping and JPEG are left out. θ = (ω, t) with R = exp([ω]×)·R0: a rotation increment in the
 // camera frame (radians) and the translation (metres).
 //

@@ -260,8 +260,10 @@ Rigid3 Perturbed(const Rigid3& pose, const Vector6d& theta) {
 }
 
 // ∂I/∂θ from central differences of the renderer's linear image, one column per θ_k and a row
-// per pixel and channel: request_at(θ) is the frame with the pose moved by θ.
-Eigen::MatrixXd NumericJacobian(const std::function<FrameRequest(const Vector6d&)>& request_at) {
+// per pixel and channel: request_at(θ) is the frame with the pose moved by θ. With `gamma`, of
+// the image the camera's response writes, I^(1/gamma), before its rounding.
+Eigen::MatrixXd NumericJacobian(const std::function<FrameRequest(const Vector6d&)>& request_at,
+                                double gamma = 1.0) {
   // Steps of about 0.2 px in the image.
   const double steps[6] = {3e-4, 3e-4, 3e-4, 2e-4, 2e-4, 2e-4};
   Eigen::MatrixXd jacobian;
@@ -276,7 +278,9 @@ Eigen::MatrixXd NumericJacobian(const std::function<FrameRequest(const Vector6d&
       images[side] =
           Eigen::Map<const Eigen::VectorXf>(frame.linear.data.data(),
                                             static_cast<Eigen::Index>(frame.linear.data.size()))
-              .cast<double>();
+              .cast<double>()
+              .array()
+              .pow(1.0 / gamma);
     }
     if (k == 0) jacobian.resize(images[0].size(), 6);
     jacobian.col(k) = (images[0] - images[1]) / (2.0 * steps[k]);
@@ -316,6 +320,54 @@ TEST(PoseCrlbTest, FisherMatchesFiniteDifferencesOfTheRenderer) {
                        return r;
                      }),
                      kTol);
+  }
+}
+
+// With the camera's response (gamma 2.2) after the noise, a noise-free frame's only noise is
+// the rounding of the encoded values: F is that of the encoded image's derivatives. The lit
+// ink (gain 0.9, offset 0.05) keeps the response smooth where the blur reaches.
+TEST(PoseCrlbTest, FisherWithAResponseMatchesFiniteDifferencesOfTheEncodedImage) {
+  constexpr double kTol = 0.01, kGamma = 2.2;
+  const MarkerSpec square = BlackSquareMarker(-0.05, -0.05, 0.1);
+  const MarkerSpec disk = BlackDiskMarker(0.04);
+  for (const MarkerSpec* marker : {&square, &disk}) {
+    const Rigid3 pose = LookAt(marker->InkBounds().center(), 0.6, 30.0, 75.0, 20.0);
+    FrameRequest request = MarkerFrameRequest(*marker, pose, 0.0, 1.5, 1);
+    request.degradations.gain = 0.9;
+    request.degradations.offset = 0.05;
+    request.degradations.gamma = kGamma;
+    const Eigen::MatrixXd jacobian = NumericJacobian(
+        [&](const Vector6d& theta) {
+          FrameRequest r = request;
+          r.scene.cam_from_marker = Perturbed(pose, theta);
+          return r;
+        },
+        kGamma);
+    ExpectFisherNear(PoseFisherInformation(request),
+                     jacobian.transpose() * jacobian / kQuantisationVariance,
+                     kTol);
+  }
+}
+
+// The response is invertible and comes after the noise, so where the noise is many levels
+// the bound is as without it (its rounding is all that changes), for grey and RGB frames.
+TEST(PoseCrlbTest, AResponseAfterTheNoiseLeavesANoisyFramesBound) {
+  const MarkerSpec square = BlackSquareMarker(-0.05, -0.05, 0.1);
+  const MarkerSpec circles_a = CrlbCirclesA();
+  for (const MarkerSpec* marker : {&square, &circles_a}) {
+    const Rigid3 pose = LookAt(marker->InkBounds().center(), 0.8, 25.0, 40.0, 10.0);
+    FrameRequest request = MarkerFrameRequest(*marker, pose, 0.02, 2.0, marker->HasColor() ? 3 : 1);
+    request.degradations.offset = 0.05;
+    const PoseBound linear = PoseCrlb(request);
+    request.degradations.gamma = 2.2;
+    const PoseBound encoded = PoseCrlb(request);
+    EXPECT_NEAR(encoded.position_median_m / linear.position_median_m, 1.0, 2e-3);
+    EXPECT_NEAR(encoded.rotation_median_deg / linear.rotation_median_deg, 1.0, 2e-3);
+    request.degradations.noise_var = 0.0;  // without noise the response matters
+    const double encoded_noise_free = PoseCrlb(request).position_median_m;
+    request.degradations.gamma = 1.0;
+    const double ratio = encoded_noise_free / PoseCrlb(request).position_median_m;
+    EXPECT_GT(std::abs(ratio - 1.0), 0.05) << ratio;
   }
 }
 

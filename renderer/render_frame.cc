@@ -236,7 +236,7 @@ RenderedFrame RenderFrame(const FrameRequest& request) {
   ApplyLighting(d, &image);
 
   RenderedFrame frame;
-  frame.image = AddNoiseAndQuantize(d.noise_var, request.noise_seed, &image);
+  frame.image = AddNoiseAndQuantize(d.noise_var, d.gamma, request.noise_seed, &image);
   if (request.keep_linear) frame.linear = std::move(image);
   JpegRoundTrip(d.jpeg_quality, &frame.image);
   frame.truth = ComputeGroundTruth(*request.scene.marker, camera, request.scene.cam_from_marker);

@@ -119,7 +119,7 @@ void BM_StageBlurSigma2(benchmark::State& state) {
 void BM_StageNoiseAndQuantizeGrey(benchmark::State& state) {
   ImageF image(640, 480, 1);
   uint64_t seed = 0;
-  for (auto _ : state) benchmark::DoNotOptimize(AddNoiseAndQuantize(0.02, ++seed, &image));
+  for (auto _ : state) benchmark::DoNotOptimize(AddNoiseAndQuantize(0.02, 1.0, ++seed, &image));
 }
 BENCHMARK(BM_StageRasterizeTag)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_StageBlurSigma2)->Unit(benchmark::kMillisecond);

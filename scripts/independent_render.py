@@ -117,7 +117,7 @@ def ink(row, disks, background):
 
 
 def degrade(row, linear, with_noise):
-    """Blur, lighting, noise, clipping and 8-bit rounding, as the row asks (RGB or grey)."""
+    """Blur, lighting, noise, clipping, gamma and 8-bit rounding, as the row asks (RGB or grey)."""
     for key in ("motion_blur_px", "jpeg_quality", "exposure_s"):
         if row[key] and float(row[key]) != 0.0:
             fail(f"frame {row['frame']}: key '{key}' is not re-rendered")
@@ -131,7 +131,8 @@ def degrade(row, linear, with_noise):
     if with_noise and float(row["noise_var"]) > 0.0:
         generator = np.random.default_rng([int(row["seed"]), int(row["frame"])])
         linear = linear + generator.normal(0.0, math.sqrt(float(row["noise_var"])), linear.shape)
-    return np.rint(255.0 * np.clip(linear, 0.0, 1.0)).astype(np.uint8)
+    encoded = np.clip(linear, 0.0, 1.0) ** (1.0 / float(row["gamma"]))  # camera response
+    return np.rint(255.0 * encoded).astype(np.uint8)
 
 
 def write_image(path, image):

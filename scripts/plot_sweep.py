@@ -44,6 +44,7 @@ LABELS = {
     "distance_m": "distance (m)",
     "tilt_deg": "tilt (°)",
     "gain": "gain",
+    "gamma": "camera gamma",
     "jpeg_quality": "JPEG quality",
 }
 

@@ -44,7 +44,7 @@ class GroundTruthCsv {
     out_ << "frame,image,marker,sweep_parameter,sweep_value,grid,trial,seed,fx,fy,cx,cy,width,"
             "height";
     for (const char* c : kPoseColumns) out_ << ',' << c;
-    out_ << ",noise_var,blur_sigma_px,motion_blur_px,motion_blur_angle_deg,gain,offset,"
+    out_ << ",noise_var,blur_sigma_px,motion_blur_px,motion_blur_angle_deg,gain,offset,gamma,"
             "jpeg_quality,channels,apparent_size_px,keypoints_px,sequence_frame,time_s,occluded,"
             "exposure_s,readout_s";
     for (const std::string& c : FrameBoundColumns()) out_ << ',' << c;
@@ -69,8 +69,9 @@ class GroundTruthCsv {
     const Degradations& d = request.degradations;
     out_ << ',' << NumberText(d.noise_var) << ',' << NumberText(d.blur_sigma_px) << ','
          << NumberText(d.motion_blur_px) << ',' << NumberText(d.motion_blur_angle_deg) << ','
-         << NumberText(d.gain) << ',' << NumberText(d.offset) << ',' << d.jpeg_quality << ','
-         << request.channels << ',' << NumberText(truth.apparent_size_px) << ',';
+         << NumberText(d.gain) << ',' << NumberText(d.offset) << ',' << NumberText(d.gamma) << ','
+         << d.jpeg_quality << ',' << request.channels << ',' << NumberText(truth.apparent_size_px)
+         << ',';
     for (size_t k = 0; k < truth.keypoints_px.size(); ++k) {
       out_ << (k ? ";" : "") << NumberText(truth.keypoints_px[k].x()) << ' '
            << NumberText(truth.keypoints_px[k].y());

@@ -20,6 +20,7 @@ ValueRange SweepRange(const std::string& parameter) {
   if (parameter == "blur_sigma_px") return {0.0, 100.0};
   if (parameter == "motion_blur_px") return {0.0, 200.0};
   if (parameter == "gain") return {0.0, 100.0};
+  if (parameter == "gamma") return {0.1, 10.0};
   if (parameter == "jpeg_quality") return {0.0, 100.0};
   throw std::invalid_argument("unknown sweep parameter " + parameter);
 }
@@ -46,6 +47,8 @@ void ApplySweepValue(const std::string& parameter,
     d->motion_blur_px = value;
   } else if (parameter == "gain") {
     d->gain = value;
+  } else if (parameter == "gamma") {
+    d->gamma = value;
   } else {
     if (value != std::round(value)) throw std::invalid_argument("jpeg_quality must be whole");
     d->jpeg_quality = static_cast<int>(value);

@@ -133,6 +133,7 @@ RenderDefaults ReadRender(const YamlMap& map) {
     d.gradient = map.Get<Eigen::Vector2d>("gradient");
     if (!(d.gradient.cwiseAbs().maxCoeff() <= 10.0)) map.Fail("gradient", "[gx, gy] in [-10, 10]");
   }
+  if (map.Has("gamma")) d.gamma = GetSwept(map, "gamma");
   if (map.Has("jpeg_quality")) d.jpeg_quality = static_cast<int>(GetSwept(map, "jpeg_quality"));
   if (map.Has("channels")) {
     const std::string c = map.Get<std::string>("channels");
@@ -167,6 +168,7 @@ const std::vector<std::string>& SweepParameters() {
                                                        "distance_m",
                                                        "tilt_deg",
                                                        "gain",
+                                                       "gamma",
                                                        "jpeg_quality"};
   return kParameters;
 }
@@ -301,7 +303,7 @@ SweepAxis ReadSweepAxis(const YamlMap& map,
   if (std::find(names.begin(), names.end(), parameter) == names.end()) {
     map.Fail(parameter_key,
              "one of noise_var, blur_sigma_px, motion_blur_px, distance_m, tilt_deg, gain, "
-             "jpeg_quality");
+             "gamma, jpeg_quality");
   }
   SweepAxis axis{parameter, map.Get<std::vector<double>>(values_key)};
   if (axis.values.empty()) map.Fail(values_key, "a non-empty list of numbers");

@@ -336,6 +336,31 @@ TEST(Scenario, OutOfRange) {
               HasSubstr("key 'sweep.values'"));
 }
 
+// The camera's response: a render key, refused out of range, and a sweep parameter that
+// reaches every planned frame.
+TEST(Scenario, GammaIsARenderKeyAndASweepParameter) {
+  const std::string render = "  noise_var: 0.02\n";
+  EXPECT_EQ(LoadScenario(WriteTestFile("scenario.yaml",
+                                       Replace(GoodScenario(), render, render + "  gamma: 2.2\n")))
+                .render.degradations.gamma,
+            2.2);
+  EXPECT_THAT(ErrorOf(Replace(GoodScenario(), render, render + "  gamma: 0\n")),
+              HasSubstr("key 'render.gamma': expected a number in [0.1, 10]"));
+  const Scenario s = LoadScenario(
+      WriteTestFile("scenario.yaml",
+                    Replace(Replace(GoodScenario(), "parameter: blur_sigma_px", "parameter: gamma"),
+                            "values: [0, 1, 2]",
+                            "values: [1, 2.2]")));
+  const std::vector<PlannedFrame> frames = PlanFrames(s);
+  ASSERT_EQ(frames.size(), 2u * 3);
+  for (const PlannedFrame& f : frames) EXPECT_EQ(f.degradations.gamma, f.sweep_value);
+  EXPECT_THAT(
+      ErrorOf(Replace(Replace(GoodScenario(), "parameter: blur_sigma_px", "parameter: gamma"),
+                      "values: [0, 1, 2]",
+                      "values: [1, 0]")),
+      HasSubstr("key 'sweep.values': expected values valid for gamma"));
+}
+
 TEST(Scenario, UnknownSweepParameter) {
   EXPECT_THAT(ErrorOf(Replace(GoodScenario(), "parameter: blur_sigma_px", "parameter: fog")),
               HasSubstr("key 'sweep.parameter': expected one of noise_var"));
