@@ -561,6 +561,46 @@ TEST_F(SweepCliTest, OverridesRunTheEditedScenarioAndAreRecorded) {
   EXPECT_FALSE(fs::exists(work_ / "bad"));
 }
 
+// A tracker entry with `linear_input: true` is told the camera's response: it gets each frame
+// written with a gamma taken back to linear values. The circle tracker models linear light, so on
+// frames written with gamma 2.2 its median error falls (measured on these 16 frames: 9.0 mm
+// untold, 1.0 told; 0.78 on the linear frames, where both runs are the same).
+TEST_F(SweepCliTest, ATrackerToldTheCamerasResponseSeesLinearFrames) {
+  const auto run = [&](const std::string& linear_input) {
+    const std::string scenario = WriteTestFile(
+        "gamma_" + linear_input + ".yaml",
+        "name: gamma\ncamera: " + kRoot + "/scenarios/cameras/default.yaml\nmarkers:\n  - " +
+            kRoot + "/scenarios/markers/circles_a.yaml\nequal_ink_area_m2: 0.01\ntrackers:\n" +
+            "  - {name: circle, linear_input: " + linear_input + "}\n" +
+            "poses: {sampler: look_at, distance_m: 0.6, tilt_deg: [0, 40]}\n" +
+            "render: {noise_var: 0.02}\nsweep: {parameter: gamma, values: [1, 2.2]}\n" +
+            "trials: 16\nseed: 4\n");
+    const std::string out = (work_ / linear_input).string();
+    EXPECT_EQ(Run({"sweep", scenario, "--out", out}).status, 0) << Read(work_ / "stderr.txt");
+    return FramesTable(Read(out + "/gamma/frames.csv"));
+  };
+  const auto untold = run("false"), told = run("true");
+  ASSERT_EQ(untold.size(), 32u);
+  ASSERT_EQ(told.size(), untold.size());
+  std::map<std::string, std::vector<double>> untold_errors, told_errors;
+  for (size_t i = 0; i < told.size(); ++i) {
+    const std::string& gamma = told[i].at("sweep_value");
+    EXPECT_EQ(told[i].at("crlb_position_m"), untold[i].at("crlb_position_m"));
+    if (gamma == "1") {
+      EXPECT_EQ(told[i].at("position_error_m"), untold[i].at("position_error_m"));
+    }
+    for (const auto* rows : {&untold, &told}) EXPECT_EQ((*rows)[i].at("status"), "ok") << gamma;
+    untold_errors[gamma].push_back(std::stod(untold[i].at("position_error_m")));
+    told_errors[gamma].push_back(std::stod(told[i].at("position_error_m")));
+  }
+  const auto median = [](std::vector<double> v) {
+    std::nth_element(v.begin(), v.begin() + v.size() / 2, v.end());
+    return v[v.size() / 2];
+  };
+  EXPECT_LT(median(told_errors["2.2"]), 0.5 * median(untold_errors["2.2"]));
+  EXPECT_LT(median(told_errors["2.2"]), 2.0 * median(told_errors["1"]));
+}
+
 // A grid sweep: every combination in frames.csv's grid column, a summary row per cell, a heat
 // map in the report, and the regression gate pairs its cells (a run passes against itself).
 TEST_F(SweepCliTest, AGridSweepIsSummarisedPlottedAndGated) {

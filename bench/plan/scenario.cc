@@ -238,6 +238,7 @@ TrackerEntry ReadBuiltInTracker(const YamlMap& t, const Scenario& s) {
   }
   entry.isolated = t.GetOr<bool>("isolated", RunsThirdPartyCCode(entry.name));
   if (t.Has("timeout_s")) entry.timeout_s = t.GetDouble("timeout_s", 1e-3, 86400.0);
+  entry.linear_input = t.GetOr<bool>("linear_input", false);
   t.RejectUnknownKeys();
   const std::vector<std::string> names = TrackerNames();
   if (std::find(names.begin(), names.end(), entry.name) == names.end()) {
@@ -254,6 +255,7 @@ TrackerEntry ReadBuiltInTracker(const YamlMap& t, const Scenario& s) {
     for (auto& parameter : IsolationParameters(entry.timeout_s))
       entry.parameters.push_back(parameter);
   }
+  if (entry.linear_input) entry.parameters.emplace_back("linear_input", "true");
   return entry;
 }
 
@@ -273,6 +275,7 @@ TrackerEntry ReadExecTracker(const YamlMap& t, const Scenario& s) {
   if (entry.exec.empty() || entry.exec[0].empty()) t.Fail("exec", "a command: [program, args...]");
   entry.working_dir = std::filesystem::absolute(s.path).parent_path().string();
   entry.timeout_s = t.Has("timeout_s") ? t.GetDouble("timeout_s", 1e-3, 86400.0) : 10.0;
+  entry.linear_input = t.GetOr<bool>("linear_input", false);
   const std::vector<std::string> markers = t.GetOr<std::vector<std::string>>("markers", {});
   for (size_t m = 0; m < s.markers.size(); ++m) {
     if (markers.empty() ||
@@ -290,6 +293,7 @@ TrackerEntry ReadExecTracker(const YamlMap& t, const Scenario& s) {
   options.command = entry.exec;
   options.timeout_s = entry.timeout_s;
   entry.parameters = ExternalTrackerParameters(options);
+  if (entry.linear_input) entry.parameters.emplace_back("linear_input", "true");
   return entry;
 }
 

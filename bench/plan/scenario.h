@@ -52,6 +52,9 @@ struct TrackerEntry {
   // that run third-party C code), with `timeout_s` per frame.
   bool isolated = false;
   double timeout_s = 60.0;
+  // The tracker is told the camera's response: it gets each frame taken back to linear values
+  // (render.gamma undone, core/gamma_curve.h), as `track --gamma` does for a real camera.
+  bool linear_input = false;
   // An external tracker (README, "Benchmark your own tracker"): the command, run in
   // `working_dir` (the scenario file's folder). Empty for built-in trackers.
   std::vector<std::string> exec;

@@ -26,6 +26,7 @@
 #include "bench/run/manifest.h"
 #include "bench/run/pose_overlay.h"
 #include "bench/run/sweep_trackers.h"
+#include "core/gamma_curve.h"
 #include "core/yaml_reader.h"
 #include "renderer/image_io.h"
 
@@ -306,13 +307,23 @@ void RunFrame(const PreparedSweep& p,
   row.distance_m = DistanceToMarker(f.cam_from_marker, marker);
   row.truth = f.cam_from_marker;
   row.bound = PlannedFrameBound(s, f, request);
+  Image8 linear;  // the frame in linear values, for trackers told the camera's response
+  const double gamma = request.degradations.gamma;
   for (const size_t t : tracker_indices) {
     Tracker* tracker = (*trackers)[t].get();
+    const Image8* image = &frame.image;
+    if (s.trackers[t].linear_input && gamma != 1.0) {
+      if (linear.pixels.empty()) {
+        linear = frame.image;
+        ApplyGammaCurve(gamma, &linear);
+      }
+      image = &linear;
+    }
     // Frames are independent, and sequences too: no state may leak between them.
     if (f.sequence_frame <= 0) tracker->Reset();
     const auto start = std::chrono::steady_clock::now();
     const TrackResult result =
-        TrackCatchingExceptions(tracker, {&frame.image, &s.camera, &marker, f.index});
+        TrackCatchingExceptions(tracker, {image, &s.camera, &marker, f.index});
     const double round_trip_ms =
         std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
     // The tracker's own time, when it runs in another process and reports it.
