@@ -385,10 +385,29 @@ def independent_render():
     return lines
 
 
+def camera_response():
+    """Every tracker of the paper runs on frames written with a gamma (results/camera_response):
+    success and median error over the bound, linear frames, gamma 2.2 untold and told."""
+    rows = read_summary("results/camera_response/summary.csv")
+    def at(scenario, value, tracker, marker):
+        [row] = [r for r in rows if r["scenario"] == scenario and r["tracker"] == tracker
+                 and r["marker"] == marker and number(r["sweep_value"]) == value]
+        return (f"{100 * number(row['success_rate']):.0f} %, "
+                f"{significant(number(row['efficiency']))}")
+    lines = ["| tracker: marker | linear frames | gamma 2.2, untold | gamma 2.2, told "
+             "(`linear_input`) |", "|---|---|---|---|"]
+    pairs = dict.fromkeys((r["tracker"], r["marker"]) for r in rows)
+    for tracker, marker in pairs:
+        lines.append(f"| `{tracker}`: `{marker}` | {at('camera_gamma', 1.0, tracker, marker)} | "
+                     f"{at('camera_gamma', 2.2, tracker, marker)} | "
+                     f"{at('camera_gamma_linear_input', 2.2, tracker, marker)} |")
+    return lines
+
+
 TABLES = {"circle_accuracy": circle_accuracy, "circle_markers": circle_markers, "efficiency": efficiency,
           "breakdowns": breakdowns, "baselines": baselines, "clean_accuracy": clean_accuracy,
           "speed": speed, "paper_sweep_times": paper_sweep_times, "sequences": sequences,
-          "independent_render": independent_render}
+          "independent_render": independent_render, "camera_response": camera_response}
 # The documents and the tables each holds.
 DOCUMENTS = {"README.md": [t for t in TABLES if t != "paper_sweep_times"],
              "results/circle_accuracy.md": ["circle_accuracy"],
