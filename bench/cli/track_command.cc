@@ -162,14 +162,15 @@ void RunTrackCommand(const TrackCommandOptions& o) {
                 NAN);
       return;
     }
-    Image8 linear;
+    Image8 linear;  // the frame taken back to linear values, where --gamma says how
+    const Image8* seen = &image;
     if (o.gamma != 1.0) {
       linear = image;
       ApplyGammaCurve(o.gamma, &linear);
+      seen = &linear;
     }
     const auto start = std::chrono::steady_clock::now();
-    const TrackResult result = TrackCatchingExceptions(
-        tracker.get(), {o.gamma != 1.0 ? &linear : &image, &camera, &marker});
+    const TrackResult result = TrackCatchingExceptions(tracker.get(), {seen, &camera, &marker});
     const double ms =
         std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
     csv.Write(name, o.tracker, result, ms);

@@ -543,19 +543,23 @@ TEST(CircleTracker, GammaEncodedFramesAreFoundOnceLinearized) {
         for (uint64_t seed = 1; seed <= 2; ++seed) {
           const Rigid3 truth = RandomTiltedView(0.8, 0.0, 40.0, &rng);
           Image8 image = RenderMarker(marker, truth, noise_var, blur, seed).image;
-          int found = 0;  // status ok, wherever
-          const auto located = [&] {
+          struct Outcome {
+            bool found;    // status ok, wherever
+            bool located;  // and within 1 cm
+          };
+          const auto track = [&] {
             CircleTracker tracker;
             const TrackResult r = tracker.Track({&image, &camera, &marker});
-            found = r.status == TrackStatus::kOk;
-            return found && PositionError(r.hypotheses.front(), truth) < 0.01;
+            const bool found = r.status == TrackStatus::kOk;
+            return Outcome{found, found && PositionError(r.hypotheses.front(), truth) < 0.01};
           };
-          linear += located();
+          linear += track().located;
           ApplyGammaCurve(1.0 / 2.2, &image);
-          encoded += located();
-          encoded_found += found;
+          const Outcome on_encoded = track();
+          encoded += on_encoded.located;
+          encoded_found += on_encoded.found;
           ApplyGammaCurve(2.2, &image);
-          linearized += located();
+          linearized += track().located;
         }
       }
     }
