@@ -49,7 +49,10 @@ Conventions:
   z = 0, x right, y up as printed, z out of the printed face (towards the camera); square
   markers' corners are (-s, +s), (+s, +s), (+s, -s), (-s, -s) with s half the black square;
 - pixels: the top-left pixel's centre is (0, 0); pixel (u, v) covers [u-1/2, u+1/2] x
-  [v-1/2, v+1/2].
+  [v-1/2, v+1/2];
+- pixel values: 8 bits, linear in the light where the column gamma is 1; otherwise written
+  by a camera response as 255 v^(1/gamma) for the linear value v in [0, 1] (noise added
+  before it), which 255 (x/255)^gamma takes back.
 
 Score a tracker's estimates with
   markerbench score DIR --poses ESTIMATES.csv --tracker NAME --out RUN_DIR
