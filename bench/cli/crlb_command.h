@@ -13,13 +13,14 @@ struct CrlbCommandOptions {
   std::string camera_path;
   std::string poses_path;  // POSES.csv, as for `render`
   std::string out_csv;     // empty: standard output
-  double noise_var = 0.0;  // imnoise variance on [0, 1]; 0 leaves the 8-bit rounding
-  double blur_sigma_px = 0.0;
+  // The options set noise_var (imnoise variance on [0, 1]; 0 leaves the 8-bit rounding),
+  // blur_sigma_px and gamma.
+  Degradations degradations;
   Channels channels = Channels::kAuto;
 };
 
 // Writes one CSV row per pose (pose, distance_m, apparent_size_px, noise_var, blur_sigma_px,
-// channels and the four crlb_* columns of frames.csv) and returns a one-line summary: the
+// gamma, channels and the four crlb_* columns of frames.csv) and returns a one-line summary: the
 // median of each bound over the poses. Bad input: ConfigError naming the file.
 std::string RunCrlbCommand(const CrlbCommandOptions& options);
 

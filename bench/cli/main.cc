@@ -88,10 +88,18 @@ int main(int argc, char** argv) {
   render->add_option("--marker", explicit_options.marker_path, "Marker YAML");
   render->add_option("--camera", explicit_options.camera_path, "Camera YAML (ROS camera_info)");
   render->add_option("--poses", explicit_options.poses_path, "POSES.csv (r11..r33, tx, ty, tz)");
-  render->add_option("--noise-var", explicit_options.noise_var, "imnoise variance on [0, 1]")
+  render
+      ->add_option(
+          "--noise-var", explicit_options.degradations.noise_var, "imnoise variance on [0, 1]")
       ->check(FiniteRange(0.0, 10.0));
-  render->add_option("--blur-sigma", explicit_options.blur_sigma_px, "Gaussian blur sigma (px)")
+  render
+      ->add_option(
+          "--blur-sigma", explicit_options.degradations.blur_sigma_px, "Gaussian blur sigma (px)")
       ->check(FiniteRange(0.0, 100.0));
+  render
+      ->add_option(
+          "--gamma", explicit_options.degradations.gamma, "Camera response: v -> v^(1/gamma)")
+      ->check(FiniteRange(0.1, 10.0));
   render->add_option("--seed", explicit_options.seed, "Noise seed")
       ->check(FiniteRange(0.0, 2147483647.0));
   render->add_flag("--overwrite",
@@ -227,10 +235,13 @@ int main(int argc, char** argv) {
       ->required();
   crlb->add_option("--poses", crlb_options.poses_path, "POSES.csv (r11..r33, tx, ty, tz)")
       ->required();
-  crlb->add_option("--noise-var", crlb_options.noise_var, "imnoise variance on [0, 1]")
+  crlb->add_option("--noise-var", crlb_options.degradations.noise_var, "imnoise variance on [0, 1]")
       ->check(FiniteRange(0.0, 10.0));
-  crlb->add_option("--blur-sigma", crlb_options.blur_sigma_px, "Gaussian blur sigma (px)")
+  crlb->add_option(
+          "--blur-sigma", crlb_options.degradations.blur_sigma_px, "Gaussian blur sigma (px)")
       ->check(FiniteRange(0.0, 100.0));
+  crlb->add_option("--gamma", crlb_options.degradations.gamma, "Camera response: v -> v^(1/gamma)")
+      ->check(FiniteRange(0.1, 10.0));
   crlb->add_option("--channels", crlb_channels, "auto (RGB for coloured markers), grey or rgb")
       ->check(CLI::IsMember({"auto", "grey", "rgb"}));
   crlb->add_option("--out", crlb_options.out_csv, "Output CSV (default: standard output)");
@@ -301,11 +312,12 @@ int main(int argc, char** argv) {
         }
         RenderPoses(explicit_options);
       } else {
-        for (const char* option : {"--noise-var", "--blur-sigma", "--seed", "--no-crlb"}) {
+        for (const char* option :
+             {"--noise-var", "--blur-sigma", "--gamma", "--seed", "--no-crlb"}) {
           if (render->count(option) > 0) {
             std::cerr << "render: " << option
-                      << " is for the explicit form; a scenario sets its noise, blur, seed and "
-                         "bound in its render:, seed: and crlb: keys\n";
+                      << " is for the explicit form; a scenario sets its noise, blur, response, "
+                         "seed and bound in its render:, seed: and crlb: keys\n";
             return kBadInput;
           }
         }

@@ -188,15 +188,13 @@ FrameRequest ExplicitFrames::Request(size_t i) const {
 ExplicitFrames LoadExplicitFrames(const std::string& marker_path,
                                   const std::string& camera_path,
                                   const std::string& poses_path,
-                                  double noise_var,
-                                  double blur_sigma_px,
+                                  const Degradations& degradations,
                                   Channels channels) {
   ExplicitFrames frames;
   frames.marker = LoadMarkerYaml(marker_path);
   frames.camera = LoadCameraYaml(camera_path);
   frames.poses = LoadPosesCsv(poses_path);
-  frames.degradations.noise_var = noise_var;
-  frames.degradations.blur_sigma_px = blur_sigma_px;
+  frames.degradations = degradations;
   std::string error;
   if (!frames.degradations.IsValid(&error)) throw ConfigError("option: " + error);
   frames.channels = ChannelsFor(channels, frames.marker);
@@ -205,7 +203,7 @@ ExplicitFrames LoadExplicitFrames(const std::string& marker_path,
 
 void RenderPoses(const ExplicitRenderOptions& o) {
   const ExplicitFrames frames = LoadExplicitFrames(
-      o.marker_path, o.camera_path, o.poses_path, o.noise_var, o.blur_sigma_px, Channels::kAuto);
+      o.marker_path, o.camera_path, o.poses_path, o.degradations, Channels::kAuto);
   CreateEmptyOutputFolder(o.out_dir, o.overwrite);
   const std::string& name = frames.marker.name;
   WriteDatasetFiles(

@@ -26,8 +26,7 @@ struct ExplicitRenderOptions {
   std::string camera_path;
   std::string poses_path;
   std::string out_dir;
-  double noise_var = 0.0;
-  double blur_sigma_px = 0.0;
+  Degradations degradations;  // the options set noise_var, blur_sigma_px and gamma
   uint64_t seed = 0;
   bool write_float = false;  // also frame_NNNNNN.exr (linear, after noise and clipping)
   bool overwrite = false;    // replace the dataset rendered in out_dir before
@@ -53,8 +52,7 @@ struct ExplicitFrames {
 ExplicitFrames LoadExplicitFrames(const std::string& marker_path,
                                   const std::string& camera_path,
                                   const std::string& poses_path,
-                                  double noise_var,
-                                  double blur_sigma_px,
+                                  const Degradations& degradations,
                                   Channels channels);
 
 // POSES.csv: header r11,r12,r13,r21,r22,r23,r31,r32,r33,tx,ty,tz, then one cam_from_marker

@@ -221,6 +221,46 @@ TEST_F(SweepCliTest, CrlbCommandPrintsTheBoundOfEachPose) {
   EXPECT_EQ(Run({"crlb", "--marker", marker, "--camera", camera, "--poses", marker}).status, 2);
 }
 
+// render's and crlb's explicit forms take the camera's response: render writes it in
+// groundtruth.csv with the bound it gives, crlb prints it, and a noise-free frame's bound
+// changes with it (its rounding is of the written values); out of range it is bad input.
+TEST_F(SweepCliTest, TheExplicitFormsTakeTheCamerasResponse) {
+  const std::string poses = WriteTestFile("poses.csv",
+                                          "r11,r12,r13,r21,r22,r23,r31,r32,r33,tx,ty,tz\n"
+                                          "1,0,0,0,-1,0,0,0,-1,0,0,0.6\n");
+  const std::vector<std::string> inputs = {"--marker",
+                                           kRoot + "/scenarios/markers/circle_d.yaml",
+                                           "--camera",
+                                           kRoot + "/scenarios/cameras/default.yaml",
+                                           "--poses",
+                                           poses};
+  const auto bound_at = [&](const std::string& gamma) {
+    std::vector<std::string> args = {"crlb"};
+    args.insert(args.end(), inputs.begin(), inputs.end());
+    args.insert(args.end(), {"--gamma", gamma});
+    const Finished f = Run(args);
+    EXPECT_EQ(f.status, 0) << f.error;
+    const auto rows = FramesTable(Read(work_ / "stdout.txt"));
+    EXPECT_EQ(rows.at(0).at("gamma"), gamma);
+    return rows.at(0).at("crlb_position_m");
+  };
+  const std::string encoded_bound = bound_at("2.2");
+  EXPECT_NE(encoded_bound, bound_at("1"));
+  std::vector<std::string> render = {"render"};
+  render.insert(render.end(), inputs.begin(), inputs.end());
+  render.insert(render.end(), {"--gamma", "2.2", "--out", (work_ / "dataset").string()});
+  ASSERT_EQ(Run(render).status, 0) << Read(work_ / "stderr.txt");
+  const auto truth = FramesTable(Read(work_ / "dataset" / "groundtruth.csv"));
+  EXPECT_EQ(truth.at(0).at("gamma"), "2.2");
+  EXPECT_EQ(truth.at(0).at("crlb_position_m"), encoded_bound);
+  render.back() = (work_ / "zero").string();
+  render.at(render.size() - 3) = "0";
+  EXPECT_EQ(Run(render).status, 2);
+  EXPECT_EQ(
+      Run({"render", Scenario("quick", 1), "--out", (work_ / "s").string(), "--gamma", "2"}).status,
+      2);
+}
+
 TEST_F(SweepCliTest, KilledRunResumesToTheSameFile) {
   const std::string scenario = Scenario("resume", 30);
   const std::string reference = (work_ / "reference").string(),
