@@ -229,6 +229,25 @@ TEST(Scenario, ExecTrackersAreCheckedAtLoad) {
               HasSubstr("key 'trackers[1].name': expected a name no other tracker"));
 }
 
+// Any tracker entry, built-in or a command, can be told the camera's response; it is off
+// unless asked for, recorded among the run's parameters, and must be a boolean.
+TEST(Scenario, LinearInputIsAnEntrysChoiceAndRecorded) {
+  EXPECT_FALSE(
+      LoadScenario(WriteTestFile("scenario.yaml", GoodScenario())).trackers[0].linear_input);
+  const Scenario s = LoadScenario(WriteTestFile(
+      "scenario.yaml",
+      Replace(Replace(GoodScenario(), "options: {quad_decimate: 1.0}}", "linear_input: true}"),
+              "poses:",
+              "  - {name: mine, exec: [x], linear_input: true}\nposes:")));
+  for (const TrackerEntry& entry : s.trackers) {
+    EXPECT_TRUE(entry.linear_input) << entry.name;
+    EXPECT_THAT(entry.parameters, testing::Contains(testing::Pair("linear_input", "true")));
+  }
+  EXPECT_THAT(
+      ErrorOf(Replace(GoodScenario(), "options: {quad_decimate: 1.0}}", "linear_input: 2}")),
+      HasSubstr("key 'trackers[0].linear_input'"));
+}
+
 TEST(Scenario, TrackerMustTrackOneOfTheMarkers) {
   EXPECT_THAT(
       ErrorOf(Replace(
@@ -278,6 +297,8 @@ TEST(Scenario, ShippedScenariosLoad) {
                            "scenarios/paper/fig7_blur.yaml",
                            "scenarios/paper/fig8_distance.yaml",
                            "scenarios/examples/all_markers.yaml",
+                           "scenarios/camera_response/gamma.yaml",
+                           "scenarios/camera_response/gamma_linear_input.yaml",
                            "scenarios/render_only/bit_grid.yaml"}) {
     EXPECT_NO_THROW(LoadScenario(path)) << path;
   }
