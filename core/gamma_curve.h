@@ -19,4 +19,12 @@ inline void ApplyGammaCurve(double exponent, Image8* image) {
   for (uint8_t& v : image->pixels) v = curve[v];
 }
 
+// `image` taken back to linear values from a camera's encoding with gamma G (the curve's
+// exponent G): what a tracker told the camera's response sees.
+inline Image8 Linearized(const Image8& image, double gamma) {
+  Image8 linear = image;
+  ApplyGammaCurve(gamma, &linear);
+  return linear;
+}
+
 }  // namespace markerbench

@@ -36,5 +36,18 @@ TEST(GammaCurve, KeepsBlackAndWhiteAndBendsTheMiddle) {
   EXPECT_EQ(same.pixels, EveryValue().pixels);
 }
 
+// A copy taken through the curve; the frame itself is left as it was.
+TEST(GammaCurve, LinearizedIsACopyThroughTheCurve) {
+  Image8 encoded = EveryValue();
+  ApplyGammaCurve(1.0 / 2.2, &encoded);
+  const Image8 before = encoded;
+  const Image8 linear = Linearized(encoded, 2.2);
+  EXPECT_EQ(encoded.pixels, before.pixels);
+  Image8 expected = encoded;
+  ApplyGammaCurve(2.2, &expected);
+  EXPECT_EQ(linear.pixels, expected.pixels);
+  EXPECT_NE(linear.pixels, encoded.pixels);
+}
+
 }  // namespace
 }  // namespace markerbench

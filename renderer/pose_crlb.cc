@@ -175,6 +175,7 @@ constexpr double kLeastRoundingCovariance = 1e-6;
 ImageF NoiseFreeImage(const FrameRequest& request) {
   FrameRequest noise_free = request;
   noise_free.degradations.noise_var = 0.0;
+  noise_free.degradations.gamma = 1.0;  // the linear values are the same; skip the encoding
   noise_free.keep_linear = true;
   return RenderFrame(noise_free).linear;
 }

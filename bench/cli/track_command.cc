@@ -165,8 +165,7 @@ void RunTrackCommand(const TrackCommandOptions& o) {
     Image8 linear;  // the frame taken back to linear values, where --gamma says how
     const Image8* seen = &image;
     if (o.gamma != 1.0) {
-      linear = image;
-      ApplyGammaCurve(o.gamma, &linear);
+      linear = Linearized(image, o.gamma);
       seen = &linear;
     }
     const auto start = std::chrono::steady_clock::now();

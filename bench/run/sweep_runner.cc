@@ -313,10 +313,7 @@ void RunFrame(const PreparedSweep& p,
     Tracker* tracker = (*trackers)[t].get();
     const Image8* image = &frame.image;
     if (s.trackers[t].linear_input && gamma != 1.0) {
-      if (linear.pixels.empty()) {
-        linear = frame.image;
-        ApplyGammaCurve(gamma, &linear);
-      }
+      if (linear.pixels.empty()) linear = Linearized(frame.image, gamma);
       image = &linear;
     }
     // Frames are independent, and sequences too: no state may leak between them.
