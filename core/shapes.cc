@@ -33,7 +33,8 @@ PaintSample GridPaint(const GridShape& grid, const Rgb& ink, const Eigen::Vector
   const double x = (p.x() - grid.top_left.x()) / grid.cell_m;
   const double y = (grid.top_left.y() - p.y()) / grid.cell_m;
   PaintSample sample;
-  if (x < 0.0 || y < 0.0 || x >= grid.cols || y >= grid.rows) {
+  // Written so that NaN is outside: a NaN cast to int is undefined.
+  if (!(x >= 0.0 && y >= 0.0 && x < grid.cols && y < grid.rows)) {
     const double dx = std::max({-x, x - grid.cols, 0.0});
     const double dy = std::max({-y, y - grid.rows, 0.0});
     sample.clearance_m = std::hypot(dx, dy) * grid.cell_m;

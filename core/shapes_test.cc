@@ -195,5 +195,24 @@ TEST(Shapes, DistanceToOutlineIsTheDistanceToTheDrawnEdges) {
   }
 }
 
+// A point that is not a number (from a degenerate pose) is painted by no shape, and never read
+// from outside a grid's cells.
+TEST(Shapes, ANanPointIsPaintedByNoShape) {
+  GridShape grid;
+  grid.cell_m = 0.01;
+  grid.rows = grid.cols = 2;
+  grid.ink = {1, 0, 0, 1};
+  const double nan = std::nan("");
+  for (const Shape& shape :
+       std::vector<Shape>{DiskShape{{0.0, 0.0}, 0.03},
+                          CrescentFromTips({0.03, 0.0}, {0.0, -0.03}, 0.012, 0.005),
+                          SectorShape{{0.0, 0.0}, 0.04, 0.3, 2.3},
+                          grid}) {
+    for (const Eigen::Vector2d& p : {Eigen::Vector2d(nan, 0.005), Eigen::Vector2d(0.005, nan)}) {
+      EXPECT_FALSE(PaintAt({shape, Rgb::Zero()}, p).color);
+    }
+  }
+}
+
 }  // namespace
 }  // namespace markerbench

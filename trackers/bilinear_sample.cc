@@ -2,10 +2,13 @@
 
 #include <algorithm>
 #include <cstddef>
+#include <limits>
 
 namespace markerbench {
 
 double BilinearSample(const uint8_t* grey, int width, int height, const Eigen::Vector2d& p) {
+  // std::clamp passes NaN through, and a NaN cast to int is undefined.
+  if (p.hasNaN()) return std::numeric_limits<double>::quiet_NaN();
   const double x = std::clamp(p.x(), 0.0, width - 1.001);
   const double y = std::clamp(p.y(), 0.0, height - 1.001);
   const int x0 = static_cast<int>(x), y0 = static_cast<int>(y);

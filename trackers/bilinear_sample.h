@@ -7,7 +7,7 @@
 
 namespace markerbench {
 
-// The grey level at p; p is clamped into the image.
+// The grey level at p; p is clamped into the image. NaN where p has a NaN coordinate.
 double BilinearSample(const uint8_t* grey, int width, int height, const Eigen::Vector2d& p);
 
 }  // namespace markerbench

@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <array>
+#include <cmath>
 
 namespace markerbench {
 namespace {
@@ -24,6 +25,13 @@ TEST(BilinearSample, PixelCentresGiveThePixelsAndMidpointsAverageThem) {
 TEST(BilinearSample, PointsOutsideAreClampedToTheBorder) {
   EXPECT_DOUBLE_EQ(At(-5.0, -5.0), 0.0);
   EXPECT_NEAR(At(10.0, 10.0), 150.0, 0.2);
+}
+
+// A point from a degenerate homography: NaN, never a read outside the image.
+TEST(BilinearSample, ANanPointReadsNan) {
+  const double nan = std::nan("");
+  EXPECT_TRUE(std::isnan(At(nan, 0.5)));
+  EXPECT_TRUE(std::isnan(At(0.5, nan)));
 }
 
 }  // namespace

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <utility>
 #include <vector>
 
@@ -14,6 +15,9 @@ constexpr int kTSteps = 160;
 constexpr double kMaxZ = 7.0, kZStep = 0.05;
 constexpr int kZSteps = static_cast<int>(2 * kMaxZ / kZStep);
 constexpr size_t kRowSize = static_cast<size_t>(kZSteps) + 1;  // z values a table row
+// What a NaN point gives (a fit's step gone astray): NaN, which the fit rejects, never a
+// table index (a NaN cast to int is undefined; on x86 it read far outside the table).
+constexpr double kNotANumber = std::numeric_limits<double>::quiet_NaN();
 
 // e^{-y} I₀(y), y >= 0 (Abramowitz and Stegun 9.8.1-9.8.2).
 double ScaledBesselI0(double y) {
@@ -105,6 +109,7 @@ BlurredDiskProfile::BlurredDiskProfile(double s) {
 ProfileValue BlurredDiskProfile::At(double z) const {
   ProfileValue out;
   z -= shift_;
+  if (std::isnan(z)) return {kNotANumber, kNotANumber, kNotANumber};
   if (z <= -kMaxZ) return out;
   if (z >= kMaxZ) {
     out.value = 1.0;
@@ -124,6 +129,7 @@ ProfileValue BlurredDiskProfile::At(double z) const {
 BlurredDiskProfile::Integral BlurredDiskProfile::SecondIntegralAt(double x) const {
   Integral out;
   x -= shift_;
+  if (std::isnan(x)) return {kNotANumber, kNotANumber, kNotANumber};
   if (x <= -kMaxZ) return out;
   // Each row's H at x: cubic Hermite from its values and slopes (the first integral) at the
   // nodes around x, and that cubic's derivative; beyond kMaxZ, G = 1.

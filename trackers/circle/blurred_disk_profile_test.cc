@@ -8,6 +8,7 @@
 
 #include <cmath>
 #include <string>
+#include <tuple>
 
 namespace markerbench {
 namespace {
@@ -114,6 +115,22 @@ TEST(BlurredDiskProfile, OverAPixelsDerivativesAreItsFiniteDifferences) {
         EXPECT_NEAR(v.d_ds, d_ds, 1e-6);
         EXPECT_NEAR(v.d_dlog_width, d_dlog_width, 1e-6);
       }
+    }
+  }
+}
+
+// A NaN point (a pose step gone astray in a fit) gives NaN, which the fit rejects: never a
+// crash or a number read outside the tables.
+TEST(BlurredDiskProfile, ANanPointGivesNan) {
+  const double nan = std::nan("");
+  for (const double s : {2.0, 1e4}) {
+    const BlurredDiskProfile profile(s);
+    const ProfileValue at = profile.At(nan);
+    EXPECT_TRUE(std::isnan(at.value) && std::isnan(at.d_dz) && std::isnan(at.d_ds));
+    for (const auto& [z, a, b] : {std::tuple{nan, 0.3, 0.3}, {0.0, nan, 0.3}, {0.0, 0.3, nan}}) {
+      const PixelProfileValue over = profile.OverPixel(z, a, b);
+      EXPECT_TRUE(std::isnan(over.value) && std::isnan(over.d_dz) && std::isnan(over.d_ds) &&
+                  std::isnan(over.d_dlog_width));
     }
   }
 }
