@@ -10,6 +10,11 @@
 
 namespace markerbench {
 
+// The gammas a camera's response may have, in the renderer (Degradations::gamma) and for the
+// frames a tracker is given (`track --gamma`): beyond them an 8-bit frame keeps few levels.
+constexpr double kMinGamma = 0.1, kMaxGamma = 10.0;
+inline bool IsValidGamma(double gamma) { return gamma >= kMinGamma && gamma <= kMaxGamma; }
+
 // Every pixel and channel of `image` through the curve; `exponent` > 0.
 inline void ApplyGammaCurve(double exponent, Image8* image) {
   std::array<uint8_t, 256> curve;

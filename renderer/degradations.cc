@@ -8,6 +8,7 @@
 #include <sstream>
 #include <vector>
 
+#include "core/gamma_curve.h"
 #include "core/random.h"
 
 namespace markerbench {
@@ -40,8 +41,8 @@ bool Degradations::IsValid(std::string* error) const {
     msg << "lighting gain=" << gain << " must be in [0, 100], offset and gradient finite";
   } else if (!(noise_var >= 0.0 && noise_var <= 10.0)) {
     msg << "noise_var=" << noise_var << " must be in [0, 10]";
-  } else if (!(gamma >= 0.1 && gamma <= 10.0)) {
-    msg << "gamma=" << gamma << " must be in [0.1, 10]";
+  } else if (!IsValidGamma(gamma)) {
+    msg << "gamma=" << gamma << " must be in [" << kMinGamma << ", " << kMaxGamma << "]";
   } else if (jpeg_quality < 0 || jpeg_quality > 100) {
     msg << "jpeg_quality=" << jpeg_quality << " must be 0 (off) or 1..100";
   } else {

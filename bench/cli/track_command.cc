@@ -133,8 +133,9 @@ std::unique_ptr<Tracker> MakeCommandTracker(const TrackCommandOptions& o,
 }  // namespace
 
 void RunTrackCommand(const TrackCommandOptions& o) {
-  if (!(o.gamma > 0.0 && std::isfinite(o.gamma))) {
-    throw ConfigError("--gamma " + NumberText(o.gamma) + ": must be a number > 0");
+  if (!IsValidGamma(o.gamma)) {
+    throw ConfigError("--gamma " + NumberText(o.gamma) + ": must be in [" + NumberText(kMinGamma) +
+                      ", " + NumberText(kMaxGamma) + "]");
   }
   CheckFiles(o);
   const MarkerSpec marker = LoadMarkerYaml(o.marker_path);

@@ -5,6 +5,7 @@
 
 #include <Eigen/Geometry>
 #include <algorithm>
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <opencv2/imgproc.hpp>
@@ -23,6 +24,7 @@
 #include "core/file_bytes.h"
 #include "core/gamma_curve.h"
 #include "core/marker_yaml.h"
+#include "core/number_text.h"
 #include "core/test_files.h"
 #include "renderer/image_io.h"
 #include "renderer/render_frame.h"
@@ -330,8 +332,12 @@ TEST(TrackCommand, GammaLinearizesTheFramesForTheTracker) {
   }
   EXPECT_LT((t - truth.translation).norm(), 2e-3);
 
-  options.gamma = 0.0;
-  EXPECT_THAT(ConfigErrorOf(options), HasSubstr("--gamma 0: must be a number > 0"));
+  // The renderer's range (core/gamma_curve.h), NaN outside it.
+  for (const double gamma : {0.0, 0.09, 10.5, std::nan("")}) {
+    options.gamma = gamma;
+    EXPECT_THAT(ConfigErrorOf(options),
+                HasSubstr("--gamma " + NumberText(gamma) + ": must be in [0.1, 10]"));
+  }
 }
 
 // The tracker, its options and the marker are checked before any frame is read.
