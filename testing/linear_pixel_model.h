@@ -45,6 +45,7 @@ class LinearPixelModel {
   }
 
   int Parameters() const { return 9; }
+  Eigen::VectorXd StartLevels() const { return UnitGainLevels(Parameters()); }
   double MinSigmaPx() const { return 0.2; }
   const Eigen::Matrix<double, 9, 1>& solution() const { return solution_; }
   double noise_sigma() const { return noise_sigma_; }

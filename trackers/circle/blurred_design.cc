@@ -175,6 +175,21 @@ double BivariateNormalCdf(double h, double k, double rho) {
 
 BlurredDesign::BlurredDesign(const MarkerSpec& marker)
     : marker_(marker), straight_edge_(std::numeric_limits<double>::infinity()) {
+  // The lumas an offset and a gain place (the paper's and the first other one) and the extra
+  // ones, in the order the layers paint them; the extra colour a luma is (-1: none).
+  std::vector<double> placed = {Luma(marker.background)}, extra;
+  const auto extra_level = [&](double luma) {
+    if (std::find(placed.begin(), placed.end(), luma) != placed.end()) return -1;
+    const auto known = std::find(extra.begin(), extra.end(), luma);
+    if (known != extra.end()) return static_cast<int>(known - extra.begin());
+    if (placed.size() < 2) {
+      placed.push_back(luma);
+      return -1;
+    }
+    if (extra.size() == kMaxExtraLevels) return -1;
+    extra.push_back(luma);
+    return static_cast<int>(extra.size()) - 1;
+  };
   // What each layer is painted on: the layers below it at its deepest point on a grid.
   constexpr int kSteps = 32;
   for (size_t i = 0; i < marker.layers.size(); ++i) {
@@ -199,13 +214,24 @@ BlurredDesign::BlurredDesign(const MarkerSpec& marker)
       if (below.color) under = *below.color;
     }
     steps_.push_back(Luma(layer.color) - Luma(under));
+    extra_painted_.push_back(extra_level(Luma(layer.color)));
+    extra_under_.push_back(extra_level(Luma(under)));
   }
+  extra_levels_ = static_cast<int>(extra.size());
 }
 
 BlurredLuma BlurredDesign::At(const Eigen::Vector2d& p,
                               const Eigen::Matrix2d& marker_from_px,
-                              double sigma_px) const {
-  BlurredLuma out{Luma(marker_.background), Eigen::Vector2d::Zero(), 0.0};
+                              double sigma_px,
+                              const std::array<double, kMaxExtraLevels>& level_shifts) const {
+  const auto shift = [&](int level) { return level < 0 ? 0.0 : level_shifts[level]; };
+  BlurredLuma out;
+  out.luma = Luma(marker_.background);  // always a placed colour
+  // Layer l's share `cover` of the pixel: its colour's, less the one it is painted on.
+  const auto add_shares = [&](size_t l, double cover) {
+    if (extra_painted_[l] >= 0) out.d_levels[extra_painted_[l]] += cover;
+    if (extra_under_[l] >= 0) out.d_levels[extra_under_[l]] -= cover;
+  };
   // An edge farther than this from p is farther than kSharpSigmas + 1 σc and a pixel in the
   // image (the map's Frobenius norm bounds the metres a pixel spans; the 1 σc covers the
   // curvature's shift of a circle's blurred edge, σc/2ρ σc for ρ ≥ σc).
@@ -216,22 +242,31 @@ BlurredLuma BlurredDesign::At(const Eigen::Vector2d& p,
     const BoundaryDistances b = DistancesTo(layer.shape, p);
     if (b.count == 0) {
       // Sharp: where it paints, its colour replaces the layers below.
-      if (PaintAt(layer, p).color) out = {Luma(layer.color), Eigen::Vector2d::Zero(), 0.0};
+      if (PaintAt(layer, p).color) {
+        out = BlurredLuma();
+        out.luma = Luma(layer.color) + shift(extra_painted_[l]);
+        if (extra_painted_[l] >= 0) out.d_levels[extra_painted_[l]] = 1.0;
+      }
       continue;
     }
+    const double step = steps_[l] + shift(extra_painted_[l]) - shift(extra_under_[l]);
     bool inside = true, far = true;
     for (size_t i = 0; i < b.count; ++i) {
       inside &= b.terms[i].metres < 0.0;
       far &= std::abs(b.terms[i].metres) > sharp_beyond_m;
     }
     if (far) {  // what BlurredCover gives there, to double precision
-      if (inside) out.luma += steps_[l];
+      if (inside) {
+        out.luma += step;
+        add_shares(l, 1.0);
+      }
       continue;
     }
     const Cover cover = BlurredCover(b, marker_from_px, sigma_px, straight_edge_);
-    out.luma += steps_[l] * cover.value;
-    out.gradient += steps_[l] * cover.gradient;
-    out.d_sigma += steps_[l] * cover.d_sigma;
+    out.luma += step * cover.value;
+    out.gradient += step * cover.gradient;
+    out.d_sigma += step * cover.d_sigma;
+    add_shares(l, cover.value);
   }
   return out;
 }

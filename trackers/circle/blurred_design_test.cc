@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <vector>
 
@@ -199,6 +200,50 @@ TEST(BlurredDesign, GradientIsTheDerivative) {
         EXPECT_NEAR(at.d_sigma, numeric_sigma, 1e-6 + 1e-5 * std::abs(numeric_sigma))
             << kind << " " << p.transpose() << " sigma " << sigma;
       }
+    }
+  }
+}
+
+// The colours beyond the paper's and the first other one get a level each (f's grey wedge; e's
+// white features on the black disk none, unless printed in other colours), and the derivative in
+// a level is the share of the pixel that colour covers: the luma's finite difference.
+TEST(BlurredDesign, ExtraColoursHaveLevelsWhoseDerivativeIsTheirShare) {
+  const MarkerSpec f = LoadMarkerYaml("scenarios/markers/circle_f.yaml");
+  MarkerSpec e = LoadMarkerYaml("scenarios/markers/circle_e.yaml");
+  EXPECT_EQ(BlurredDesign(f).ExtraLevels(), 1);
+  EXPECT_EQ(BlurredDesign(e).ExtraLevels(), 0);
+  ASSERT_EQ(e.layers.size(), 3u);
+  e.layers[1].color = Rgb::Constant(0.7);
+  EXPECT_EQ(BlurredDesign(e).ExtraLevels(), 1);
+  e.layers[2].color = Rgb::Constant(0.3);
+  EXPECT_EQ(BlurredDesign(e).ExtraLevels(), 2);
+  for (const MarkerSpec* marker : {&f, static_cast<const MarkerSpec*>(&e)}) {
+    const BlurredDesign design(*marker);
+    const std::array<double, kMaxExtraLevels> shifts = {0.05, -0.03};
+    int partly_covered = 0;  // pixels an extra colour covers in part
+    // Points 2.5 mm apart over the disk (a pixel is about 1.5 mm, the blur 0.8 px).
+    for (int i = 0; i <= 1600; ++i) {
+      const Eigen::Vector2d p(-0.05 + 0.0025 * (i % 41), -0.05 + 0.0025 * (i / 41));
+      const BlurredLuma at = design.At(p, TiltedMap(), 0.8, shifts);
+      for (int k = 0; k < kMaxExtraLevels; ++k) {
+        std::array<double, kMaxExtraLevels> up = shifts, down = shifts;
+        up[k] += 1e-6;
+        down[k] -= 1e-6;
+        const double numeric =
+            (design.At(p, TiltedMap(), 0.8, up).luma - design.At(p, TiltedMap(), 0.8, down).luma) /
+            2e-6;
+        EXPECT_NEAR(at.d_levels[k], numeric, 1e-8) << p.transpose() << " level " << k;
+        EXPECT_GE(at.d_levels[k], -2e-4);  // the tables' error (blurred_disk_profile.cc)
+        EXPECT_LE(at.d_levels[k], 1.0 + 2e-4);
+        partly_covered += at.d_levels[k] > 0.05 && at.d_levels[k] < 0.95;
+      }
+    }
+    EXPECT_GE(partly_covered, 1);
+    // Deep in the wedge the pixel is all grey: its luma the design's moved by the shift.
+    if (marker == &f) {
+      const Eigen::Vector2d in_wedge(0.025, 0.012);
+      EXPECT_NEAR(design.At(in_wedge, TiltedMap(), 0.8, shifts).luma, 0.5 + 0.05, 1e-9);
+      EXPECT_NEAR(design.At(in_wedge, TiltedMap(), 0.8, shifts).d_levels[0], 1.0, 1e-9);
     }
   }
 }

@@ -97,7 +97,7 @@ PixelFit FitPixelsAtTheirNoise(Model& model,
   const double function_tolerance = round.function_tolerance();
   std::vector<ModelledPixel> modelled;
   if (!round.follows_another) {
-    model.Evaluate(PixelFitParameters(cam_from_marker, sigma_px, StartLevels(model.Parameters())),
+    model.Evaluate(PixelFitParameters(cam_from_marker, sigma_px, model.StartLevels()),
                    nullptr,
                    nullptr,
                    &modelled);

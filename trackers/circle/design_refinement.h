@@ -3,8 +3,9 @@
 // mouth and (f)'s wedge inside the circle (paper Fig. 3). Each pixel u is modelled as
 //   I(u) = offset + gain · D_σ(p(u)),
 // with p(u) the marker-plane point u sees at the pose and D_σ the printed design blurred as
-// the image is, through the local map from pixels to the plane (blurred_design.h). Pose, σ,
-// gain and offset are fitted by Levenberg-Marquardt (pixel_fit.h) on every pixel within
+// the image is, through the local map from pixels to the plane (blurred_design.h), each colour
+// beyond the paper's and the ink's (f's grey) at a fitted level. Pose, σ, gain, offset and
+// those levels are fitted by Levenberg-Marquardt (pixel_fit.h) on every pixel within
 // 3σ + 1.5 px of an edge: the maximum-likelihood pose under Gaussian noise, whose clipping
 // at black and white (a sensor's saturation) is part of the model. For (f) the tilt
 // then rests on the circle, the wedge's two sides and its apex at once; the edge points of
@@ -42,7 +43,9 @@ struct DesignRefinementOptions {
 };
 
 struct DesignRefinement {
-  PixelFit fit;  // on a grey image: levels = (offset, gain) of the design's luma, 0-1
+  // On a grey image: levels = (offset, gain) of the design's luma, 0-1, then each extra
+  // colour's luma less the design's (BlurredDesign::ExtraLevels).
+  PixelFit fit;
   int pixels = 0;
   double noise_sigma = 0.0;  // the image's, 0-1, as its residuals show (the model's clipping)
 };

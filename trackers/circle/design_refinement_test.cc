@@ -61,6 +61,39 @@ TEST(DesignRefinement, RecoversThePoseAndTheBlurFromAPerturbedStart) {
   }
 }
 
+// A print's grey is rarely the one specified (and a camera's response moves it too): f's wedge
+// printed at 0.4 where the design says 0.5. The wedge's level is fitted with the pose from a
+// fit's second round on (design_refinement.cc), and the pose is as good as on the same frame
+// printed as designed: measured 0.81-1.32 times its error on 12 frames (0.16-3.4 mm), the level
+// 0.095-0.104 below the design's (within 0.006 of it printed as designed). Held at the design's
+// 0.5, the fit moved the wedge's sides to match the brighter grey: 5.1 mm off on the first frame
+// (0.46 as designed).
+TEST(DesignRefinement, FitsTheGreyThePrintShows) {
+  const Camera camera;
+  const MarkerSpec marker = Load("circle_f");
+  MarkerSpec grey_print = marker;
+  grey_print.layers[1].color = Rgb::Constant(0.4);
+  const MarkerSpec& printed = grey_print;
+  Rng rng(5);
+  for (int i = 0; i < 6; ++i) {
+    SCOPED_TRACE("frame " + std::to_string(i));
+    const Rigid3 truth = RandomTiltedView(0.6, 10.0, 40.0, &rng);
+    const Rigid3 start = SlightlyPerturbed(truth, &rng);
+    std::vector<double> errors;
+    for (const MarkerSpec* print : {&printed, &marker}) {
+      const RenderedFrame frame = RenderMarker(*print, truth, 0.005, 1.0, 60 + i);
+      const std::optional<DesignRefinement> refined =
+          RefineDesign(frame.image, camera, marker, start, 1.0, std::sqrt(0.005));
+      ASSERT_TRUE(refined);
+      // The levels: offset, gain, and the grey's luma less the design's.
+      ASSERT_EQ(refined->fit.levels.size(), 3);
+      EXPECT_NEAR(refined->fit.levels[2], print == &printed ? -0.1 : 0.0, 0.01);
+      errors.push_back(PositionError(refined->fit.cam_from_marker, truth));
+    }
+    EXPECT_LE(errors[0], 1.5 * errors[1] + 1e-4);
+  }
+}
+
 // f at 1 m, blur σ = 3, noise variance 0.02 (the paper's blur sweep): the noise clipped at the
 // black disk lifts its pixels, and at the white paper lowers them, most where the blurred
 // edge is near either level, so an edge model without the clipping sees the edges sharper
@@ -170,13 +203,15 @@ std::function<std::optional<Rigid3>(const Image8&, const Rigid3&)> FromTruthAndM
 // m under blur σ = 2 px and 5-15° of tilt (the wedge's sides blurred over a quarter of the circle's
 // radius). The least cost between fits started at the true pose and at its mirror (no search: the
 // best a likelihood can do with the right basins) is then wrong on several frames, and the tracker,
-// which finds its starts itself, about as often. Measured, of 30: at 1.5 m 2 from the truth, 3
-// ours; at 1 m and blur 2, 3 and 4. With the pixel's area taken as a Gaussian (blurred_design.h), 4
-// and 4, and 3 and 3; before the clipped likelihood, seeds 14-18 at 1.5 m: 6, 11, 12, 4, 9 from the
-// truth, ours the same or one more; seeds 15-17 at blur 2: 4, 3, 7 from the truth, ours 3, 2, 6. No
-// choice by likelihood reaches 95 % success on such poses with this design (results/paper: the
-// tracker misses 8 and 6 of the sweep's 100 frames of f at 1.5 m and at blur 2, most on the other
-// tilt). Not under the sanitizers (testing/sanitized_build.h).
+// which finds its starts itself, about as often (McNemar's test). Measured, of 60: at 1.5 m 12
+// wrong from the truth, 15 ours (3 only ours, none only from the truth); at 1 m and blur 2, 5 and 7
+// (3 and 1); with the wedge's grey held at the design's (blurred_design.h), 11 and 13, 7 and 8. Of
+// 30 earlier: at 1.5 m 2 from the truth, 3 ours; at 1 m and blur 2, 3 and 4; with the pixel's area
+// taken as a Gaussian, 4 and 4, and 3 and 3; before the clipped likelihood, seeds 14-18 at 1.5 m:
+// 6, 11, 12, 4, 9 from the truth, ours the same or one more; seeds 15-17 at blur 2: 4, 3, 7 from
+// the truth, ours 3, 2, 6. No choice by likelihood reaches 95 % success on such poses with this
+// design (results/paper: the tracker misses 8 and 6 of the sweep's 100 frames of f at 1.5 m and at
+// blur 2, most on the other tilt). Not under the sanitizers (testing/sanitized_build.h).
 TEST(DesignRefinement, ChoosesTheTiltAsOftenAsFromTheTruePoseAndItsMirror) {
   if (kSanitizedBuild) GTEST_SKIP() << "counts over 60 frames: the optimised build's";
   const MarkerSpec marker = Load("circle_f");
@@ -195,10 +230,15 @@ TEST(DesignRefinement, ChoosesTheTiltAsOftenAsFromTheTruePoseAndItsMirror) {
     views.blur_sigma_px = c.blur;
     views.pose_seed = c.pose_seed;
     views.first_noise_seed = 200;
+    views.frames = 60;
     const TiltChoiceCounts counts = CountTiltChoices(
         marker, tracker, views, FromTruthAndMirror(camera, marker, views, std::max(c.blur, 0.3)));
+    // The premise: even the likelier of the two fits keeps the mirror on some frames.
     EXPECT_GE(counts.from_truth_wrong, 2);
-    EXPECT_LE(counts.ours_wrong, counts.from_truth_wrong + 2);
+    // Two tests, so each at 0.05/2 (Bonferroni), as the far-away test below.
+    EXPECT_GT(counts.OursWrongMoreOftenP(), 0.05 / 2)
+        << counts.only_ours_wrong << " frames wrong only ours, " << counts.only_from_truth_wrong
+        << " only from the truth";
   }
 }
 

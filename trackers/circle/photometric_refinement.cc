@@ -131,6 +131,7 @@ class PixelModel {
         chords_below_noise_(chords_below_noise) {}
 
   int Parameters() const { return 7 + 2 * channels_; }
+  Eigen::VectorXd StartLevels() const { return UnitGainLevels(Parameters()); }
   double MinSigmaPx() const { return kMinBlurSigmaPx; }
   double noise_sigma() const { return noise_sigma_; }
   void set_noise_sigma(double noise_sigma) { noise_sigma_ = noise_sigma; }

@@ -309,7 +309,7 @@ TEST(PhotometricRefinement, TheBandKeepsThePosesInformation) {
       options.band_sigmas *= band_scale;
       options.band_px *= band_scale;
       const Eigen::VectorXd theta =
-          PixelFitParameters(truth, sigma, StartLevels(7 + 2 * frame.image.channels));
+          PixelFitParameters(truth, sigma, UnitGainLevels(7 + 2 * frame.image.channels));
       const Eigen::MatrixXd jtj =
           PhotometricNormalEquationsAt(
               frame.image, camera, marker, truth, sigma, std::sqrt(noise_var), theta, options)

@@ -1,7 +1,8 @@
 // Levenberg-Marquardt for the photometric fits (photometric_refinement.h, design_refinement.h)
 // on the normal equations, with Marquardt's diagonal scaling. A model of the pixels takes
-// θ = (angle-axis (3), translation (3), blur σ in px, then an offset and a gain per channel)
-// and provides Parameters(), MinSigmaPx() (the least σ a step may take) and Evaluate(θ, JᵀJ*,
+// θ = (angle-axis (3), translation (3), blur σ in px, then its levels: an offset and a gain per
+// channel, and any further levels) and provides Parameters(), StartLevels() (the levels a fit
+// starts from), MinSigmaPx() (the least σ a step may take) and Evaluate(θ, JᵀJ*,
 // Jᵀr*, modelled*): the cost at θ (the pixels' ClippedPixelTerm summed, Σ r² where none is
 // clipped), when the pointers are given the normal equations, and when `modelled` is given each
 // pixel's ModelledPixel appended to it.
@@ -54,8 +55,9 @@ inline Eigen::VectorXd PixelFitParameters(const Rigid3& cam_from_marker,
   return theta;
 }
 
-// The levels a fit starts from: gains 1 and offsets 0, for a model of `parameters`.
-inline Eigen::VectorXd StartLevels(int parameters) {
+// Levels of offsets 0 and gains 1, for a model of `parameters` with an offset and a gain per
+// channel.
+inline Eigen::VectorXd UnitGainLevels(int parameters) {
   Eigen::VectorXd levels = Eigen::VectorXd::Zero(parameters - 7);
   for (int gain = 1; gain < levels.size(); gain += 2) levels[gain] = 1.0;
   return levels;
@@ -104,8 +106,8 @@ inline Eigen::VectorXd StepWithinSigmaBound(const Eigen::MatrixXd& damped,
   return step;
 }
 
-// From a pose and σ, at StartLevels; σ kept at the model's MinSigmaPx() at least. Stops where
-// a step lowers the cost by less than `function_tolerance` of it, or where the normal
+// From a pose and σ, at the model's StartLevels(); σ kept at the model's MinSigmaPx() at least.
+// Stops where a step lowers the cost by less than `function_tolerance` of it, or where the normal
 // equations predict that of the next step after a taken one, damped no more than the first
 // (saving the evaluation of a step that would not count). With `modelled_at_result`, the
 // pixels at the result are listed there (from the evaluation that found it: none is done for
@@ -117,8 +119,7 @@ PixelFit FitPixels(const Model& model,
                    int max_iterations,
                    double function_tolerance = kFunctionTolerance,
                    std::vector<ModelledPixel>* modelled_at_result = nullptr) {
-  Eigen::VectorXd theta =
-      PixelFitParameters(cam_from_marker, sigma_px, StartLevels(model.Parameters()));
+  Eigen::VectorXd theta = PixelFitParameters(cam_from_marker, sigma_px, model.StartLevels());
   Eigen::MatrixXd jtj, trial_jtj;
   Eigen::VectorXd jtr, trial_jtr;
   std::vector<ModelledPixel> trial_modelled;

@@ -78,8 +78,7 @@ TEST(FitPixels, ListsThePixelsAtItsResult) {
   }
   // The start's differ: the fit moved the means by more than 1e-3.
   std::vector<ModelledPixel> at_start;
-  model.Evaluate(
-      PixelFitParameters(start, 1.0, StartLevels(model.Parameters())), nullptr, nullptr, &at_start);
+  model.Evaluate(PixelFitParameters(start, 1.0, model.StartLevels()), nullptr, nullptr, &at_start);
   ASSERT_EQ(at_start.size(), listed.size());
   double largest_move = 0.0;
   for (size_t i = 0; i < listed.size(); ++i) {
