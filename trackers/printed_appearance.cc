@@ -1,6 +1,8 @@
 #include "trackers/printed_appearance.h"
 
+#include <Eigen/Cholesky>
 #include <Eigen/LU>
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <limits>
@@ -25,21 +27,76 @@ double SmallestSingularValue(const Eigen::Matrix2d& m) {
       0.5 * (frobenius2 - std::sqrt(std::max(0.0, frobenius2 * frobenius2 - 4.0 * det * det)))));
 }
 
+// The design's intermediate colours whose levels are fitted (IsIntermediateColor), at most
+// this many; any further ones are taken as printed.
+constexpr int kMaxFittedLevels = 2;
+
+// The design's colours: the paper's and each layer's.
+std::vector<Rgb> DesignColors(const MarkerSpec& marker) {
+  std::vector<Rgb> colors = {marker.background};
+  for (const PaintedShape& layer : marker.layers) colors.push_back(layer.color);
+  return colors;
+}
+
+// The lumas of the design's darkest and lightest colours.
+Eigen::Vector2d LumaRange(const MarkerSpec& marker) {
+  Eigen::Vector2d range(std::numeric_limits<double>::infinity(),
+                        -std::numeric_limits<double>::infinity());
+  for (const Rgb& color : DesignColors(marker)) {
+    range = Eigen::Vector2d(std::min(range.x(), Luma(color)), std::max(range.y(), Luma(color)));
+  }
+  return range;
+}
+
+// The intermediate colours whose levels are fitted, each once, in the layers' order.
+std::vector<Rgb> FittedColors(const MarkerSpec& marker) {
+  std::vector<Rgb> fitted;
+  for (const PaintedShape& layer : marker.layers) {
+    if (static_cast<int>(fitted.size()) == kMaxFittedLevels) break;
+    if (IsIntermediateColor(marker, layer.color) &&
+        std::find(fitted.begin(), fitted.end(), layer.color) == fitted.end()) {
+      fitted.push_back(layer.color);
+    }
+  }
+  return fitted;
+}
+
+// A printed colour as a pixel sees it, and the share of it each fitted colour covers.
+struct PrintedColor {
+  Rgb color = Rgb::Zero();
+  std::array<double, kMaxFittedLevels> shares = {};
+};
+
+// The colour at one point, all of it from a fitted colour if it is one.
+PrintedColor SharpColor(const std::vector<Rgb>& fitted, const Rgb& color) {
+  PrintedColor out{color, {}};
+  const auto found = std::find(fitted.begin(), fitted.end(), color);
+  if (found != fitted.end()) out.shares[found - fitted.begin()] = 1.0;
+  return out;
+}
+
 // The printed colour around plane point `p` under an image Gaussian of `sigma_px`, through
 // the local map plane_from_px (metres per pixel; min_scale: its inverse's smallest singular
 // value). Where no edge is within the rule's reach, that is the colour at p.
-Rgb BlurredColor(const MarkerSpec& marker,
-                 const Eigen::Vector2d& p,
-                 double min_scale,
-                 const Eigen::Matrix2d& plane_from_px,
-                 double sigma_px) {
+PrintedColor BlurredColor(const MarkerSpec& marker,
+                          const std::vector<Rgb>& fitted,
+                          const Eigen::Vector2d& p,
+                          double min_scale,
+                          const Eigen::Matrix2d& plane_from_px,
+                          double sigma_px) {
   const PaintSample here = marker.ColorAt(p);
-  if (here.clearance_m * min_scale > kReachSigmas * sigma_px) return *here.color;
-  Rgb sum = Rgb::Zero();
+  if (here.clearance_m * min_scale > kReachSigmas * sigma_px) {
+    return SharpColor(fitted, *here.color);
+  }
+  PrintedColor sum;
   for (size_t i = 0; i < kNodes.size(); ++i) {
     for (size_t j = 0; j < kNodes.size(); ++j) {
       const Eigen::Vector2d offset_px = sigma_px * Eigen::Vector2d(kNodes[i], kNodes[j]);
-      sum += kWeights[i] * kWeights[j] * *marker.ColorAt(p + plane_from_px * offset_px).color;
+      const PrintedColor node =
+          SharpColor(fitted, *marker.ColorAt(p + plane_from_px * offset_px).color);
+      const double weight = kWeights[i] * kWeights[j];
+      sum.color += weight * node.color;
+      for (int k = 0; k < kMaxFittedLevels; ++k) sum.shares[k] += weight * node.shares[k];
     }
   }
   return sum;
@@ -67,6 +124,77 @@ struct SharedResidual {
            weight;
   }
 };
+
+// A sample's printed (model) and measured values at its two pixels, in one channel.
+struct Pair {
+  double x[2];
+  double y[2];
+  std::array<double, kMaxFittedLevels> shares[2];  // of the fitted colours
+  int part;  // the top-most layer at the sample + 1; 0: the paper
+  int i, j;  // the sample's lattice point
+  int channel;
+  bool in_blocks;  // in blocks of more than one: no pair in them read its pixels before
+};
+
+// measured = offset + contrast * (printed + Σ shift_k share_k): each fitted colour's level
+// moved by its shift.
+struct Line {
+  double offset = 0.0;
+  double contrast = 0.0;
+  std::array<double, kMaxFittedLevels> shifts = {};
+  double Moved(double printed, const std::array<double, kMaxFittedLevels>& shares) const {
+    for (int k = 0; k < kMaxFittedLevels; ++k) printed += shifts[k] * shares[k];
+    return printed;
+  }
+  double Residual(double measured,
+                  double printed,
+                  const std::array<double, kMaxFittedLevels>& shares) const {
+    return measured - offset - contrast * Moved(printed, shares);
+  }
+};
+
+// Least squares over every value, linear in (offset, contrast, contrast · shift_k). A shift
+// out of its range (the fitted colours' `shift_ranges`) is held at the bound it passed and the
+// rest fitted again. nullopt where the values cannot fix the line.
+std::optional<Line> FitLine(const std::vector<Pair>& pairs,
+                            const std::vector<Eigen::Vector2d>& shift_ranges) {
+  const int fitted = static_cast<int>(shift_ranges.size());
+  std::array<bool, kMaxFittedLevels> held = {};
+  Line line;
+  for (int round = 0; round <= fitted; ++round) {
+    Eigen::Matrix4d JtJ = Eigen::Matrix4d::Zero();
+    Eigen::Vector4d Jty = Eigen::Vector4d::Zero();
+    for (const Pair& pair : pairs) {
+      for (int k = 0; k < 2; ++k) {
+        Eigen::Vector4d J(1.0, line.Moved(pair.x[k], pair.shares[k]), 0.0, 0.0);
+        for (int c = 0; c < fitted; ++c) {
+          if (!held[c]) J(2 + c) = pair.shares[k][c];
+        }
+        JtJ += J * J.transpose();
+        Jty += J * pair.y[k];
+      }
+    }
+    for (int p = 2; p < 4; ++p) {  // colours held, unseen or not there
+      if (JtJ(p, p) == 0.0) JtJ(p, p) = 1.0;
+    }
+    const Eigen::Vector4d theta = JtJ.ldlt().solve(Jty);
+    if (!theta.allFinite()) return std::nullopt;
+    line.offset = theta(0);
+    line.contrast = theta(1);
+    if (!(line.contrast > 0.0)) return line;
+    bool moved_out = false;
+    for (int c = 0; c < fitted; ++c) {
+      if (held[c]) continue;
+      const double shift = line.shifts[c] + theta(2 + c) / line.contrast;
+      const double in_range = std::clamp(shift, shift_ranges[c](0), shift_ranges[c](1));
+      held[c] = in_range != shift;
+      moved_out |= held[c];
+      line.shifts[c] = in_range;
+    }
+    if (!moved_out) return line;
+  }
+  return line;
+}
 
 // The fit on a grid x grid lattice.
 AppearanceFit FitOnGrid(const Image8& image,
@@ -98,15 +226,8 @@ AppearanceFit FitOnGrid(const Image8& image,
     }
   }
 
+  const std::vector<Rgb> fitted = FittedColors(marker);
   // Per sample and channel: printed (model) and measured values at the two pixels.
-  struct Pair {
-    double x[2];
-    double y[2];
-    int part;  // the top-most layer at the sample + 1; 0: the paper
-    int i, j;  // the sample's lattice point
-    int channel;
-    bool in_blocks;  // in blocks of more than one: no pair in them read its pixels before
-  };
   std::vector<Pair> pairs;
   pairs.reserve(static_cast<size_t>(grid * grid * image.channels));
   // Both pixels of a pair at px, (u, v) and (u + 2, v), in the image (compared before any
@@ -160,13 +281,17 @@ AppearanceFit FitOnGrid(const Image8& image,
       // both see p's colour.
       const PaintSample at_p = marker.ColorAt(p);
       const double min_scale = SmallestSingularValue(px_from_plane);
-      Rgb printed[2] = {*at_p.color, *at_p.color};
+      PrintedColor printed[2] = {SharpColor(fitted, *at_p.color), SharpColor(fitted, *at_p.color)};
       if (!(at_p.clearance_m * min_scale > kReachSigmas * blur_sigma_px + 2.8)) {
         const Eigen::Matrix2d plane_from_px = px_from_plane.inverse();
         for (int k = 0; k < 2; ++k) {
           const Eigen::Vector2d pixel(u + 2 * k, v);
-          printed[k] = BlurredColor(
-              marker, p + plane_from_px * (pixel - px), min_scale, plane_from_px, blur_sigma_px);
+          printed[k] = BlurredColor(marker,
+                                    fitted,
+                                    p + plane_from_px * (pixel - px),
+                                    min_scale,
+                                    plane_from_px,
+                                    blur_sigma_px);
         }
       }
       for (int c = 0; c < image.channels; ++c) {
@@ -177,31 +302,43 @@ AppearanceFit FitOnGrid(const Image8& image,
         pair.channel = c;
         pair.in_blocks = in_blocks;
         for (int k = 0; k < 2; ++k) {
-          pair.x[k] = image.channels == 3 ? printed[k][c] : Luma(printed[k]);
+          pair.x[k] = image.channels == 3 ? printed[k].color[c] : Luma(printed[k].color);
           pair.y[k] = image.at(u + 2 * k, v, c) / 255.0;
+          pair.shares[k] = printed[k].shares;
         }
         pairs.push_back(pair);
       }
     }
   }
-  // Least-squares line measured = offset + contrast * printed over every value.
-  double n = 0, sx = 0, sy = 0, sxx = 0, sxy = 0;
+  double n = 0, sx = 0, sxx = 0;
   for (const Pair& pair : pairs) {
     for (int k = 0; k < 2; ++k) {
       n += 1;
       sx += pair.x[k];
-      sy += pair.y[k];
       sxx += pair.x[k] * pair.x[k];
-      sxy += pair.x[k] * pair.y[k];
     }
   }
-  const double var_x = sxx - sx * sx / n;
   fit.misfit = fit.misfit_upper = std::numeric_limits<double>::infinity();
   fit.surely_misfits = true;
-  if (static_cast<int>(pairs.size()) < options.min_part_values || !(var_x > 1e-6 * n)) return fit;
-  fit.contrast = (sxy - sx * sy / n) / var_x;
-  const double offset = (sy - fit.contrast * sx) / n;
+  if (static_cast<int>(pairs.size()) < options.min_part_values || !(sxx - sx * sx / n > 1e-6 * n)) {
+    return fit;
+  }
+  // Each fitted colour's level kept within [kMinIntermediateLevel, kMaxIntermediateLevel].
+  const double luma_range = LumaRange(marker).y() - LumaRange(marker).x();
+  std::vector<Eigen::Vector2d> shift_ranges;
+  for (const Rgb& color : fitted) {
+    shift_ranges.push_back(luma_range *
+                           (Eigen::Vector2d(kMinIntermediateLevel, kMaxIntermediateLevel) -
+                            Eigen::Vector2d::Constant(PrintedLevel(marker, color))));
+  }
+  const std::optional<Line> line = FitLine(pairs, shift_ranges);
+  if (!line) return fit;
+  fit.contrast = line->contrast;
   if (!(fit.contrast > 0.0)) return fit;
+  for (size_t c = 0; c < fitted.size(); ++c) {
+    fit.intermediate_levels.push_back(PrintedLevel(marker, fitted[c]) +
+                                      line->shifts[c] / luma_range);
+  }
   fit.surely_misfits = false;
   fit.misfit = 0.0;
   fit.misfit_upper = 0.0;
@@ -242,7 +379,9 @@ AppearanceFit FitOnGrid(const Image8& image,
       for (const int part : {pair.part, parts - 1}) {
         Means& m = row[(static_cast<size_t>(pair.j / block) * parts + part) * image.channels +
                        pair.channel];
-        for (int k = 0; k < 2; ++k) m.sum[k] += pair.y[k] - offset - fit.contrast * pair.x[k];
+        for (int k = 0; k < 2; ++k) {
+          m.sum[k] += line->Residual(pair.y[k], pair.x[k], pair.shares[k]);
+        }
         m.count += 1;
       }
     }
@@ -272,6 +411,24 @@ AppearanceFit FitOnGrid(const Image8& image,
 }
 
 }  // namespace
+
+bool IsIntermediateColor(const MarkerSpec& marker, const Rgb& color) {
+  const std::vector<Rgb> colors = DesignColors(marker);
+  for (int c = 0; c < 3; ++c) {
+    double darkest = color[c], lightest = color[c];
+    for (const Rgb& other : colors) {
+      darkest = std::min(darkest, other[c]);
+      lightest = std::max(lightest, other[c]);
+    }
+    if (!(darkest < color[c] && color[c] < lightest)) return false;
+  }
+  return true;
+}
+
+double PrintedLevel(const MarkerSpec& marker, const Rgb& color) {
+  const Eigen::Vector2d range = LumaRange(marker);
+  return (Luma(color) - range.x()) / (range.y() - range.x());
+}
 
 AppearanceFit CheckPrintedAppearance(const Image8& image,
                                      const Camera& camera,

@@ -14,12 +14,28 @@
 // them reads, so that a block's two means share no noise.
 #pragma once
 
+#include <vector>
+
 #include "core/camera.h"
 #include "core/image.h"
 #include "core/marker_spec.h"
 #include "core/rigid3.h"
 
 namespace markerbench {
+
+// A colour of the design that lies, in every channel, strictly between the design's darkest
+// and lightest values there (f's grey wedge between black and white). A print's or a camera's
+// response (its gamma) moves such a colour within that range while the darkest and the
+// lightest stay where an offset and a gain place them, so its level is fitted, kept within
+// this part of the range: a wedge at the disk's level or at the paper's is no wedge. Under
+// gamma 2.2 and 2.6, f's wedge (0.5) shows at 0.73 and 0.77 of the contrast; f's tracker put on
+// the negative set's clutter (black dots, e's mouth) sees a wedge at 0.16-0.26.
+constexpr double kMinIntermediateLevel = 0.3;
+constexpr double kMaxIntermediateLevel = 0.9;
+bool IsIntermediateColor(const MarkerSpec& marker, const Rgb& color);
+// An intermediate colour's printed level: its luma's fraction of the way from the design's
+// darkest luma to its lightest.
+double PrintedLevel(const MarkerSpec& marker, const Rgb& color);
 
 struct AppearanceOptions {
   int coarse_grid = 24;      // samples per side of the sampled box, first
@@ -53,6 +69,8 @@ struct AppearanceFit {
   int grid = 0;           // the grid used
   int samples = 0;        // grid points in the image (each reads 2 pixels, 1 or 3 channels)
   double contrast = 0.0;  // fitted gain: image units (0-1) per unit of printed colour
+  // Each intermediate colour's fitted level (PrintedLevel's measure), in the layers' order.
+  std::vector<double> intermediate_levels;
   // RMS of the residuals that neighbouring pixels share, as a fraction of the contrast, in
   // the part of the design (the paper, one layer, or the whole) that misfits most surely;
   // infinity when the samples cannot support a fit (too few, or no contrast).

@@ -5,6 +5,9 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
+
+#include "core/gamma_curve.h"
 #include "core/marker_yaml.h"
 #include "renderer/test_scenes.h"
 #include "testing/square_tracker_testing.h"
@@ -99,6 +102,47 @@ TEST(PrintedAppearance, TheDesignMovedByAFewPixelsDoesNotShow) {
   const AppearanceFit fit =
       CheckPrintedAppearance(frame.image, camera, marker, moved, EdgeSigma(0.0));
   EXPECT_FALSE(fit.ShowsMarker()) << fit.misfit;
+}
+
+// Intermediate colours lie strictly between the design's darkest and lightest values in every
+// channel: f's grey wedge, a grey on circles_a; not circles_a's red (its red channel is the
+// paper's) nor circle_d's black.
+TEST(PrintedAppearance, IntermediateColoursLieBetweenTheDarkestAndTheLightest) {
+  const MarkerSpec f = Load("circle_f");
+  const MarkerSpec a = Load("circles_a");
+  EXPECT_TRUE(IsIntermediateColor(f, f.layers.back().color));
+  EXPECT_NEAR(PrintedLevel(f, f.layers.back().color), 0.5, 1e-12);
+  EXPECT_TRUE(IsIntermediateColor(a, Rgb::Constant(0.5)));
+  EXPECT_FALSE(IsIntermediateColor(a, a.layers[0].color));
+  EXPECT_FALSE(IsIntermediateColor(Load("circle_d"), Rgb::Zero()));
+}
+
+// A camera's response or a print moves f's grey wedge between the disk's level and the paper's:
+// the check fits its level (0.5^(1/2.2) = 0.73 encoded with gamma 2.2, 0.4 printed at 0.4) and
+// the design shows; a wedge at 0.15, nearer the disk than kMinIntermediateLevel, is held there
+// and does not show.
+TEST(PrintedAppearance, FitsTheLevelOfAnIntermediateColour) {
+  const Camera camera;
+  const MarkerSpec f = Load("circle_f");
+  const Rigid3 pose = TiltedView(0.6, 35.0, 20.0);
+  struct Printing {
+    double grey, gamma, level;
+    bool shows;
+  };
+  for (const Printing& printing : {Printing{0.5, 2.2, std::pow(0.5, 1.0 / 2.2), true},
+                                   Printing{0.4, 1.0, 0.4, true},
+                                   Printing{0.15, 1.0, kMinIntermediateLevel, false}}) {
+    SCOPED_TRACE("grey " + std::to_string(printing.grey) + ", gamma " +
+                 std::to_string(printing.gamma));
+    MarkerSpec printed = f;
+    printed.layers.back().color = Rgb::Constant(printing.grey);
+    Image8 image = RenderMarker(printed, pose, 1e-4, 1.0, 5).image;
+    ApplyGammaCurve(1.0 / printing.gamma, &image);
+    const AppearanceFit fit = CheckPrintedAppearance(image, camera, f, pose, EdgeSigma(1.0));
+    ASSERT_EQ(fit.intermediate_levels.size(), 1u);
+    EXPECT_NEAR(fit.intermediate_levels[0], printing.level, 0.02);
+    EXPECT_EQ(fit.ShowsMarker(), printing.shows) << fit.misfit << " " << fit.significance;
+  }
 }
 
 TEST(PrintedAppearance, AMarkerOutsideTheImageCannotBeChecked) {

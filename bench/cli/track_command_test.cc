@@ -8,6 +8,7 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <limits>
 #include <opencv2/imgproc.hpp>
 #include <opencv2/videoio.hpp>
 #include <sstream>
@@ -296,9 +297,10 @@ TEST(TrackCommand, ImagesAreIndependentUnlessASequence) {
 }
 
 // A camera's frames are gamma-encoded, not linear in the light as the renderer's: circle_f seen
-// through an encoding gamma of 2.2 (1.5 px blur, 2.5 grey levels of noise) is rejected by the
-// check of its design, whose blurred wedge no longer fits; --gamma 2.2 takes the frame back to
-// linear values and the pose is found within millimetres (measured: 0.23 mm).
+// through an encoding gamma of 2.2 (1.5 px blur, 2.5 grey levels of noise) has every blurred edge
+// bent (its wedge is read at the level it shows, so it is still found, measured 23 mm off);
+// --gamma 2.2 takes the frame back to linear values and the pose is found within a millimetre
+// (measured: 0.24 mm).
 TEST(TrackCommand, GammaLinearizesTheFramesForTheTracker) {
   const std::string marker_path = "scenarios/markers/circle_f.yaml";
   const MarkerSpec marker = LoadMarkerYaml(marker_path);
@@ -315,22 +317,26 @@ TEST(TrackCommand, GammaLinearizesTheFramesForTheTracker) {
 
   TrackCommandOptions options = OptionsFor("circle", marker_path, "as_linear.csv");
   options.inputs = {image};
-  RunTrackCommand(options);
-  EXPECT_THAT(RowsWithoutTime(options.out_csv).at(0), HasSubstr("|circle|not_detected|"));
+  // The position error of the pose in the output, infinity where there is none.
+  const auto position_error = [&] {
+    RunTrackCommand(options);
+    const std::vector<std::string> lines = ReadLines(options.out_csv);
+    const std::vector<std::string> header = SplitCsvLine(lines.at(0));
+    const std::vector<std::string> row = SplitCsvLine(lines.at(1));
+    if (row.at(2) != "ok") return std::numeric_limits<double>::infinity();
+    Eigen::Vector3d t;
+    for (int i = 0; i < 3; ++i) {
+      const auto column = std::find(header.begin(), header.end(), std::string("t") + "xyz"[i]);
+      t[i] = std::stod(row.at(static_cast<size_t>(column - header.begin())));
+    }
+    return (t - truth.translation).norm();
+  };
+  const double as_linear = position_error();
+  EXPECT_GT(as_linear, 2e-3);
 
   options.out_csv = WriteTestFile("linearized.csv", "");
   options.gamma = 2.2;
-  RunTrackCommand(options);
-  const std::vector<std::string> lines = ReadLines(options.out_csv);
-  const std::vector<std::string> header = SplitCsvLine(lines.at(0));
-  const std::vector<std::string> row = SplitCsvLine(lines.at(1));
-  ASSERT_EQ(row.at(2), "ok") << lines.at(1);
-  Eigen::Vector3d t;
-  for (int i = 0; i < 3; ++i) {
-    const auto column = std::find(header.begin(), header.end(), std::string("t") + "xyz"[i]);
-    t[i] = std::stod(row.at(static_cast<size_t>(column - header.begin())));
-  }
-  EXPECT_LT((t - truth.translation).norm(), 2e-3);
+  EXPECT_LT(position_error(), 1e-3);
 
   // The renderer's range (core/gamma_curve.h), NaN outside it.
   for (const double gamma : {0.0, 0.09, 10.5, std::nan("")}) {

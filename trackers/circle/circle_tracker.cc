@@ -475,7 +475,8 @@ TrackResult CircleTracker::TrackIn(const Observation& observation,
     if (!aligned->shows_design) {
       result.status = TrackStatus::kNotDetected;
       result.message = "the design inside the circle does not fit the image: misfit " +
-                       NumberText(aligned->misfit) + ", contrast ratio " +
+                       NumberText(aligned->misfit) + ", level " +
+                       NumberText(aligned->design_level) + ", contrast ratio " +
                        NumberText(aligned->contrast_ratio) + " +- " +
                        NumberText(aligned->contrast_ratio_error);
       return result;

@@ -10,6 +10,7 @@
 #include "core/shapes.h"
 #include "trackers/circle/blurred_disk_profile.h"
 #include "trackers/circle/plane_view.h"
+#include "trackers/printed_appearance.h"
 #include "trackers/upper_median.h"
 
 namespace markerbench {
@@ -34,6 +35,8 @@ struct DesignIntegral {
   Window window;
   double disk_luma;
   Eigen::Vector2d moment = Eigen::Vector2d::Zero();
+  Rgb design_color = Rgb::Zero();  // the first colour met in the window other than the disk's
+  bool met_design = false;
 
   // Adds ∫ w(|q|) (luma - disk_luma) q dq over the square cell of centre q and half width
   // `half`.
@@ -43,6 +46,10 @@ struct DesignIntegral {
     const Eigen::Vector3d p = marker_from_paper * Eigen::Vector3d(q.x(), q.y(), 0.0);
     const PaintSample sample = marker.ColorAt(p.head<2>());
     const double ink = Luma(*sample.color) - disk_luma;
+    if (ink != 0.0 && !met_design) {
+      design_color = *sample.color;
+      met_design = true;
+    }
     const bool one_colour = sample.clearance_m >= reach;
     if (one_colour && ink == 0.0) return;
     const bool full_weight = q.norm() + reach <= window.outer_m - window.taper_m;
@@ -254,6 +261,9 @@ RollFeature::RollFeature(const MarkerSpec& marker,
     }
   }
   design_moment_ = integral.moment;
+  intermediate_design_ = IsIntermediateColor(marker, integral.design_color);
+  printed_design_level_ =
+      (Luma(integral.design_color) - disk_luma_) / (background_luma_ - disk_luma_);
 }
 
 std::optional<RollAlignment> RollFeature::Align(const Image8& image,
@@ -327,11 +337,18 @@ std::optional<RollAlignment> RollFeature::Align(const Image8& image,
   alignment.contrast_ratio = fit.gain / gain;
   alignment.contrast_ratio_error =
       std::sqrt(std::max(0.0, noise2 * fit.gain_variance)) / std::abs(gain);
+  alignment.design_level = printed_design_level_ * alignment.contrast_ratio;
+  const double level_error = printed_design_level_ * alignment.contrast_ratio_error;
+  const double allowed_level_error = options_.min_significance * level_error;
+  const bool shows_level =
+      intermediate_design_
+          ? alignment.design_level >= kMinIntermediateLevel - allowed_level_error &&
+                alignment.design_level <= kMaxIntermediateLevel + allowed_level_error
+          : std::abs(alignment.contrast_ratio - 1.0) <=
+                options_.max_contrast_error +
+                    options_.min_significance * alignment.contrast_ratio_error;
   alignment.shows_design =
-      shared.mean_product - allowed <= options_.min_significance * standard_error &&
-      std::abs(alignment.contrast_ratio - 1.0) <=
-          options_.max_contrast_error +
-              options_.min_significance * alignment.contrast_ratio_error &&
+      shared.mean_product - allowed <= options_.min_significance * standard_error && shows_level &&
       alignment.contrast_ratio_error <= options_.max_contrast_ratio_error;
 
   alignment.turn_rad = fit.turn;

@@ -44,6 +44,11 @@ struct RollFeatureOptions {
   // the negative set's clutter that passes the other tests misfits by more (0.14 the least),
   // or shows other ratios, or has them only to 0.08 or worse.
   double max_misfit = 0.12;
+  // Where the design's colour inside the circle is an intermediate one (f's grey wedge), the
+  // print's or the camera's response places it anywhere between the disk's level and the
+  // paper's (printed_appearance.h): there the contrast ratio measures its level, which must lie
+  // in [kMinIntermediateLevel, kMaxIntermediateLevel] of the way from the disk to the paper,
+  // within min_significance standard errors, in place of max_contrast_error.
   double max_contrast_error = 0.4;
   double max_contrast_ratio_error = 0.06;
   double min_significance = 1.0;
@@ -62,6 +67,9 @@ struct RollAlignment {
   // The fitted gain of the printed design over the image's contrast (paper - disk): 1 where
   // the mouth or wedge shows at its printed level between the disk and the paper.
   double contrast_ratio = 0.0;
+  // Where the design's colour shows, as a fraction of the way from the disk's level to the
+  // paper's: its printed level times the contrast ratio (1 for e's mouth, 0.5 for f's wedge).
+  double design_level = 0.0;
   double contrast_ratio_error = 0.0;  // its standard error under the image's noise
   // The design is seen, and seen well enough to tell (RollFeatureOptions).
   bool shows_design = false;
@@ -98,6 +106,10 @@ class RollFeature {
   double taper_m_ = 0.0;
   double disk_luma_ = 0.0;
   double background_luma_ = 1.0;
+  // The printed level of the design's colour inside the window, from the disk's (0) to the
+  // paper's (1), and whether it is an intermediate one (printed_appearance.h).
+  double printed_design_level_ = 1.0;
+  bool intermediate_design_ = false;
   Eigen::Vector2d design_moment_ = Eigen::Vector2d::Zero();  // paper frame, luma · m³
   RollFeatureOptions options_;
 };

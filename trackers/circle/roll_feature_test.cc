@@ -5,8 +5,10 @@
 #include <gtest/gtest.h>
 
 #include <Eigen/Geometry>
+#include <cmath>
 #include <tuple>
 
+#include "core/gamma_curve.h"
 #include "core/marker_yaml.h"
 #include "renderer/test_scenes.h"
 #include "testing/square_tracker_testing.h"
@@ -80,6 +82,36 @@ TEST(RollFeature, ADiskWithoutTheDesignDoesNotShowIt) {
           feature.Align(frame.image, request.scene.camera, truth, 255.0, 1.1, noise, true);
       EXPECT_FALSE(fit && fit->shows_design) << kind << " " << noise_var;
     }
+  }
+}
+
+// A camera's response or a print moves f's grey wedge between the disk's level and the paper's:
+// the wedge shows at its level (0.5^(1/2.2) = 0.73 encoded with gamma 2.2, 0.4 printed at 0.4),
+// and a wedge at 0.26, nearer the disk than kMinIntermediateLevel (clutter on a dark disk), does
+// not show (below about 0.25 its moment is too weak to be read at all).
+TEST(RollFeature, ReadsFsWedgeAtTheLevelItShows) {
+  const MarkerSpec f = Load("circle_f");
+  const RollFeature feature(f, *CircleGeometryOf(f, nullptr));
+  struct Printing {
+    double grey, gamma, level;
+    bool shows;
+  };
+  for (const Printing& printing : {Printing{0.5, 2.2, std::pow(0.5, 1.0 / 2.2), true},
+                                   Printing{0.4, 1.0, 0.4, true},
+                                   Printing{0.26, 1.0, 0.26, false}}) {
+    SCOPED_TRACE("grey " + std::to_string(printing.grey) + ", gamma " +
+                 std::to_string(printing.gamma));
+    MarkerSpec printed = f;
+    printed.layers.back().color = Rgb::Constant(printing.grey);
+    const Rigid3 truth = TiltedView(0.6, 25.0, 40.0);
+    const FrameRequest request = SeededFrameRequest(printed, truth, 1e-4, 1.0, 5, 1);
+    Image8 image = RenderFrame(request).image;
+    ApplyGammaCurve(1.0 / printing.gamma, &image);
+    const std::optional<RollAlignment> fit =
+        feature.Align(image, request.scene.camera, truth, 255.0, 1.1, 2.55, true);
+    ASSERT_TRUE(fit);
+    EXPECT_NEAR(fit->design_level, printing.level, 0.02);
+    EXPECT_EQ(fit->shows_design, printing.shows) << fit->misfit;
   }
 }
 
