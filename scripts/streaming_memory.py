@@ -1,9 +1,9 @@
 #!/usr/bin/env python3
 """Peak memory and time of `report` and `merge` on large synthetic runs (results/speed.md).
 
-The rows are a real sweep's (results/reference/ci_noise: 3,600 rows, two sweep values of
-1,800 rows), copied with new frame numbers and sweep values until the file has ROWS rows; each
-copy is two new cells, so a cell stays 1,800 rows however large the file grows. The run is also cut into 4
+The rows are a real sweep's (results/reference/ci_noise: 4,000 rows, two sweep values of
+2,000 rows), copied with new frame numbers and sweep values until the file has ROWS rows; each
+copy is two new cells, so a cell stays 2,000 rows however large the file grows. The run is also cut into 4
 shards (frames dealt out by number), which `merge` puts back together; the merged file must
 equal the whole one byte for byte.
 
