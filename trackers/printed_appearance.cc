@@ -324,20 +324,22 @@ AppearanceFit FitOnGrid(const Image8& image,
     return fit;
   }
   // Each fitted colour's level kept within [kMinIntermediateLevel, kMaxIntermediateLevel].
-  const double luma_range = LumaRange(marker).y() - LumaRange(marker).x();
+  const Eigen::Vector2d lumas = LumaRange(marker);
+  const double luma_range = lumas.y() - lumas.x();
+  std::vector<double> printed_levels;
   std::vector<Eigen::Vector2d> shift_ranges;
   for (const Rgb& color : fitted) {
+    printed_levels.push_back(PrintedLevel(marker, color));
     shift_ranges.push_back(luma_range *
                            (Eigen::Vector2d(kMinIntermediateLevel, kMaxIntermediateLevel) -
-                            Eigen::Vector2d::Constant(PrintedLevel(marker, color))));
+                            Eigen::Vector2d::Constant(printed_levels.back())));
   }
   const std::optional<Line> line = FitLine(pairs, shift_ranges);
   if (!line) return fit;
   fit.contrast = line->contrast;
   if (!(fit.contrast > 0.0)) return fit;
   for (size_t c = 0; c < fitted.size(); ++c) {
-    fit.intermediate_levels.push_back(PrintedLevel(marker, fitted[c]) +
-                                      line->shifts[c] / luma_range);
+    fit.intermediate_levels.push_back(printed_levels[c] + line->shifts[c] / luma_range);
   }
   fit.surely_misfits = false;
   fit.misfit = 0.0;

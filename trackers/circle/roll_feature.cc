@@ -35,8 +35,8 @@ struct DesignIntegral {
   Window window;
   double disk_luma;
   Eigen::Vector2d moment = Eigen::Vector2d::Zero();
-  Rgb design_color = Rgb::Zero();  // the first colour met in the window other than the disk's
-  bool met_design = false;
+  // The first colour met in the window other than the disk's.
+  std::optional<Rgb> design_color = std::nullopt;
 
   // Adds ∫ w(|q|) (luma - disk_luma) q dq over the square cell of centre q and half width
   // `half`.
@@ -46,10 +46,7 @@ struct DesignIntegral {
     const Eigen::Vector3d p = marker_from_paper * Eigen::Vector3d(q.x(), q.y(), 0.0);
     const PaintSample sample = marker.ColorAt(p.head<2>());
     const double ink = Luma(*sample.color) - disk_luma;
-    if (ink != 0.0 && !met_design) {
-      design_color = *sample.color;
-      met_design = true;
-    }
+    if (ink != 0.0 && !design_color) design_color = *sample.color;
     const bool one_colour = sample.clearance_m >= reach;
     if (one_colour && ink == 0.0) return;
     const bool full_weight = q.norm() + reach <= window.outer_m - window.taper_m;
@@ -261,9 +258,9 @@ RollFeature::RollFeature(const MarkerSpec& marker,
     }
   }
   design_moment_ = integral.moment;
-  intermediate_design_ = IsIntermediateColor(marker, integral.design_color);
-  printed_design_level_ =
-      (Luma(integral.design_color) - disk_luma_) / (background_luma_ - disk_luma_);
+  const Rgb design_color = integral.design_color.value_or(marker.circles[0].color);
+  intermediate_design_ = IsIntermediateColor(marker, design_color);
+  printed_design_level_ = (Luma(design_color) - disk_luma_) / (background_luma_ - disk_luma_);
 }
 
 std::optional<RollAlignment> RollFeature::Align(const Image8& image,
