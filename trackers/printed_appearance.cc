@@ -27,10 +27,6 @@ double SmallestSingularValue(const Eigen::Matrix2d& m) {
       0.5 * (frobenius2 - std::sqrt(std::max(0.0, frobenius2 * frobenius2 - 4.0 * det * det)))));
 }
 
-// The design's intermediate colours whose levels are fitted (IsIntermediateColor), at most
-// this many; any further ones are taken as printed.
-constexpr int kMaxFittedLevels = 2;
-
 // The design's colours: the paper's and each layer's.
 std::vector<Rgb> DesignColors(const MarkerSpec& marker) {
   std::vector<Rgb> colors = {marker.background};
@@ -46,19 +42,6 @@ Eigen::Vector2d LumaRange(const MarkerSpec& marker) {
     range = Eigen::Vector2d(std::min(range.x(), Luma(color)), std::max(range.y(), Luma(color)));
   }
   return range;
-}
-
-// The intermediate colours whose levels are fitted, each once, in the layers' order.
-std::vector<Rgb> FittedColors(const MarkerSpec& marker) {
-  std::vector<Rgb> fitted;
-  for (const PaintedShape& layer : marker.layers) {
-    if (static_cast<int>(fitted.size()) == kMaxFittedLevels) break;
-    if (IsIntermediateColor(marker, layer.color) &&
-        std::find(fitted.begin(), fitted.end(), layer.color) == fitted.end()) {
-      fitted.push_back(layer.color);
-    }
-  }
-  return fitted;
 }
 
 // A printed colour as a pixel sees it, and the share of it each fitted colour covers.
@@ -424,7 +407,22 @@ bool IsIntermediateColor(const MarkerSpec& marker, const Rgb& color) {
     }
     if (!(darkest < color[c] && color[c] < lightest)) return false;
   }
-  return true;
+  // In luma too: a colour whose luma is the darkest's or the lightest's has no level between
+  // them.
+  const Eigen::Vector2d lumas = LumaRange(marker);
+  return lumas.x() < Luma(color) && Luma(color) < lumas.y();
+}
+
+std::vector<Rgb> FittedColors(const MarkerSpec& marker) {
+  std::vector<Rgb> fitted;
+  for (const PaintedShape& layer : marker.layers) {
+    if (static_cast<int>(fitted.size()) == kMaxFittedLevels) break;
+    if (IsIntermediateColor(marker, layer.color) && layer.color != marker.background &&
+        std::find(fitted.begin(), fitted.end(), layer.color) == fitted.end()) {
+      fitted.push_back(layer.color);
+    }
+  }
+  return fitted;
 }
 
 double PrintedLevel(const MarkerSpec& marker, const Rgb& color) {

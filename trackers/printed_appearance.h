@@ -23,18 +23,26 @@
 
 namespace markerbench {
 
-// A colour of the design that lies, in every channel, strictly between the design's darkest
-// and lightest values there (f's grey wedge between black and white). A print's or a camera's
-// response (its gamma) moves such a colour within that range while the darkest and the
-// lightest stay where an offset and a gain place them, so its level is fitted, kept within
-// this part of the range: a wedge at the disk's level or at the paper's is no wedge. Under
-// gamma 2.2 and 2.6, f's wedge (0.5) shows at 0.73 and 0.77 of the contrast; f's tracker put on
-// the negative set's clutter (black dots, e's mouth) sees a wedge at 0.16-0.26.
+// A colour of the design that lies, in every channel and in luma, strictly between the
+// design's darkest and lightest values there (f's grey wedge between black and white). A
+// print's or a camera's response (its gamma) moves such a colour within that range while the
+// darkest and the lightest stay where an offset and a gain place them, so its level is fitted
+// (here and in the fit on the design's pixels, blurred_design.h), kept within this part of the
+// range: a wedge at the disk's level or at the paper's is no wedge. Under gamma 2.2 and 2.6,
+// f's wedge (0.5) shows at 0.73 and 0.77 of the contrast; f's tracker put on the negative set's
+// clutter (black dots, e's mouth) sees a wedge at 0.16-0.26. A colour at either end of the
+// range in some channel (a pure red between black and white) is one a response does not move
+// there, and is taken as printed.
 constexpr double kMinIntermediateLevel = 0.3;
 constexpr double kMaxIntermediateLevel = 0.9;
 bool IsIntermediateColor(const MarkerSpec& marker, const Rgb& color);
+// The design's colours whose levels are fitted: its layers' intermediate colours but the
+// paper's (the base an offset and a gain place), each once, in the layers' order, at most
+// kMaxFittedLevels of them (any further ones are taken as printed).
+constexpr int kMaxFittedLevels = 2;
+std::vector<Rgb> FittedColors(const MarkerSpec& marker);
 // An intermediate colour's printed level: its luma's fraction of the way from the design's
-// darkest luma to its lightest.
+// darkest luma to its lightest (in (0, 1)).
 double PrintedLevel(const MarkerSpec& marker, const Rgb& color);
 
 struct AppearanceOptions {

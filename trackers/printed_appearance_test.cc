@@ -115,6 +115,35 @@ TEST(PrintedAppearance, IntermediateColoursLieBetweenTheDarkestAndTheLightest) {
   EXPECT_TRUE(IsIntermediateColor(a, Rgb::Constant(0.5)));
   EXPECT_FALSE(IsIntermediateColor(a, a.layers[0].color));
   EXPECT_FALSE(IsIntermediateColor(Load("circle_d"), Rgb::Zero()));
+  // Between the others in every channel but the lightest in luma: no level between the darkest
+  // and the lightest (it had one of 1, and a design of one luma none at all: 0/0).
+  MarkerSpec odd = f;
+  odd.background = Rgb(0.0, 1.0, 0.0);
+  odd.layers[0].color = Rgb(1.0, 0.0, 1.0);
+  odd.layers.back().color = Rgb(0.5, 0.9, 0.5);
+  EXPECT_FALSE(IsIntermediateColor(odd, odd.layers.back().color));
+  EXPECT_TRUE(FittedColors(odd).empty());
+  odd.layers.back().color = Rgb::Constant(0.5);
+  EXPECT_TRUE(IsIntermediateColor(odd, odd.layers.back().color));
+  EXPECT_GT(PrintedLevel(odd, odd.layers.back().color), 0.0);
+  EXPECT_LT(PrintedLevel(odd, odd.layers.back().color), 1.0);
+}
+
+// The colours whose levels are fitted: the layers' intermediate ones, each once, but the
+// paper's, which an offset and a gain place.
+TEST(PrintedAppearance, FitsTheLevelsOfTheLayersIntermediateColoursButThePapers) {
+  const MarkerSpec f = Load("circle_f");
+  ASSERT_EQ(FittedColors(f).size(), 1u);
+  EXPECT_EQ(FittedColors(f)[0], f.layers.back().color);
+  EXPECT_TRUE(FittedColors(Load("circle_e")).empty());
+  EXPECT_TRUE(FittedColors(Load("circles_a")).empty());  // red and blue: at the channels' ends
+  // e on grey paper with its mouth in that grey (its disk black, its nose white).
+  MarkerSpec grey_paper = Load("circle_e");
+  ASSERT_EQ(grey_paper.layers.size(), 3u);
+  ASSERT_EQ(grey_paper.layers[1].color, Rgb::Ones());
+  grey_paper.background = grey_paper.layers[2].color = Rgb::Constant(0.5);
+  EXPECT_TRUE(IsIntermediateColor(grey_paper, grey_paper.background));
+  EXPECT_TRUE(FittedColors(grey_paper).empty());
 }
 
 // A camera's response or a print moves f's grey wedge between the disk's level and the paper's:

@@ -175,20 +175,12 @@ double BivariateNormalCdf(double h, double k, double rho) {
 
 BlurredDesign::BlurredDesign(const MarkerSpec& marker)
     : marker_(marker), straight_edge_(std::numeric_limits<double>::infinity()) {
-  // The lumas an offset and a gain place (the paper's and the first other one) and the extra
-  // ones, in the order the layers paint them; the extra colour a luma is (-1: none).
-  std::vector<double> placed = {Luma(marker.background)}, extra;
-  const auto extra_level = [&](double luma) {
-    if (std::find(placed.begin(), placed.end(), luma) != placed.end()) return -1;
-    const auto known = std::find(extra.begin(), extra.end(), luma);
-    if (known != extra.end()) return static_cast<int>(known - extra.begin());
-    if (placed.size() < 2) {
-      placed.push_back(luma);
-      return -1;
-    }
-    if (extra.size() == kMaxExtraLevels) return -1;
-    extra.push_back(luma);
-    return static_cast<int>(extra.size()) - 1;
+  // The fitted colours, whose lumas At moves by its `level_shifts`; which one a colour is (-1:
+  // none).
+  const std::vector<Rgb> fitted = FittedColors(marker);
+  const auto fitted_level = [&](const Rgb& color) {
+    const auto found = std::find(fitted.begin(), fitted.end(), color);
+    return found == fitted.end() ? -1 : static_cast<int>(found - fitted.begin());
   };
   // What each layer is painted on: the layers below it at its deepest point on a grid.
   constexpr int kSteps = 32;
@@ -214,23 +206,23 @@ BlurredDesign::BlurredDesign(const MarkerSpec& marker)
       if (below.color) under = *below.color;
     }
     steps_.push_back(Luma(layer.color) - Luma(under));
-    extra_painted_.push_back(extra_level(Luma(layer.color)));
-    extra_under_.push_back(extra_level(Luma(under)));
+    fitted_painted_.push_back(fitted_level(layer.color));
+    fitted_under_.push_back(fitted_level(under));
   }
-  extra_levels_ = static_cast<int>(extra.size());
+  fitted_levels_ = static_cast<int>(fitted.size());
 }
 
 BlurredLuma BlurredDesign::At(const Eigen::Vector2d& p,
                               const Eigen::Matrix2d& marker_from_px,
                               double sigma_px,
-                              const std::array<double, kMaxExtraLevels>& level_shifts) const {
+                              const std::array<double, kMaxFittedLevels>& level_shifts) const {
   const auto shift = [&](int level) { return level < 0 ? 0.0 : level_shifts[level]; };
   BlurredLuma out;
-  out.luma = Luma(marker_.background);  // always a placed colour
+  out.luma = Luma(marker_.background);  // never a fitted colour
   // Layer l's share `cover` of the pixel: its colour's, less the one it is painted on.
   const auto add_shares = [&](size_t l, double cover) {
-    if (extra_painted_[l] >= 0) out.d_levels[extra_painted_[l]] += cover;
-    if (extra_under_[l] >= 0) out.d_levels[extra_under_[l]] -= cover;
+    if (fitted_painted_[l] >= 0) out.d_levels[fitted_painted_[l]] += cover;
+    if (fitted_under_[l] >= 0) out.d_levels[fitted_under_[l]] -= cover;
   };
   // An edge farther than this from p is farther than kSharpSigmas + 1 σc and a pixel in the
   // image (the map's Frobenius norm bounds the metres a pixel spans; the 1 σc covers the
@@ -244,12 +236,12 @@ BlurredLuma BlurredDesign::At(const Eigen::Vector2d& p,
       // Sharp: where it paints, its colour replaces the layers below.
       if (PaintAt(layer, p).color) {
         out = BlurredLuma();
-        out.luma = Luma(layer.color) + shift(extra_painted_[l]);
-        if (extra_painted_[l] >= 0) out.d_levels[extra_painted_[l]] = 1.0;
+        out.luma = Luma(layer.color) + shift(fitted_painted_[l]);
+        if (fitted_painted_[l] >= 0) out.d_levels[fitted_painted_[l]] = 1.0;
       }
       continue;
     }
-    const double step = steps_[l] + shift(extra_painted_[l]) - shift(extra_under_[l]);
+    const double step = steps_[l] + shift(fitted_painted_[l]) - shift(fitted_under_[l]);
     bool inside = true, far = true;
     for (size_t i = 0; i < b.count; ++i) {
       inside &= b.terms[i].metres < 0.0;

@@ -21,6 +21,7 @@
 
 #include "core/marker_spec.h"
 #include "trackers/circle/blurred_disk_profile.h"
+#include "trackers/printed_appearance.h"
 
 namespace markerbench {
 
@@ -30,18 +31,14 @@ double NormalDensity(double x);
 // The bivariate standard normal CDF P(X < h, Y < k) at correlation rho in [-1, 1].
 double BivariateNormalCdf(double h, double k, double rho);
 
-// A design's colours beyond the two that an offset and a gain place (its paper's and the first
-// other one's): f's grey wedge. A print's or a camera's grey is rarely the specified one, so
-// its level is fitted too (design_refinement.h); at most this many, later ones as specified.
-constexpr int kMaxExtraLevels = 2;
-
 struct BlurredLuma {
   double luma = 0.0;
   // d luma / d marker point, the edges' directions held (what Gauss-Newton needs).
   Eigen::Vector2d gradient = Eigen::Vector2d::Zero();
   double d_sigma = 0.0;  // d luma / d sigma_px
-  // d luma / d each extra colour's level: the share of the pixel it covers.
-  std::array<double, kMaxExtraLevels> d_levels = {};
+  // d luma / d each fitted colour's level (printed_appearance.h's FittedColors: f's grey
+  // wedge, whose level a print or a camera's response moves): the share of the pixel it covers.
+  std::array<double, kMaxFittedLevels> d_levels = {};
 };
 
 class BlurredDesign {
@@ -49,25 +46,25 @@ class BlurredDesign {
   // `marker` must outlive this.
   explicit BlurredDesign(const MarkerSpec& marker);
 
-  // The extra colours (kMaxExtraLevels at most), in the order of At's `level_shifts`.
-  int ExtraLevels() const { return extra_levels_; }
+  // The fitted colours (FittedColors), in the order of At's `level_shifts`.
+  int FittedLevels() const { return fitted_levels_; }
 
   // The design's luma averaged over the pixel whose centre sees marker point `p`, under an
   // image Gaussian of `sigma_px` (the optics' alone), through the local map marker_from_px
-  // (metres per pixel), with each extra colour's luma moved by its `level_shifts` entry (none:
+  // (metres per pixel), with each fitted colour's luma moved by its `level_shifts` entry (none:
   // the specified colours). Layers other than disks, crescents and sectors (grids) are taken at
   // their sharp colour.
   BlurredLuma At(const Eigen::Vector2d& p,
                  const Eigen::Matrix2d& marker_from_px,
                  double sigma_px,
-                 const std::array<double, kMaxExtraLevels>& level_shifts = {}) const;
+                 const std::array<double, kMaxFittedLevels>& level_shifts = {}) const;
 
  private:
   const MarkerSpec& marker_;
   std::vector<double> steps_;  // per layer: its luma minus the luma it is painted on
-  // Per layer, which extra colour it paints and which it is painted on (-1: neither is one).
-  std::vector<int> extra_painted_, extra_under_;
-  int extra_levels_ = 0;
+  // Per layer, which fitted colour it paints and which it is painted on (-1: neither is one).
+  std::vector<int> fitted_painted_, fitted_under_;
+  int fitted_levels_ = 0;
   BlurredDiskProfile straight_edge_;  // s = ∞
 };
 

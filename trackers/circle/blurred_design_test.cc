@@ -204,29 +204,31 @@ TEST(BlurredDesign, GradientIsTheDerivative) {
   }
 }
 
-// The colours beyond the paper's and the first other one get a level each (f's grey wedge; e's
-// white features on the black disk none, unless printed in other colours), and the derivative in
-// a level is the share of the pixel that colour covers: the luma's finite difference.
-TEST(BlurredDesign, ExtraColoursHaveLevelsWhoseDerivativeIsTheirShare) {
+// The intermediate colours get a level each (f's grey wedge; e's white features on the black
+// disk none, unless printed in greys), and the derivative in a level is the share of the pixel
+// that colour covers: the luma's finite difference.
+TEST(BlurredDesign, FittedColoursHaveLevelsWhoseDerivativeIsTheirShare) {
   const MarkerSpec f = LoadMarkerYaml("scenarios/markers/circle_f.yaml");
   MarkerSpec e = LoadMarkerYaml("scenarios/markers/circle_e.yaml");
-  EXPECT_EQ(BlurredDesign(f).ExtraLevels(), 1);
-  EXPECT_EQ(BlurredDesign(e).ExtraLevels(), 0);
+  EXPECT_EQ(BlurredDesign(f).FittedLevels(), 1);
+  EXPECT_EQ(BlurredDesign(e).FittedLevels(), 0);
   ASSERT_EQ(e.layers.size(), 3u);
+  e.layers[1].color = Rgb(1.0, 0.0, 0.0);  // red: a third luma, but no level a response moves
+  EXPECT_EQ(BlurredDesign(e).FittedLevels(), 0);
   e.layers[1].color = Rgb::Constant(0.7);
-  EXPECT_EQ(BlurredDesign(e).ExtraLevels(), 1);
+  EXPECT_EQ(BlurredDesign(e).FittedLevels(), 1);
   e.layers[2].color = Rgb::Constant(0.3);
-  EXPECT_EQ(BlurredDesign(e).ExtraLevels(), 2);
+  EXPECT_EQ(BlurredDesign(e).FittedLevels(), 2);
   for (const MarkerSpec* marker : {&f, static_cast<const MarkerSpec*>(&e)}) {
     const BlurredDesign design(*marker);
-    const std::array<double, kMaxExtraLevels> shifts = {0.05, -0.03};
-    int partly_covered = 0;  // pixels an extra colour covers in part
+    const std::array<double, kMaxFittedLevels> shifts = {0.05, -0.03};
+    int partly_covered = 0;  // pixels a fitted colour covers in part
     // Points 2.5 mm apart over the disk (a pixel is about 1.5 mm, the blur 0.8 px).
     for (int i = 0; i <= 1600; ++i) {
       const Eigen::Vector2d p(-0.05 + 0.0025 * (i % 41), -0.05 + 0.0025 * (i / 41));
       const BlurredLuma at = design.At(p, TiltedMap(), 0.8, shifts);
-      for (int k = 0; k < kMaxExtraLevels; ++k) {
-        std::array<double, kMaxExtraLevels> up = shifts, down = shifts;
+      for (int k = 0; k < kMaxFittedLevels; ++k) {
+        std::array<double, kMaxFittedLevels> up = shifts, down = shifts;
         up[k] += 1e-6;
         down[k] -= 1e-6;
         const double numeric =

@@ -97,22 +97,22 @@ class DesignModel {
  public:
   using Jet = ceres::Jet<double, 6>;
 
-  // With `fits_extra_levels`, each extra colour's level is a parameter (blurred_design.h);
+  // With `fits_levels`, each fitted colour's level is a parameter (blurred_design.h);
   // otherwise those colours are the design's.
   DesignModel(const Camera& camera,
               const MarkerSpec& marker,
               const std::vector<DesignPixel>& pixels,
               double noise_sigma,
-              bool fits_extra_levels)
+              bool fits_levels)
       : px_from_ray_inverse_(camera.K().inverse()),
         design_(marker),
         pixels_(pixels),
         noise_sigma_(noise_sigma),
-        fitted_extra_levels_(fits_extra_levels ? design_.ExtraLevels() : 0) {}
+        fitted_levels_(fits_levels ? design_.FittedLevels() : 0) {}
 
-  // The pose, σ, the offset and gain, and the extra colours' levels fitted.
-  int Parameters() const { return 9 + fitted_extra_levels_; }
-  // Offset 0 and gain 1, each extra colour at its specified luma.
+  // The pose, σ, the offset and gain, and the fitted colours' levels.
+  int Parameters() const { return 9 + fitted_levels_; }
+  // Offset 0 and gain 1, each fitted colour at its specified luma.
   Eigen::VectorXd StartLevels() const {
     Eigen::VectorXd levels = Eigen::VectorXd::Zero(Parameters() - 7);
     levels[1] = 1.0;
@@ -129,7 +129,7 @@ class DesignModel {
   }
 
   // The same, and each pixel's residual and modelled mean if `modelled` is given. θ may hold
-  // fewer extra levels than Parameters() (a fit's without them, compared with others).
+  // fewer fitted levels than Parameters() (a fit's without them, compared with others).
   double Evaluate(const Eigen::VectorXd& theta,
                   Eigen::MatrixXd* jtj,
                   Eigen::VectorXd* jtr,
@@ -149,12 +149,12 @@ class DesignModel {
     for (int i = 0; i < 9; ++i) plane_from_px(i) = plane_from_ray(i).a;
     plane_from_px = plane_from_px * px_from_ray_inverse_;
     const double sigma = theta[6], offset = theta[7], gain = theta[8];
-    std::array<double, kMaxExtraLevels> level_shifts = {};
+    std::array<double, kMaxFittedLevels> level_shifts = {};
     const int parameters = static_cast<int>(theta.size());
     for (int k = 0; k + 9 < parameters; ++k) level_shifts[k] = theta[9 + k];
 
-    // Summed in fixed-size matrices (at most kMaxExtraLevels extra levels), copied out at the end.
-    constexpr int kMaxParameters = 9 + kMaxExtraLevels;
+    // Summed in fixed-size matrices (kMaxFittedLevels levels at most), copied out at the end.
+    constexpr int kMaxParameters = 9 + kMaxFittedLevels;
     Eigen::Matrix<double, kMaxParameters, kMaxParameters> normal =
         Eigen::Matrix<double, kMaxParameters, kMaxParameters>::Zero();
     Eigen::Matrix<double, kMaxParameters, 1> gradient =
@@ -183,7 +183,7 @@ class DesignModel {
       row[6] = -gain * printed.d_sigma;
       row[7] = -1.0;
       row[8] = -printed.luma;
-      for (int k = 0; k < kMaxExtraLevels; ++k) row[9 + k] = -gain * printed.d_levels[k];
+      for (int k = 0; k < kMaxFittedLevels; ++k) row[9 + k] = -gain * printed.d_levels[k];
       normal.selfadjointView<Eigen::Upper>().rankUpdate(row, term.weight);
       gradient += term.residual * row;
     }
@@ -200,7 +200,7 @@ class DesignModel {
   BlurredDesign design_;
   const std::vector<DesignPixel>& pixels_;
   double noise_sigma_;
-  int fitted_extra_levels_;
+  int fitted_levels_;
 };
 
 // Each refinement's cost (the pixels' ClippedPixelTerm summed) on the same pixels: those near
@@ -262,7 +262,7 @@ std::optional<DesignRefinement> RefineOnce(const Image8& image,
   const std::vector<DesignPixel> pixels =
       PixelsNearDesignEdges(image, camera, marker, cam_from_marker, ReachPx(sigma_px, options));
   if (pixels.size() < 20) return std::nullopt;
-  // The extra colours' levels from a round that follows another: free in the first round, on a
+  // The fitted colours' levels from a round that follows another: free in the first round, on a
   // noise-free frame of f at 0.6 m the fit from the tracker's start on the true tilt (14 mm off)
   // ended on the other tilt, 66 mm off; held there, 0.1 mm. (From a worse start, 8.5 mm off,
   // both end 49-52 mm off with the grey moved below black.)

@@ -43,8 +43,8 @@ struct DesignRefinementOptions {
 };
 
 struct DesignRefinement {
-  // On a grey image: levels = (offset, gain) of the design's luma, 0-1, then each extra
-  // colour's luma less the design's (BlurredDesign::ExtraLevels).
+  // On a grey image: levels = (offset, gain) of the design's luma, 0-1, then each fitted
+  // colour's luma less the design's (BlurredDesign::FittedLevels).
   PixelFit fit;
   int pixels = 0;
   double noise_sigma = 0.0;  // the image's, 0-1, as its residuals show (the model's clipping)
