@@ -47,8 +47,8 @@ struct RollFeatureOptions {
   // Where the design's colour inside the circle is an intermediate one (f's grey wedge), the
   // print's or the camera's response places it anywhere between the disk's level and the
   // paper's (printed_appearance.h): there the contrast ratio measures its level, which must lie
-  // in [kMinIntermediateLevel, kMaxIntermediateLevel] of the way from the disk to the paper,
-  // within min_significance standard errors, in place of max_contrast_error.
+  // in [kMinIntermediateLevel, kMaxIntermediateLevel] (RollAlignment::design_level), within
+  // min_significance standard errors, in place of max_contrast_error.
   double max_contrast_error = 0.4;
   double max_contrast_ratio_error = 0.06;
   double min_significance = 1.0;
@@ -67,8 +67,10 @@ struct RollAlignment {
   // The fitted gain of the printed design over the image's contrast (paper - disk): 1 where
   // the mouth or wedge shows at its printed level between the disk and the paper.
   double contrast_ratio = 0.0;
-  // Where the design's colour shows, as a fraction of the way from the disk's level to the
-  // paper's: its printed level times the contrast ratio (1 for e's mouth, 0.5 for f's wedge).
+  // Where the design's colour shows, in PrintedLevel's measure (printed_appearance.h: the way
+  // from the design's darkest luma to its lightest, as the bounds on an intermediate colour's
+  // level are): its printed level's way from the disk to the paper times the contrast ratio
+  // (1 for e's mouth, 0.5 for f's wedge; on an inverted f, white disk on black paper, 0.5 too).
   double design_level = 0.0;
   double contrast_ratio_error = 0.0;  // its standard error under the image's noise
   // The design is seen, and seen well enough to tell (RollFeatureOptions).
@@ -110,6 +112,9 @@ class RollFeature {
   // paper's (1), and whether it is an intermediate one (printed_appearance.h).
   double printed_design_level_ = 1.0;
   bool intermediate_design_ = false;
+  // The disk's and the paper's colours in PrintedLevel's measure.
+  double disk_level_ = 0.0;
+  double paper_level_ = 1.0;
   Eigen::Vector2d design_moment_ = Eigen::Vector2d::Zero();  // paper frame, luma · m³
   RollFeatureOptions options_;
 };

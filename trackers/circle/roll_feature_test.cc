@@ -115,5 +115,24 @@ TEST(RollFeature, ReadsFsWedgeAtTheLevelItShows) {
   }
 }
 
+// The level is PrintedLevel's (from the design's darkest luma to its lightest), as the bounds on
+// it are: f printed inverted, a white disk on black paper, shows its grey wedge under gamma 2.2
+// at 0.73 as the upright one does (from the disk to the paper that is 0.27, below the bounds).
+TEST(RollFeature, ReadsTheWedgeOfAnInvertedFAtItsLevelFromTheDarkest) {
+  MarkerSpec inverted = Load("circle_f");
+  inverted.background = Rgb::Zero();
+  inverted.circles[0].color = inverted.layers[0].color = Rgb::Ones();
+  const RollFeature feature(inverted, *CircleGeometryOf(inverted, nullptr));
+  const Rigid3 truth = TiltedView(0.6, 25.0, 40.0);
+  const FrameRequest request = SeededFrameRequest(inverted, truth, 1e-4, 1.0, 5, 1);
+  Image8 image = RenderFrame(request).image;
+  ApplyGammaCurve(1.0 / 2.2, &image);
+  const std::optional<RollAlignment> fit =
+      feature.Align(image, request.scene.camera, truth, 0.0, 1.1, 2.55, true);
+  ASSERT_TRUE(fit);
+  EXPECT_NEAR(fit->design_level, std::pow(0.5, 1.0 / 2.2), 0.02);
+  EXPECT_TRUE(fit->shows_design) << fit->misfit;
+}
+
 }  // namespace
 }  // namespace markerbench
