@@ -669,8 +669,10 @@ std::optional<PhotometricResult> RefineOnce(const Image8& image,
   return PhotometricResult{fit, static_cast<int>(at->pixels.pixels.size()), model.noise_sigma()};
 }
 
-}  // namespace
-
+// Which of several fits explains the image best: the least cost (the clipped pixels'
+// likelihood) over the pixels near the edges at each of them in turn (each fit judged on the same
+// pixels, its own σ and levels). For the circle's two tilts, whose images nearly coincide far away
+// or under heavy blur. `fits` not empty.
 size_t BestPhotometricFit(const Image8& image,
                           const Camera& camera,
                           const MarkerSpec& marker,
@@ -694,6 +696,8 @@ size_t BestPhotometricFit(const Image8& image,
   }
   return static_cast<size_t>(std::min_element(costs.begin(), costs.end()) - costs.begin());
 }
+
+}  // namespace
 
 std::optional<PhotometricResult> RefinePhotometric(const Image8& image,
                                                    const Camera& camera,

@@ -122,18 +122,10 @@ std::optional<PhotometricResult> RefinePhotometric(const Image8& image,
                                                    double noise_sigma,
                                                    const PhotometricOptions& options = {});
 
-// Which of several fits explains the image best: the least cost (the clipped pixels'
-// likelihood) over the pixels near the edges at each of them in turn (each fit judged on the same
-// pixels, its own σ and levels). For the circle's two tilts, whose images nearly coincide far away
-// or under heavy blur. `fits` not empty.
-size_t BestPhotometricFit(const Image8& image,
-                          const Camera& camera,
-                          const MarkerSpec& marker,
-                          const std::vector<PhotometricResult>& fits,
-                          const PhotometricOptions& options = {});
-
-// The refinement from each start (RefinePhotometric) that explains the image best
-// (BestPhotometricFit); nullopt when no start gives one.
+// The refinement from each start (RefinePhotometric) that explains the image best (the least
+// cost, the clipped pixels' likelihood, over the pixels near the edges at each fit in turn, each
+// fit judged on the same pixels with its own σ and levels: for the circle's two tilts, whose
+// images nearly coincide far away or under heavy blur); nullopt when no start gives one.
 std::optional<PhotometricResult> RefinePhotometricFromStarts(
     const Image8& image,
     const Camera& camera,

@@ -85,11 +85,11 @@ PixelChordTerm PixelChordTermAt(double distance_px,
   PixelChordTerm out;
   const double inner = 0.5 * (c - s), outer = 0.5 * (c + s);
   if (s < kMinSine || std::abs(distance_px) > outer + kReachSigmas * sigma_px) return out;
-  const double alpha = s / c, beta = c / s, corner = inner;
+  const double alpha = s / c, beta = c / s;
   const std::array<double, 4> middle = {s * s / (12.0 * c * c * c), 0.0, s * s / (c * c * c), 0.0};
   const std::array<double, 4> end = {0.0,
-                                     (alpha + beta) * (corner * corner - 1.0 / 12.0),
-                                     corner * (alpha * alpha - beta * beta),
+                                     (alpha + beta) * (inner * inner - 1.0 / 12.0),
+                                     inner * (alpha * alpha - beta * beta),
                                      (alpha * alpha * alpha + beta * beta * beta) / 3.0};
   // The middle piece in w (its Gaussian centred at w = -D), the ends in y = outer - |w| (at
   // y = outer + D for w > 0 and outer - D for w < 0).
