@@ -1,10 +1,11 @@
 // circle tracker per-frame time on one thread (issue 3; results/speed.md): full detection +
 // analytic pose + refinement (with and without the refinement on the pixels), tracking mode
 // (the region predicted from the frames before: one with no history, two of a smooth hand-held
-// video), and the check of the printed design. circles_a with a 0.1 m equal-area footprint at
-// 0.6 m, σ² = 0.02, the frames of the other tracker benchmarks; at 1 m under blur σ 2 and 8 (the
-// whole disks' model); and full detection of markers (e) and (f) on the same poses (issue 22:
-// their pose fitted on the pixels of the whole design). Run from the project root.
+// video), and two of their steps alone: the fit on the disks' pixels and the check of the
+// printed design. circles_a with a 0.1 m equal-area footprint at 0.6 m, σ² = 0.02, the frames
+// of the other tracker benchmarks; at 1 m under blur σ 2 and 8 (the whole disks' model); and
+// full detection of markers (e) and (f) on the same poses (issue 22: their pose fitted on the
+// pixels of the whole design). Run from the project root.
 #include <benchmark/benchmark.h>
 
 #include <functional>
@@ -15,6 +16,7 @@
 #include "core/marker_yaml.h"
 #include "testing/benchmark_frames.h"
 #include "trackers/circle/circle_tracker.h"
+#include "trackers/circle/photometric_refinement.h"
 
 namespace markerbench {
 namespace {
@@ -133,6 +135,49 @@ void BM_CircleTrackingModeHandheld(benchmark::State& state) {
   TimeLastFramesOfVideos(state, marker, videos);
 }
 
+// The fit on the disks' pixels (photometric_refinement.h), alone: from the pose the edge points
+// give (the tracker with `photometric: false`, untimed) at the blur and noise it measured, as
+// full detection runs it; about half of that benchmark's time.
+void BM_CirclePixelFit(benchmark::State& state) {
+  cv::setNumThreads(1);
+  const MarkerSpec marker = PaperMarker("circles_a");
+  const std::vector<Image8> frames = BenchmarkFrames(marker, 16);
+  const Camera camera;
+  CircleTrackerOptions options;
+  options.photometric = false;
+  CircleTracker tracker(options);
+  struct Start {
+    const Image8* frame;
+    Rigid3 cam_from_marker;
+    double blur_sigma_px, noise_sigma;
+  };
+  std::vector<Start> starts;
+  for (const Image8& frame : frames) {
+    tracker.Reset();
+    if (tracker.Track({&frame, &camera, &marker}).status != TrackStatus::kOk) continue;
+    const CircleDiagnostics& found = tracker.diagnostics();
+    starts.push_back(
+        {&frame, *found.refined_cam_from_marker, found.image_blur_sigma_px, found.noise_sigma});
+  }
+  size_t i = 0, fitted = 0, iterations = 0, pixels = 0;
+  for (auto _ : state) {
+    const Start& start = starts[i++ % starts.size()];
+    const std::optional<PhotometricResult> fit = RefinePhotometric(*start.frame,
+                                                                   camera,
+                                                                   marker,
+                                                                   start.cam_from_marker,
+                                                                   start.blur_sigma_px,
+                                                                   start.noise_sigma);
+    if (!fit) continue;
+    ++fitted;
+    iterations += fit->fit.iterations;
+    pixels += fit->pixels;
+  }
+  state.counters["fitted_fraction"] = static_cast<double>(fitted) / state.iterations();
+  state.counters["steps"] = static_cast<double>(iterations) / std::max<size_t>(fitted, 1);
+  state.counters["pixels"] = static_cast<double>(pixels) / std::max<size_t>(fitted, 1);
+}
+
 // The check of the printed design at the found pose (printed_appearance.h), alone: part of
 // every timing above.
 void BM_CircleAppearanceCheck(benchmark::State& state) {
@@ -166,6 +211,7 @@ BENCHMARK_CAPTURE(BM_CircleDesignFullDetection, circle_f, std::string("circle_f"
     ->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_CircleTrackingMode)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_CircleTrackingModeHandheld)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_CirclePixelFit)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_CircleAppearanceCheck)->Unit(benchmark::kMillisecond);
 
 }  // namespace
