@@ -8,6 +8,7 @@
 // pixels of the whole design). Run from the project root.
 #include <benchmark/benchmark.h>
 
+#include <algorithm>
 #include <functional>
 #include <opencv2/core.hpp>
 
@@ -137,7 +138,7 @@ void BM_CircleTrackingModeHandheld(benchmark::State& state) {
 
 // The fit on the disks' pixels (photometric_refinement.h), alone: from the pose the edge points
 // give (the tracker with `photometric: false`, untimed) at the blur and noise it measured, as
-// full detection runs it; about half of that benchmark's time.
+// full detection runs it; more than half of that benchmark's time.
 void BM_CirclePixelFit(benchmark::State& state) {
   cv::setNumThreads(1);
   const MarkerSpec marker = PaperMarker("circles_a");
@@ -158,6 +159,10 @@ void BM_CirclePixelFit(benchmark::State& state) {
     const CircleDiagnostics& found = tracker.diagnostics();
     starts.push_back(
         {&frame, *found.refined_cam_from_marker, found.image_blur_sigma_px, found.noise_sigma});
+  }
+  if (starts.empty()) {
+    state.SkipWithError("the edge points gave no pose on any frame");
+    return;
   }
   size_t i = 0, fitted = 0, iterations = 0, pixels = 0;
   for (auto _ : state) {
@@ -193,6 +198,10 @@ void BM_CircleAppearanceCheck(benchmark::State& state) {
     if (tracker.Track({&frame, &camera, &marker}).status != TrackStatus::kOk) continue;
     poses.push_back(*tracker.diagnostics().refined_cam_from_marker);
     blur_sigmas_px.push_back(tracker.diagnostics().image_blur_sigma_px);
+  }
+  if (poses.empty()) {
+    state.SkipWithError("the tracker found no frame");
+    return;
   }
   size_t i = 0;
   for (auto _ : state) {
