@@ -86,6 +86,8 @@ const Table& TheTable() {
 
 }  // namespace
 
+void PrepareBlurredDiskProfiles() { TheTable(); }
+
 BlurredDiskProfile::BlurredDiskProfile(double s) {
   const Table& table = TheTable();
   const double t = 1.0 / (s > kMinS ? s : kMinS);  // NaN: the smallest s

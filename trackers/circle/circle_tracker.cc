@@ -6,6 +6,7 @@
 
 #include "core/number_text.h"
 #include "core/yaml_reader.h"
+#include "trackers/circle/blurred_disk_profile.h"
 #include "trackers/circle/conic.h"
 #include "trackers/circle/photometric_refinement.h"
 #include "trackers/circle/roll_feature.h"
@@ -222,7 +223,9 @@ CircleTrackerOptions CircleTrackerOptions::FromYaml(const YamlMap& map) {
   return o;
 }
 
-CircleTracker::CircleTracker(const CircleTrackerOptions& options) : options_(options) {}
+CircleTracker::CircleTracker(const CircleTrackerOptions& options) : options_(options) {
+  PrepareBlurredDiskProfiles();
+}
 
 bool CircleTracker::CanTrack(const MarkerSpec& marker) const {
   return CircleGeometryOf(marker, nullptr).has_value();
