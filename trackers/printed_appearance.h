@@ -41,8 +41,8 @@ bool IsIntermediateColor(const MarkerSpec& marker, const Rgb& color);
 // kMaxFittedLevels of them (any further ones are taken as printed).
 constexpr int kMaxFittedLevels = 2;
 std::vector<Rgb> FittedColors(const MarkerSpec& marker);
-// An intermediate colour's printed level: its luma's fraction of the way from the design's
-// darkest luma to its lightest (in (0, 1)).
+// A design colour's printed level: its luma's fraction of the way from the design's darkest
+// luma to its lightest (0 to 1; strictly between for an intermediate colour).
 double PrintedLevel(const MarkerSpec& marker, const Rgb& color);
 
 struct AppearanceOptions {

@@ -68,9 +68,9 @@ struct RollAlignment {
   // the mouth or wedge shows at its printed level between the disk and the paper.
   double contrast_ratio = 0.0;
   // Where the design's colour shows, in PrintedLevel's measure (printed_appearance.h: the way
-  // from the design's darkest luma to its lightest, as the bounds on an intermediate colour's
-  // level are): its printed level's way from the disk to the paper times the contrast ratio
-  // (1 for e's mouth, 0.5 for f's wedge; on an inverted f, white disk on black paper, 0.5 too).
+  // from the design's darkest luma to its lightest, the bounds' measure): the disk's level
+  // moved towards the paper's by the colour's printed share of that step times the contrast
+  // ratio (1 for e's mouth, 0.5 for f's wedge, upright or printed white on black).
   double design_level = 0.0;
   double contrast_ratio_error = 0.0;  // its standard error under the image's noise
   // The design is seen, and seen well enough to tell (RollFeatureOptions).
