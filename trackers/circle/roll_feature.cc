@@ -260,9 +260,8 @@ RollFeature::RollFeature(const MarkerSpec& marker,
   design_moment_ = integral.moment;
   const Rgb design_color = integral.design_color.value_or(marker.circles[0].color);
   intermediate_design_ = IsIntermediateColor(marker, design_color);
-  printed_design_level_ = (Luma(design_color) - disk_luma_) / (background_luma_ - disk_luma_);
   disk_level_ = PrintedLevel(marker, marker.circles[0].color);
-  paper_level_ = PrintedLevel(marker, marker.background);
+  design_level_ = PrintedLevel(marker, design_color);
 }
 
 std::optional<RollAlignment> RollFeature::Align(const Image8& image,
@@ -336,9 +335,10 @@ std::optional<RollAlignment> RollFeature::Align(const Image8& image,
   alignment.contrast_ratio = fit.gain / gain;
   alignment.contrast_ratio_error =
       std::sqrt(std::max(0.0, noise2 * fit.gain_variance)) / std::abs(gain);
-  const double level_per_ratio = (paper_level_ - disk_level_) * printed_design_level_;
-  alignment.design_level = disk_level_ + level_per_ratio * alignment.contrast_ratio;
-  const double level_error = std::abs(level_per_ratio) * alignment.contrast_ratio_error;
+  // The design's step from the disk, scaled by the contrast ratio.
+  const double printed_step = design_level_ - disk_level_;
+  alignment.design_level = disk_level_ + printed_step * alignment.contrast_ratio;
+  const double level_error = std::abs(printed_step) * alignment.contrast_ratio_error;
   const double allowed_level_error = options_.min_significance * level_error;
   const bool shows_level =
       intermediate_design_

@@ -69,8 +69,8 @@ struct RollAlignment {
   double contrast_ratio = 0.0;
   // Where the design's colour shows, in PrintedLevel's measure (printed_appearance.h: the way
   // from the design's darkest luma to its lightest, the bounds' measure): the disk's level
-  // moved towards the paper's by the colour's printed share of that step times the contrast
-  // ratio (1 for e's mouth, 0.5 for f's wedge, upright or printed white on black).
+  // moved by the colour's printed step from it times the contrast ratio (1 for e's mouth, 0.5
+  // for f's wedge, upright or printed white on black).
   double design_level = 0.0;
   double contrast_ratio_error = 0.0;  // its standard error under the image's noise
   // The design is seen, and seen well enough to tell (RollFeatureOptions).
@@ -108,13 +108,11 @@ class RollFeature {
   double taper_m_ = 0.0;
   double disk_luma_ = 0.0;
   double background_luma_ = 1.0;
-  // The printed level of the design's colour inside the window, from the disk's (0) to the
-  // paper's (1), and whether it is an intermediate one (printed_appearance.h).
-  double printed_design_level_ = 1.0;
+  // Whether the design's colour inside the window is an intermediate one, and its and the
+  // disk's printed levels (PrintedLevel, printed_appearance.h).
   bool intermediate_design_ = false;
-  // The disk's and the paper's colours in PrintedLevel's measure.
+  double design_level_ = 1.0;
   double disk_level_ = 0.0;
-  double paper_level_ = 1.0;
   Eigen::Vector2d design_moment_ = Eigen::Vector2d::Zero();  // paper frame, luma · m³
   RollFeatureOptions options_;
 };
