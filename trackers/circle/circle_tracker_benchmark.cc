@@ -136,6 +136,27 @@ void BM_CircleTrackingModeHandheld(benchmark::State& state) {
   TimeLastFramesOfVideos(state, marker, videos);
 }
 
+// What `tracker` finds on each frame it finds the marker in (untimed): the frame, the pose, and
+// the blur and noise it measured.
+struct Found {
+  const Image8* frame;
+  Rigid3 cam_from_marker;
+  double blur_sigma_px, noise_sigma;
+};
+std::vector<Found> FoundOnFrames(CircleTracker& tracker,
+                                 const MarkerSpec& marker,
+                                 const Camera& camera,
+                                 const std::vector<Image8>& frames) {
+  std::vector<Found> found;
+  for (const Image8& frame : frames) {
+    tracker.Reset();
+    if (tracker.Track({&frame, &camera, &marker}).status != TrackStatus::kOk) continue;
+    const CircleDiagnostics& d = tracker.diagnostics();
+    found.push_back({&frame, *d.refined_cam_from_marker, d.image_blur_sigma_px, d.noise_sigma});
+  }
+  return found;
+}
+
 // The fit on the disks' pixels (photometric_refinement.h), alone: from the pose the edge points
 // give (the tracker with `photometric: false`, untimed) at the blur and noise it measured, as
 // full detection runs it; more than half of that benchmark's time.
@@ -147,26 +168,14 @@ void BM_CirclePixelFit(benchmark::State& state) {
   CircleTrackerOptions options;
   options.photometric = false;
   CircleTracker tracker(options);
-  struct Start {
-    const Image8* frame;
-    Rigid3 cam_from_marker;
-    double blur_sigma_px, noise_sigma;
-  };
-  std::vector<Start> starts;
-  for (const Image8& frame : frames) {
-    tracker.Reset();
-    if (tracker.Track({&frame, &camera, &marker}).status != TrackStatus::kOk) continue;
-    const CircleDiagnostics& found = tracker.diagnostics();
-    starts.push_back(
-        {&frame, *found.refined_cam_from_marker, found.image_blur_sigma_px, found.noise_sigma});
-  }
+  const std::vector<Found> starts = FoundOnFrames(tracker, marker, camera, frames);
   if (starts.empty()) {
     state.SkipWithError("the edge points gave no pose on any frame");
     return;
   }
   size_t i = 0, fitted = 0, iterations = 0, pixels = 0;
   for (auto _ : state) {
-    const Start& start = starts[i++ % starts.size()];
+    const Found& start = starts[i++ % starts.size()];
     const std::optional<PhotometricResult> fit = RefinePhotometric(*start.frame,
                                                                    camera,
                                                                    marker,
@@ -191,23 +200,16 @@ void BM_CircleAppearanceCheck(benchmark::State& state) {
   const std::vector<Image8> frames = BenchmarkFrames(marker, 16);
   const Camera camera;
   CircleTracker tracker;
-  std::vector<Rigid3> poses;
-  std::vector<double> blur_sigmas_px;
-  for (const Image8& frame : frames) {
-    tracker.Reset();
-    if (tracker.Track({&frame, &camera, &marker}).status != TrackStatus::kOk) continue;
-    poses.push_back(*tracker.diagnostics().refined_cam_from_marker);
-    blur_sigmas_px.push_back(tracker.diagnostics().image_blur_sigma_px);
-  }
-  if (poses.empty()) {
+  const std::vector<Found> found = FoundOnFrames(tracker, marker, camera, frames);
+  if (found.empty()) {
     state.SkipWithError("the tracker found no frame");
     return;
   }
   size_t i = 0;
   for (auto _ : state) {
-    const size_t k = i++ % poses.size();
+    const Found& k = found[i++ % found.size()];
     benchmark::DoNotOptimize(
-        CheckPrintedAppearance(frames[k], camera, marker, poses[k], blur_sigmas_px[k]));
+        CheckPrintedAppearance(*k.frame, camera, marker, k.cam_from_marker, k.blur_sigma_px));
   }
 }
 
