@@ -579,6 +579,28 @@ TEST(CircleTracker, GammaEncodedFramesAreFoundOnceLinearized) {
   }
 }
 
+// The tracker told `marker` on 12 frames at 0.6 m (tilt 0-40°) of `printed` with noise of
+// `noise_var`, encoded with `gamma` (the tracker not told): each found frame's error in mm.
+std::vector<double> ErrorsMmUnderGamma(const MarkerSpec& printed,
+                                       const MarkerSpec& marker,
+                                       double noise_var,
+                                       double gamma) {
+  const Camera camera;
+  Rng rng(3);
+  std::vector<double> errors_mm;
+  for (uint64_t seed = 1; seed <= 12; ++seed) {
+    const Rigid3 truth = RandomTiltedView(0.6, 0.0, 40.0, &rng);
+    Image8 image = RenderMarker(printed, truth, noise_var, 0.0, seed).image;
+    ApplyGammaCurve(1.0 / gamma, &image);
+    CircleTracker tracker;
+    const TrackResult r = tracker.Track({&image, &camera, &marker});
+    if (r.status == TrackStatus::kOk) {
+      errors_mm.push_back(1000.0 * PositionError(r.hypotheses.front(), truth));
+    }
+  }
+  return errors_mm;
+}
+
 // f's grey wedge shows at whatever level its print or the camera's response gives it, and the
 // tracker fits that level (printed_appearance.h, roll_feature.h): 12 frames at 0.6 m (tilt 0-40°,
 // σ² 0.02) of f printed with its wedge at 0.35, 0.5 and 0.65 on linear frames and at 0.5 encoded
@@ -586,23 +608,11 @@ TEST(CircleTracker, GammaEncodedFramesAreFoundOnceLinearized) {
 // 1.12, 0.99 and 2.04 mm (the encoded frames' edges bent). Before, the design checks took the
 // wedge at its printed 0.5: 0.35 was found on none, the encoded frames on none.
 TEST(CircleTracker, FindsFWhereverItsGreyShows) {
-  const Camera camera;
   const MarkerSpec f = Load("circle_f");
   const auto median_error_mm = [&](double grey, double gamma) {
     MarkerSpec printed = f;
     printed.layers.back().color = Rgb::Constant(grey);
-    Rng rng(3);
-    std::vector<double> errors_mm;
-    for (uint64_t seed = 1; seed <= 12; ++seed) {
-      const Rigid3 truth = RandomTiltedView(0.6, 0.0, 40.0, &rng);
-      Image8 image = RenderMarker(printed, truth, 0.02, 0.0, seed).image;
-      ApplyGammaCurve(1.0 / gamma, &image);
-      CircleTracker tracker;
-      const TrackResult r = tracker.Track({&image, &camera, &f});
-      if (r.status == TrackStatus::kOk) {
-        errors_mm.push_back(1000.0 * PositionError(r.hypotheses.front(), truth));
-      }
-    }
+    const std::vector<double> errors_mm = ErrorsMmUnderGamma(printed, f, 0.02, gamma);
     EXPECT_GE(errors_mm.size(), 11u) << "grey " << grey << ", gamma " << gamma;
     return errors_mm.empty() ? std::numeric_limits<double>::infinity() : UpperMedian(errors_mm);
   };
@@ -619,28 +629,12 @@ TEST(CircleTracker, FindsFWhereverItsGreyShows) {
 // encoded frames' edges bent). Before, the roll feature took the level from the disk to the
 // paper (0.27) and found the inverted f on 1.
 TEST(CircleTracker, FindsFPrintedWhiteOnBlackUnderACamerasGamma) {
-  const Camera camera;
   const MarkerSpec upright = Load("circle_f");
   MarkerSpec inverted = upright;
   inverted.background = Rgb::Zero();
   inverted.circles[0].color = inverted.layers[0].color = Rgb::Ones();
-  const auto errors_mm = [&](const MarkerSpec& marker) {
-    Rng rng(3);
-    std::vector<double> errors;
-    for (uint64_t seed = 1; seed <= 12; ++seed) {
-      const Rigid3 truth = RandomTiltedView(0.6, 0.0, 40.0, &rng);
-      Image8 image = RenderMarker(marker, truth, 1e-3, 0.0, seed).image;
-      ApplyGammaCurve(1.0 / 2.2, &image);
-      CircleTracker tracker;
-      const TrackResult r = tracker.Track({&image, &camera, &marker});
-      if (r.status == TrackStatus::kOk) {
-        errors.push_back(1000.0 * PositionError(r.hypotheses.front(), truth));
-      }
-    }
-    return errors;
-  };
-  const std::vector<double> as_printed = errors_mm(upright);
-  const std::vector<double> white_on_black = errors_mm(inverted);
+  const std::vector<double> as_printed = ErrorsMmUnderGamma(upright, upright, 1e-3, 2.2);
+  const std::vector<double> white_on_black = ErrorsMmUnderGamma(inverted, inverted, 1e-3, 2.2);
   ASSERT_GE(as_printed.size(), 11u);
   ASSERT_GE(white_on_black.size(), 11u);
   EXPECT_LE(UpperMedian(white_on_black), 1.5 * UpperMedian(as_printed));
