@@ -46,6 +46,8 @@ class LinearPixelModel {
 
   int Parameters() const { return 9; }
   Eigen::VectorXd StartLevels() const { return UnitGainLevels(Parameters()); }
+  // Its levels are linear terms, not an offset and a gain: kept as they start.
+  Eigen::VectorXd LevelsShownAtStart(std::vector<ModelledPixel>*) const { return StartLevels(); }
   double MinSigmaPx() const { return 0.2; }
   const Eigen::Matrix<double, 9, 1>& solution() const { return solution_; }
   double noise_sigma() const { return noise_sigma_; }

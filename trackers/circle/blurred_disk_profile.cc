@@ -12,7 +12,7 @@ namespace {
 constexpr double kMinS = 0.5;
 constexpr double kMinT = 0.0, kMaxT = 1.0 / kMinS;  // t = 1/s; t = 0 a straight edge
 constexpr int kTSteps = 160;
-constexpr double kMaxZ = 7.0, kZStep = 0.05;
+constexpr double kMaxZ = 7.0, kZStep = 0.05, kPerZStep = 1.0 / kZStep;
 constexpr int kZSteps = static_cast<int>(2 * kMaxZ / kZStep);
 constexpr size_t kRowSize = static_cast<size_t>(kZSteps) + 1;  // z values a table row
 // What a NaN point gives (a fit's step gone astray): NaN, which the fit rejects, never a
@@ -136,12 +136,12 @@ BlurredDiskProfile::Integral BlurredDiskProfile::SecondIntegralAt(double x) cons
   // Each row's H at x: cubic Hermite from its values and slopes (the first integral) at the
   // nodes around x, and that cubic's derivative; beyond kMaxZ, G = 1.
   const double beyond = std::max(0.0, x - kMaxZ);
-  const double xj = (std::min(x, kMaxZ) + kMaxZ) / kZStep;
+  const double xj = (std::min(x, kMaxZ) + kMaxZ) * kPerZStep;
   const int j = std::min(static_cast<int>(xj), kZSteps - 1);
   const double f = xj - j, f2 = f * f, f3 = f2 * f;
   const double value0 = 2.0 * f3 - 3.0 * f2 + 1.0, value1 = 1.0 - value0;
   const double slope0 = (f3 - 2.0 * f2 + f) * kZStep, slope1 = (f3 - f2) * kZStep;
-  const double d_value0 = (6.0 * f2 - 6.0 * f) / kZStep, d_value1 = -d_value0;
+  const double d_value0 = (6.0 * f2 - 6.0 * f) * kPerZStep, d_value1 = -d_value0;
   const double d_slope0 = 3.0 * f2 - 4.0 * f + 1.0, d_slope1 = 3.0 * f2 - 2.0 * f;
   const auto row_integral = [&](const double* first, const double* second) {
     const double end_slope = first[kZSteps];

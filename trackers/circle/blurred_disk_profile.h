@@ -83,8 +83,8 @@ class BlurredDiskProfile {
 void PrepareBlurredDiskProfiles();
 
 // A point's signed distance (px, positive outside) from an edge near its point e, n the
-// edge's outward unit normal there and ρ its radius of curvature (infinite: a straight edge):
-// the edge falls behind its tangent by a²/2ρ at a = t·(x − e) along it, t = (−n_y, n_x), so
+// edge's outward unit normal there and `curvature` 1/ρ, ρ its radius of curvature (0: a straight
+// edge): the edge falls behind its tangent by a²/2ρ at a = t·(x − e) along it, t = (−n_y, n_x), so
 //   d = n·(x − e) + a²/2ρ,
 // exact on the edge to second order in a (a circle's is off by a⁴/8ρ³ there), and off it by
 // a² d/2ρ(ρ + d), which scales the distances on both sides about alike and moves no edge.
@@ -96,10 +96,10 @@ struct EdgeOffset {
 inline EdgeOffset OffsetFromCurvedEdge(const Eigen::Vector2d& point,
                                        const Eigen::Vector2d& edge_point,
                                        const Eigen::Vector2d& normal,
-                                       double radius) {
+                                       double curvature) {
   const Eigen::Vector2d offset = point - edge_point;
   const double along = normal.x() * offset.y() - normal.y() * offset.x();
-  return {normal.x() * offset.x() + normal.y() * offset.y() + along * along / (2.0 * radius),
+  return {normal.x() * offset.x() + normal.y() * offset.y() + 0.5 * curvature * along * along,
           along};
 }
 

@@ -196,7 +196,7 @@ TEST(BlurredEllipse, ValueAloneIsAtsValue) {
 // The distance from a curved edge near its point: on a circle through that point, with its
 // normal and radius, within a⁴/8ρ³ at a along it (the leading terms, with a tenth to spare),
 // where the tangent's is a²/2ρ off; off the circle a² |d|/2ρ(ρ + d) more; its derivative in
-// the edge point is -(n + (a/ρ) t); with an infinite radius, the tangent's.
+// the edge point is -(n + (a/ρ) t); with no curvature, the tangent's.
 TEST(OffsetFromCurvedEdge, IsTheDistanceFromACircleToSecondOrder) {
   const Eigen::Vector2d center(3.0, -2.0);
   const double radius = 7.0, angle = 0.4;
@@ -207,7 +207,7 @@ TEST(OffsetFromCurvedEdge, IsTheDistanceFromACircleToSecondOrder) {
     for (const double from_center : {5.0, 7.0, 9.5}) {
       const Eigen::Vector2d point =
           center + from_center * Eigen::Vector2d(std::cos(angle + turn), std::sin(angle + turn));
-      const EdgeOffset offset = OffsetFromCurvedEdge(point, edge_point, normal, radius);
+      const EdgeOffset offset = OffsetFromCurvedEdge(point, edge_point, normal, 1.0 / radius);
       const double a = offset.along, d = from_center - radius;
       EXPECT_NEAR(offset.along, from_center * std::sin(turn), 1e-12);
       EXPECT_NEAR(offset.distance,
@@ -219,7 +219,7 @@ TEST(OffsetFromCurvedEdge, IsTheDistanceFromACircleToSecondOrder) {
       const double h = 1e-6;
       for (const Eigen::Vector2d& move : {Eigen::Vector2d(1.0, 0.0), Eigen::Vector2d(0.0, 1.0)}) {
         const double moved =
-            OffsetFromCurvedEdge(point, edge_point + h * move, normal, radius).distance;
+            OffsetFromCurvedEdge(point, edge_point + h * move, normal, 1.0 / radius).distance;
         EXPECT_NEAR(
             (moved - offset.distance) / h, -(normal + a / radius * tangent).dot(move), 1e-5);
       }
@@ -229,10 +229,11 @@ TEST(OffsetFromCurvedEdge, IsTheDistanceFromACircleToSecondOrder) {
   const Eigen::Vector2d on_circle =
       center +
       radius * Eigen::Vector2d(std::cos(angle + 1.0 / radius), std::sin(angle + 1.0 / radius));
-  EXPECT_LT(std::abs(OffsetFromCurvedEdge(on_circle, edge_point, normal, radius).distance), 1e-3);
+  EXPECT_LT(std::abs(OffsetFromCurvedEdge(on_circle, edge_point, normal, 1.0 / radius).distance),
+            1e-3);
   EXPECT_GT(std::abs(normal.dot(on_circle - edge_point)), 0.07);
   const Eigen::Vector2d point = edge_point + 0.5 * normal + 2.0 * tangent;
-  const EdgeOffset flat = OffsetFromCurvedEdge(point, edge_point, normal, INFINITY);
+  const EdgeOffset flat = OffsetFromCurvedEdge(point, edge_point, normal, 0.0);
   EXPECT_DOUBLE_EQ(flat.distance, 0.5);
 }
 

@@ -4,6 +4,7 @@
 // they find the noise.
 #pragma once
 
+#include <Eigen/Core>
 #include <cmath>
 #include <optional>
 #include <vector>
@@ -62,6 +63,16 @@ double ModelNoiseSigma(double noise_sigma);
 // (where clipping takes little of it); nullopt with fewer than 50 of them.
 std::optional<double> MidRangeNoise(const std::vector<ModelledPixel>& modelled);
 
+// The offset and gain of each of `channels` channels (levels[2c], levels[2c + 1], as the
+// photometric models order them) that fit pixels listed at offset 0 and gain 1 (`modelled`,
+// channel-minor), by least squares on those modelled between 0.1 and 0.9: the edges, which noise
+// rarely clips, not the paper or the ink (about half of a white paper's noisy pixels read 255).
+// The list is rewritten at them. A channel without two distinct such values, or whose gain comes
+// out not positive, keeps offset 0 and gain 1.
+void FitOffsetsAndGains(int channels,
+                        Eigen::VectorXd* levels,
+                        std::vector<ModelledPixel>* modelled);
+
 // How many times FitPixelsAtTheirNoise fits again at the noise its result shows. A start off by
 // more than the noise shows its misalignment as noise: on noise-free frames (8-bit rounding,
 // 0.29 levels) at 0.6 m, 20 levels from the edge points' start, 118 from one 4 mm off, and each
@@ -75,11 +86,20 @@ constexpr int kMaxNoiseRefits = 4;
 // FitPixels (to `round`'s tolerance) on a model whose clipping takes the noise it is given
 // (noise_sigma(), set_noise_sigma(), and Evaluate(θ, JᵀJ*, Jᵀr*, modelled*) that also lists
 // each pixel's ModelledPixel), at the noise its residuals show: the model takes the noise shown at
-// the start (where the edges are near and the levels those of a white paper and black ink), and the
-// fit is done again while its own residuals show one more than 10 % off (kMaxNoiseRefits). A
-// global estimate on an image of clipped white paper puts the noise far too low (the detector's:
-// 0.06 for a true 0.14). A round that follows another starts from the noise that one showed at
-// its result, which the model has, and is not measured at the start.
+// the start (where the edges are near), at the levels the model's LevelsShownAtStart(listed)
+// gives for the pixels listed at its StartLevels() (the list rewritten at them: for the disks'
+// model each channel's offset and gain that fit the edges, FitOffsetsAndGains), and the fit is
+// done again, from its result's pose and σ and the levels it started from, while its own
+// residuals show one more than 10 % off (kMaxNoiseRefits). A global estimate on an image of
+// clipped white paper puts the noise far too low (the detector's: 0.06 for a true 0.14). A round
+// that follows another starts from the noise that one showed at its result, which the model has,
+// and is not measured at the start.
+//
+// Measured at the levels of a white paper and a black ink (offset 0, gain 1), the noise at the
+// start was 1.06-1.13× what the result showed on the first frames of the circle tracker's speed
+// benchmark (circles_a; 0.99-1.03× at the levels fitted there), and 32 % of the fits were done
+// again: none now, and a fit takes 4.19 evaluations with the normal equations, from 4.71
+// (results/speed.md).
 template <class Model>
 PixelFit FitPixelsAtTheirNoise(Model& model,
                                const Rigid3& cam_from_marker,
@@ -96,19 +116,24 @@ PixelFit FitPixelsAtTheirNoise(Model& model,
   };
   const double function_tolerance = round.function_tolerance();
   std::vector<ModelledPixel> modelled;
+  Eigen::VectorXd levels = model.StartLevels();
   if (!round.follows_another) {
-    model.Evaluate(PixelFitParameters(cam_from_marker, sigma_px, model.StartLevels()),
-                   nullptr,
-                   nullptr,
-                   &modelled);
+    model.Evaluate(
+        PixelFitParameters(cam_from_marker, sigma_px, levels), nullptr, nullptr, &modelled);
+    levels = model.LevelsShownAtStart(&modelled);
     takes_the_noise_shown(modelled);
   }
-  PixelFit fit =
-      FitPixels(model, cam_from_marker, sigma_px, max_iterations, function_tolerance, &modelled);
+  PixelFit fit = FitPixels(
+      model, cam_from_marker, sigma_px, levels, max_iterations, function_tolerance, &modelled);
   for (int refit = 0; refit < kMaxNoiseRefits && takes_the_noise_shown(modelled); ++refit) {
     const int iterations = fit.iterations;
-    fit = FitPixels(
-        model, fit.cam_from_marker, fit.sigma_px, max_iterations, function_tolerance, &modelled);
+    fit = FitPixels(model,
+                    fit.cam_from_marker,
+                    fit.sigma_px,
+                    levels,
+                    max_iterations,
+                    function_tolerance,
+                    &modelled);
     fit.iterations += iterations;
   }
   return fit;

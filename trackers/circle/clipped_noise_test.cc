@@ -89,6 +89,59 @@ TEST(MidRangeNoise, IsTheResidualsRmsBetweenTwoTenthsAndEightTenths) {
   EXPECT_NEAR(*MidRangeNoise(modelled), 0.1, 1e-12);
 }
 
+// Two channels listed at offset 0 and gain 1 (channel-minor), the pixels' values an offset and a
+// gain of the modelled ones plus a residual that averages out: each channel's are found, from the
+// pixels modelled between 0.1 and 0.9 alone (those beyond read as clipped, far off the line), and
+// the list is rewritten at them.
+TEST(FitOffsetsAndGains, FindsEachChannelsLevelsOnTheEdgesAndRewritesTheList) {
+  const double offsets[] = {0.08, -0.05}, gains[] = {0.85, 1.2};
+  std::vector<ModelledPixel> listed;
+  for (int i = 0; i <= 100; ++i) {
+    const double x = i / 100.0;
+    for (int c = 0; c < 2; ++c) {
+      const bool edge = x > 0.1 && x < 0.9;
+      const double value = edge ? offsets[c] + gains[c] * x + 0.01 * (i % 2 ? 1 : -1) : 1.0 - c;
+      listed.push_back({value - x, x});
+    }
+  }
+  const std::vector<ModelledPixel> at_unit = listed;
+  Eigen::VectorXd levels = Eigen::VectorXd::Zero(5);
+  levels << 0.0, 1.0, 0.0, 1.0, 0.7;  // and a further level, untouched
+  FitOffsetsAndGains(2, &levels, &listed);
+  for (int c = 0; c < 2; ++c) {
+    EXPECT_NEAR(levels[2 * c], offsets[c], 2e-3) << c;
+    EXPECT_NEAR(levels[2 * c + 1], gains[c], 3e-3) << c;
+  }
+  EXPECT_EQ(levels[4], 0.7);
+  ASSERT_EQ(listed.size(), at_unit.size());
+  for (size_t i = 0; i < listed.size(); ++i) {
+    const int c = static_cast<int>(i % 2);
+    const double value = at_unit[i].residual + at_unit[i].mean;
+    EXPECT_NEAR(listed[i].mean, levels[2 * c] + levels[2 * c + 1] * at_unit[i].mean, 1e-15);
+    EXPECT_NEAR(listed[i].residual, value - listed[i].mean, 1e-15);
+  }
+}
+
+// A channel with no spread among its edge pixels, or whose gain would not be positive (an image
+// that does not show the design's contrast), keeps offset 0 and gain 1, and its list its values.
+TEST(FitOffsetsAndGains, KeepsUnitLevelsWhereTheEdgesGiveNoPositiveGain) {
+  std::vector<ModelledPixel> listed;
+  for (int i = 0; i < 50; ++i) {
+    const double x = 0.2 + 0.6 * i / 49.0;
+    listed.push_back({0.3 - x, 0.5});          // channel 0: one modelled value
+    listed.push_back({0.9 - 0.5 * x - x, x});  // channel 1: the values fall as x rises
+  }
+  const std::vector<ModelledPixel> at_unit = listed;
+  Eigen::VectorXd levels(4);
+  levels << 0.0, 1.0, 0.0, 1.0;
+  FitOffsetsAndGains(2, &levels, &listed);
+  EXPECT_EQ(levels, Eigen::Vector4d(0.0, 1.0, 0.0, 1.0));
+  for (size_t i = 0; i < listed.size(); ++i) {
+    EXPECT_EQ(listed[i].mean, at_unit[i].mean);
+    EXPECT_NEAR(listed[i].residual, at_unit[i].residual, 1e-15);
+  }
+}
+
 // 100 mid-range pixels whose residuals at the least-squares θ show a noise of 0.05.
 const LinearPixelModel::Shape kNoisyPixels{100, 0.01, 0.0, 0.5, 0.05 * std::sqrt(100.0)};
 

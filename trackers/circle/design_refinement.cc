@@ -118,6 +118,11 @@ class DesignModel {
     levels[1] = 1.0;
     return levels;
   }
+  // Kept as they start: the design's start pose (the circle's edge points and one centre
+  // point) is off by more than the noise, and the offset and gain that fit its edges there
+  // (FitOffsetsAndGains) were far from the result's (on f's speed benchmark frames, gain 1.34
+  // against 1.03), which cost f's full detection 5 % more time (results/speed.md).
+  Eigen::VectorXd LevelsShownAtStart(std::vector<ModelledPixel>*) const { return StartLevels(); }
   // The optics' σ alone (the design is averaged over each pixel): sharp images fit near 0, and
   // the straight edge over a pixel is exact there.
   double MinSigmaPx() const { return kMinBlurSigmaPx; }
@@ -273,6 +278,7 @@ std::optional<DesignRefinement> RefineOnce(const Image8& image,
   const FitRound measured_at_start{round.first_of_several, false};
   const PixelFit fit = FitPixelsAtTheirNoise(
       model, cam_from_marker, std::max(sigma_px, 0.3), options.max_iterations, measured_at_start);
+  if (!std::isfinite(fit.cost)) return std::nullopt;
   return DesignRefinement{fit, static_cast<int>(pixels.size()), model.noise_sigma()};
 }
 

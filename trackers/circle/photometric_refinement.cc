@@ -31,7 +31,8 @@ struct EdgeLayer {
   std::vector<Eigen::Vector2d> start_px;
   std::vector<Eigen::Vector2d> start_normal;  // outward, unit
   std::vector<double> start_curvature_radius_px;
-  double start_depth_m = 0.0;  // of the disk's centre
+  std::vector<double> start_curvature_per_px;  // 1/ρ of the same (0 where ρ is infinite)
+  double start_depth_m = 0.0;                  // of the disk's centre
   // Under blur of a good part of its size: modelled whole, its exact blurred ellipse
   // (blurred_ellipse.h), on every pixel of its image and within reach of it, with the
   // quadrature nodes its size in σ needs at the start pose.
@@ -132,6 +133,12 @@ class PixelModel {
 
   int Parameters() const { return 7 + 2 * channels_; }
   Eigen::VectorXd StartLevels() const { return UnitGainLevels(Parameters()); }
+  // Each channel's offset and gain that fit the edges listed at StartLevels() (clipped_noise.h).
+  Eigen::VectorXd LevelsShownAtStart(std::vector<ModelledPixel>* listed) const {
+    Eigen::VectorXd levels = StartLevels();
+    FitOffsetsAndGains(channels_, &levels, listed);
+    return levels;
+  }
   double MinSigmaPx() const { return kMinBlurSigmaPx; }
   double noise_sigma() const { return noise_sigma_; }
   void set_noise_sigma(double noise_sigma) { noise_sigma_ = noise_sigma; }
@@ -227,6 +234,7 @@ class PixelModel {
     // t·(x - e)), z = -d/σ, inside = G(s, z) over the pixel, chained to the 7 Jet parameters
     // through e, s and σ.
     const double sigma_value = sigma.a;
+    const double per_sigma = 1.0 / sigma_value, half_per_sigma = 0.5 * per_sigma;
     const bool with_chords = noise_sigma_ < chords_below_noise_;
     Eigen::Matrix<double, 7, 1> d_whole_sigma = Eigen::Matrix<double, 7, 1>::Zero();
     d_whole_sigma[6] = sigma_value / whole_sigma;
@@ -243,21 +251,23 @@ class PixelModel {
       }
       const EdgeLayer& layer = layers_[near.layer];
       const double rho = layer.start_curvature_radius_px[near.bin];
+      const double per_rho = layer.start_curvature_per_px[near.bin];
       const Eigen::Vector2d& normal = layer.start_normal[near.bin];
       const EdgeOffset offset =
-          OffsetFromCurvedEdge(p.ideal_px, edges_px[near.layer][near.bin], normal, rho);
+          OffsetFromCurvedEdge(p.ideal_px, edges_px[near.layer][near.bin], normal, per_rho);
       // Over the pixel's area (blurred_disk_profile.h): its offsets along the edge (variance
       // 1/12) put it a²/2ρ further out on average, 1/24ρ; and across it, along the normal at
       // the pixel's own foot on the edge, turned from the edge point's by a/ρ (with the edge
       // point's, 2 px apart on a sharp disk of 40 px, the model sat 0.23 grey levels RMS from
       // the exact cover of the pixels it crosses; with the pixel's, 0.10).
-      const double distance = offset.distance + 1.0 / (24.0 * rho);
+      const double distance = offset.distance + per_rho / 24.0;
+      const double along_tangent = offset.along * per_rho;
       const Eigen::Vector2d pixel_normal =
-          (normal + (offset.along / rho) * Eigen::Vector2d(-normal.y(), normal.x())).normalized();
+          (normal + along_tangent * Eigen::Vector2d(-normal.y(), normal.x())).normalized();
       const PixelProfileValue g =
-          profiles[near.layer][near.bin].OverPixel(-distance / sigma_value,
-                                                   0.5 * std::abs(pixel_normal.x()) / sigma_value,
-                                                   0.5 * std::abs(pixel_normal.y()) / sigma_value);
+          profiles[near.layer][near.bin].OverPixel(-distance * per_sigma,
+                                                   half_per_sigma * std::abs(pixel_normal.x()),
+                                                   half_per_sigma * std::abs(pixel_normal.y()));
       // And what the square's chords add beyond the mean shift (pixel_chord_term.h).
       const PixelChordTerm chord = with_chords
                                        ? PixelChordTermAt(distance, sigma_value, pixel_normal, rho)
@@ -267,9 +277,8 @@ class PixelModel {
             edges_along_frame[near.layer][near.bin];
         // ∂G/∂θ = G_z ∂z/∂θ + G_s ρ ∂(s/ρ)/∂θ, z = -d/σ, ∂d/∂θ = -(n + (a/ρ) t)·∂e/∂θ (and
         // ∂σ/∂θ = e₇).
-        const double along_edge = g.d_dz / sigma_value;
+        const double along_edge = g.d_dz * per_sigma;
         const double across_edge = along_edge - chord.d_distance;  // -∂V/∂d
-        const double along_tangent = offset.along / rho;
         const double along_size = g.d_ds * rho;
         const Jet& size = size_per_sigma[near.layer];
         for (int i = 0; i < 7; ++i) {
@@ -277,7 +286,7 @@ class PixelModel {
               across_edge * (edge_along_frame(i, 0) + along_tangent * edge_along_frame(i, 1)) +
               along_size * size.v[i];
         }
-        (*d)[6] += (along_edge * distance - g.d_dlog_width) / sigma_value + chord.d_sigma;
+        (*d)[6] += (along_edge * distance - g.d_dlog_width) * per_sigma + chord.d_sigma;
       }
       return g.value + chord.value;
     };
@@ -418,6 +427,7 @@ std::optional<std::vector<EdgeLayer>> EdgeLayers(const MarkerSpec& marker,
       layer.start_curvature_radius_px.push_back(CircumRadius(layer.start_px[(k + bins - 1) % bins],
                                                              layer.start_px[k],
                                                              layer.start_px[(k + 1) % bins]));
+      layer.start_curvature_per_px.push_back(1.0 / layer.start_curvature_radius_px.back());
     }
     layers.push_back(std::move(layer));
   }
@@ -666,6 +676,7 @@ std::optional<PhotometricResult> RefineOnce(const Image8& image,
                    options.chords_below_noise);
   const PixelFit fit =
       FitPixelsAtTheirNoise(model, cam_from_marker, at->sigma_px, options.max_iterations, round);
+  if (!std::isfinite(fit.cost)) return std::nullopt;
   return PhotometricResult{fit, static_cast<int>(at->pixels.pixels.size()), model.noise_sigma()};
 }
 

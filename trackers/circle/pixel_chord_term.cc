@@ -36,14 +36,14 @@ PieceIntegral IntegrateCubicPiece(
                                                        0.5688888888888889,
                                                        0.4786286704993665,
                                                        0.2369268850561891};
-    const double half = 0.5 * (hi - lo), middle = 0.5 * (hi + lo);
+    const double half = 0.5 * (hi - lo), middle = 0.5 * (hi + lo), per_sigma = 1.0 / sigma;
     for (int i = 0; i < 5; ++i) {
       const double y = middle + half * kNodes[i];
-      const double x = (y - centre) / sigma;
-      const double term = half * kWeights[i] * cubic(y) * kNormalCdfTable.At(x).density / sigma;
+      const double x = (y - centre) * per_sigma;
+      const double term = half * kWeights[i] * cubic(y) * kNormalCdfTable.At(x).density * per_sigma;
       out.value += term;
-      out.d_centre += term * x / sigma;
-      out.d_sigma += term * (x * x - 1.0) / sigma;
+      out.d_centre += term * x * per_sigma;
+      out.d_sigma += term * (x * x - 1.0) * per_sigma;
     }
     return out;
   }
@@ -55,7 +55,8 @@ PieceIntegral IntegrateCubicPiece(
                                    sigma * (k[1] + c * (2.0 * k[2] + 3.0 * c * k[3])),
                                    sigma * sigma * (k[2] + 3.0 * c * k[3]),
                                    sigma * sigma * sigma * k[3]};
-  const double x_lo = (lo - c) / sigma, x_hi = (hi - c) / sigma;
+  const double per_sigma = 1.0 / sigma;
+  const double x_lo = (lo - c) * per_sigma, x_hi = (hi - c) * per_sigma;
   const NormalCdfTable::Values at_lo = kNormalCdfTable.At(x_lo), at_hi = kNormalCdfTable.At(x_hi);
   std::array<double, 6> moments;
   moments[0] = at_hi.cdf - at_lo.cdf;
@@ -68,8 +69,8 @@ PieceIntegral IntegrateCubicPiece(
   }
   for (int j = 0; j < 4; ++j) {
     out.value += p[j] * moments[j];
-    out.d_centre += p[j] * moments[j + 1] / sigma;
-    out.d_sigma += p[j] * (moments[j + 2] - moments[j]) / sigma;
+    out.d_centre += p[j] * moments[j + 1] * per_sigma;
+    out.d_sigma += p[j] * (moments[j + 2] - moments[j]) * per_sigma;
   }
   return out;
 }
@@ -80,8 +81,8 @@ PixelChordTerm PixelChordTermAt(double distance_px,
                                 double sigma_px,
                                 const Eigen::Vector2d& normal,
                                 double radius_px) {
-  const double c = std::max(std::abs(normal.x()), std::abs(normal.y())) / normal.norm();
-  const double s = std::min(std::abs(normal.x()), std::abs(normal.y())) / normal.norm();
+  const double c = std::max(std::abs(normal.x()), std::abs(normal.y()));
+  const double s = std::min(std::abs(normal.x()), std::abs(normal.y()));
   PixelChordTerm out;
   const double inner = 0.5 * (c - s), outer = 0.5 * (c + s);
   if (s < kMinSine || std::abs(distance_px) > outer + kReachSigmas * sigma_px) return out;

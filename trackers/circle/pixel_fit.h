@@ -1,8 +1,8 @@
 // Levenberg-Marquardt for the photometric fits (photometric_refinement.h, design_refinement.h)
 // on the normal equations, with Marquardt's diagonal scaling. A model of the pixels takes
 // θ = (angle-axis (3), translation (3), blur σ in px, then its levels: an offset and a gain per
-// channel, and any further levels) and provides Parameters(), StartLevels() (the levels a fit
-// starts from), MinSigmaPx() (the least σ a step may take) and Evaluate(θ, JᵀJ*,
+// channel, and any further levels) and provides Parameters(), StartLevels() (the levels of the
+// print as specified), MinSigmaPx() (the least σ a step may take) and Evaluate(θ, JᵀJ*,
 // Jᵀr*, modelled*): the cost at θ (the pixels' ClippedPixelTerm summed, Σ r² where none is
 // clipped), when the pointers are given the normal equations, and when `modelled` is given each
 // pixel's ModelledPixel appended to it.
@@ -106,20 +106,23 @@ inline Eigen::VectorXd StepWithinSigmaBound(const Eigen::MatrixXd& damped,
   return step;
 }
 
-// From a pose and σ, at the model's StartLevels(); σ kept at the model's MinSigmaPx() at least.
+// From a pose, σ and levels; σ kept at the model's MinSigmaPx() at least.
 // Stops where a step lowers the cost by less than `function_tolerance` of it, or where the normal
 // equations predict that of the next step after a taken one, damped no more than the first
 // (saving the evaluation of a step that would not count). With `modelled_at_result`, the
 // pixels at the result are listed there (from the evaluation that found it: none is done for
-// them).
+// them). A start the model cannot evaluate (a cost not finite, without normal equations: a disk
+// whose image there is no ellipse) gives a fit at the start with that cost and no JᵀJ: a failed
+// fit, which callers drop.
 template <class Model>
 PixelFit FitPixels(const Model& model,
                    const Rigid3& cam_from_marker,
                    double sigma_px,
+                   const Eigen::VectorXd& levels,
                    int max_iterations,
                    double function_tolerance = kFunctionTolerance,
                    std::vector<ModelledPixel>* modelled_at_result = nullptr) {
-  Eigen::VectorXd theta = PixelFitParameters(cam_from_marker, sigma_px, model.StartLevels());
+  Eigen::VectorXd theta = PixelFitParameters(cam_from_marker, sigma_px, levels);
   Eigen::MatrixXd jtj, trial_jtj;
   Eigen::VectorXd jtr, trial_jtr;
   std::vector<ModelledPixel> trial_modelled;
@@ -131,6 +134,13 @@ PixelFit FitPixels(const Model& model,
   };
   double cost = model.Evaluate(theta, &jtj, &jtr, listing(modelled_at_result));
   PixelFit fit;
+  if (!std::isfinite(cost)) {
+    fit.cam_from_marker = cam_from_marker;
+    fit.sigma_px = theta[6];
+    fit.levels = levels;
+    fit.cost = cost;
+    return fit;
+  }
   constexpr double kStartDamping = 1e-3;
   double damping = kStartDamping;
   bool after_a_step = false;  // the last trial was taken

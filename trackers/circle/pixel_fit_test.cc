@@ -25,7 +25,7 @@ TEST(FitPixels, StopsAtTheMinimumOfAQuadraticCostWithoutASecondStep) {
   const LinearPixelModel model(kTwelvePixels);
   Rigid3 start;
   start.translation = Eigen::Vector3d(0.0, 0.0, 0.5);
-  const PixelFit fit = FitPixels(model, start, 1.0, 15);
+  const PixelFit fit = FitPixels(model, start, 1.0, model.StartLevels(), 15);
   // The start and one step: the damped step (1e-3 of the diagonal) lands within about 1e-3
   // of the minimum, and the step after it is predicted to gain below 1e-5 of the cost (it
   // was evaluated, and then counted as converged, before the prediction).
@@ -33,6 +33,37 @@ TEST(FitPixels, StopsAtTheMinimumOfAQuadraticCostWithoutASecondStep) {
   EXPECT_EQ(model.evaluations(), 2);
   const Eigen::VectorXd theta = PixelFitParameters(fit.cam_from_marker, fit.sigma_px, fit.levels);
   EXPECT_LT((theta - model.solution()).norm(), 1e-3 * model.solution().norm());
+}
+
+// A model that cannot be evaluated at the start (a disk whose image there is no ellipse): an
+// infinite cost, and no normal equations.
+struct UnevaluableModel {
+  int Parameters() const { return 9; }
+  double MinSigmaPx() const { return 0.2; }
+  double Evaluate(const Eigen::VectorXd&,
+                  Eigen::MatrixXd*,
+                  Eigen::VectorXd*,
+                  std::vector<ModelledPixel>*) const {
+    ++evaluations;
+    return INFINITY;
+  }
+  mutable int evaluations = 0;
+};
+
+// Such a start is a failed fit at the start, with its infinite cost, and no step is taken from
+// it (there were none to solve for: before, the step read JᵀJ of no size, and crashed on the
+// negative set under heavy blur).
+TEST(FitPixels, GivesAFailedFitWhereTheStartCannotBeEvaluated) {
+  const UnevaluableModel model;
+  Rigid3 start;
+  start.translation = Eigen::Vector3d(0.0, 0.0, 0.5);
+  const PixelFit fit = FitPixels(model, start, 1.0, UnitGainLevels(9), 15);
+  EXPECT_EQ(model.evaluations, 1);
+  EXPECT_EQ(fit.iterations, 0);
+  EXPECT_FALSE(std::isfinite(fit.cost));
+  EXPECT_EQ(fit.jtj.size(), 0);
+  EXPECT_EQ(fit.cam_from_marker.translation, start.translation);
+  EXPECT_EQ(fit.levels, UnitGainLevels(9));
 }
 
 // A step that would take σ (θ₆) below its bound takes it to the bound, and the other
@@ -65,7 +96,8 @@ TEST(FitPixels, ListsThePixelsAtItsResult) {
   Rigid3 start;
   start.translation = Eigen::Vector3d(0.0, 0.0, 0.5);
   std::vector<ModelledPixel> listed(3, ModelledPixel{1.0, 1.0});
-  const PixelFit fit = FitPixels(model, start, 1.0, 15, kFunctionTolerance, &listed);
+  const PixelFit fit =
+      FitPixels(model, start, 1.0, model.StartLevels(), 15, kFunctionTolerance, &listed);
   std::vector<ModelledPixel> at_result;
   model.Evaluate(PixelFitParameters(fit.cam_from_marker, fit.sigma_px, fit.levels),
                  nullptr,
