@@ -93,7 +93,8 @@ constexpr int kMaxNoiseRefits = 4;
 // residuals show one more than 10 % off (kMaxNoiseRefits). A global estimate on an image of
 // clipped white paper puts the noise far too low (the detector's: 0.06 for a true 0.14). A round
 // that follows another starts from the noise that one showed at its result, which the model has,
-// and is not measured at the start.
+// and is not measured at the start. nullopt where a fit fails (a start the model cannot
+// evaluate: FitPixels' cost not finite).
 //
 // Measured at the levels of a white paper and a black ink (offset 0, gain 1), the noise at the
 // start was 1.06-1.13× what the result showed on the first frames of the circle tracker's speed
@@ -101,11 +102,11 @@ constexpr int kMaxNoiseRefits = 4;
 // again: none now, and a fit takes 4.19 evaluations with the normal equations, from 4.71
 // (results/speed.md).
 template <class Model>
-PixelFit FitPixelsAtTheirNoise(Model& model,
-                               const Rigid3& cam_from_marker,
-                               double sigma_px,
-                               int max_iterations,
-                               const FitRound& round) {
+std::optional<PixelFit> FitPixelsAtTheirNoise(Model& model,
+                                              const Rigid3& cam_from_marker,
+                                              double sigma_px,
+                                              int max_iterations,
+                                              const FitRound& round) {
   // Whether the noise the pixels show is more than 10 % off the model's; the model then
   // takes it.
   const auto takes_the_noise_shown = [&](const std::vector<ModelledPixel>& modelled) {
@@ -136,6 +137,7 @@ PixelFit FitPixelsAtTheirNoise(Model& model,
                     &modelled);
     fit.iterations += iterations;
   }
+  if (!std::isfinite(fit.cost)) return std::nullopt;
   return fit;
 }
 

@@ -276,10 +276,10 @@ std::optional<DesignRefinement> RefineOnce(const Image8& image,
   // circle_f without noise fitted 7 % worse (96 of 100 frames, paired on the paper's noise
   // sweep; on noise-free frames this fit's result depends on the noise it starts from).
   const FitRound measured_at_start{round.first_of_several, false};
-  const PixelFit fit = FitPixelsAtTheirNoise(
+  const std::optional<PixelFit> fit = FitPixelsAtTheirNoise(
       model, cam_from_marker, std::max(sigma_px, 0.3), options.max_iterations, measured_at_start);
-  if (!std::isfinite(fit.cost)) return std::nullopt;
-  return DesignRefinement{fit, static_cast<int>(pixels.size()), model.noise_sigma()};
+  if (!fit) return std::nullopt;
+  return DesignRefinement{*fit, static_cast<int>(pixels.size()), model.noise_sigma()};
 }
 
 }  // namespace

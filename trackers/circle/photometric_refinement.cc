@@ -674,10 +674,10 @@ std::optional<PhotometricResult> RefineOnce(const Image8& image,
                    image.channels,
                    ModelNoiseSigma(noise_sigma),
                    options.chords_below_noise);
-  const PixelFit fit =
+  const std::optional<PixelFit> fit =
       FitPixelsAtTheirNoise(model, cam_from_marker, at->sigma_px, options.max_iterations, round);
-  if (!std::isfinite(fit.cost)) return std::nullopt;
-  return PhotometricResult{fit, static_cast<int>(at->pixels.pixels.size()), model.noise_sigma()};
+  if (!fit) return std::nullopt;
+  return PhotometricResult{*fit, static_cast<int>(at->pixels.pixels.size()), model.noise_sigma()};
 }
 
 // Which of several fits explains the image best: the least cost (the clipped pixels'

@@ -5,7 +5,8 @@
 // print as specified), MinSigmaPx() (the least σ a step may take) and Evaluate(θ, JᵀJ*,
 // Jᵀr*, modelled*): the cost at θ (the pixels' ClippedPixelTerm summed, Σ r² where none is
 // clipped), when the pointers are given the normal equations, and when `modelled` is given each
-// pixel's ModelledPixel appended to it.
+// pixel's ModelledPixel appended to it. FitPixelsAtTheirNoise (clipped_noise.h) asks a model for
+// more: its noise and the levels its pixels show at the start.
 #pragma once
 
 #include <ceres/rotation.h>
@@ -113,7 +114,7 @@ inline Eigen::VectorXd StepWithinSigmaBound(const Eigen::MatrixXd& damped,
 // pixels at the result are listed there (from the evaluation that found it: none is done for
 // them). A start the model cannot evaluate (a cost not finite, without normal equations: a disk
 // whose image there is no ellipse) gives a fit at the start with that cost and no JᵀJ: a failed
-// fit, which callers drop.
+// fit (FitPixelsAtTheirNoise gives none for it).
 template <class Model>
 PixelFit FitPixels(const Model& model,
                    const Rigid3& cam_from_marker,
