@@ -13,7 +13,7 @@ packages=(
   libopenimageio-dev openimageio-tools
   libyaml-cpp-dev libcli11-dev nlohmann-json3-dev libzstd-dev zstd libssl-dev
   libcmark-gfm-dev libcmark-gfm-extensions-dev libcairo2-dev fonts-dejavu-core
-  libgtest-dev libgmock-dev libbenchmark-dev
+  libgtest-dev libgmock-dev libbenchmark-dev valgrind
   python3 python3-matplotlib python3-opencv python3-yaml
   libxml2-utils
   slurm-wlm munge
