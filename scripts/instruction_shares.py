@@ -1,36 +1,36 @@
 #!/usr/bin/env python3
-"""Where a benchmark's time goes, in instructions: each stage's share of a function's calls,
+"""Where a program's time goes, in instructions: each stage's share of a function's calls,
 counted by Callgrind (valgrind). Instruction counts do not drift with the machine's load as
 times do (results/speed.md), so two builds' counts tell apart changes far below what a timed
 comparison resolves; they stand for time only where the code is bound by its instructions, not
 its memory, so a speed claim still takes `speed_ratio.py`.
 
-Runs PROGRAM's BENCHMARK (Google Benchmark, `--benchmark_min_time`) under Callgrind, then
-reads PER's inclusive count and calls (e.g. the tracker's Track call; `callgrind_annotate
---inclusive=yes` and `--tree=caller`) and each stage's inclusive count, as shares of PER's.
-Counts are of the whole run (Callgrind counts no call into a function it is told to count
-inside, `--toggle-collect`, so PER's calls would be unknown): name stages that the benchmark
-runs inside PER alone, not in its set-up. Google Benchmark sets the number of iterations from
-the time, so a benchmark that cycles over frames is compared between builds at the same number
-of PER's calls (the table gives it). A stage is the one
-function whose name begins with its pattern (else contains it), leaving out what is defined
-inside that function (its lambdas, whose counts its own includes); a pattern that matches none,
-or several, is an error. A function called inside another stage is counted in both.
+Runs COMMAND under Callgrind, then reads PER's inclusive count and calls (e.g. the tracker's
+Track call; `callgrind_annotate --inclusive=yes` and `--tree=caller`) and each stage's
+inclusive count, as shares of PER's. Counts are of the whole run (Callgrind counts no call into
+a function it is told to count inside, `--toggle-collect`, so PER's calls would be unknown):
+name stages that COMMAND runs inside PER alone, not in its set-up. A Google Benchmark program
+sets its iterations from the time, and so which of its frames are counted; a sweep
+(`markerbench sweep`, one thread) counts the same frames in every build, for an A/B of two
+builds. A stage is the one function whose name begins with its pattern (else contains it),
+leaving out what is defined inside that function (its lambdas, whose counts its own includes);
+a pattern that matches none, or several, is an error. A function called inside another stage
+is counted in both.
 
 Usage:
-  instruction_shares.py --program PROGRAM --benchmark BENCHMARK --per FUNCTION
-                        --stage LABEL=PATTERN [--stage ...] [--min-time SECONDS]
+  instruction_shares.py --per FUNCTION --stage LABEL=PATTERN [--stage ...] -- COMMAND [ARG ...]
 e.g. from the project root:
-  scripts/instruction_shares.py --program build/trackers/circle_tracker_benchmark \\
-      --benchmark BM_CircleFullDetection \\
+  scripts/instruction_shares.py \\
       --per 'markerbench::CircleTracker::Track(markerbench::Observation const&)' \\
-      --stage 'fit on the pixels=markerbench::RefinePhotometricFromStarts('
-Prints a Markdown table; exit status 2 with a message naming the program, the benchmark or the
-stage on bad input, a missing valgrind, or a run that fails.
+      --stage 'fit on the pixels=markerbench::RefinePhotometricFromStarts(' \\
+      -- build/trackers/circle_tracker_benchmark --benchmark_filter='^BM_CircleFullDetection$'
+Prints a Markdown table; exit status 2 with a message naming the command or the stage on bad
+input, a missing valgrind, or a run that fails.
 """
 import argparse
 import os
 import re
+import shutil
 import subprocess
 import sys
 import tempfile
@@ -123,18 +123,19 @@ def run(command, what):
     return done.stdout
 
 
-def shares(program, benchmark, per, stages, min_time):
+def shares(command, per, stages):
     """PER's calls, its count per call, and each stage's (label, function, count)."""
-    if not (os.path.isfile(program) and os.access(program, os.X_OK)):
-        raise InstructionSharesError(f"{program}: no such executable")
+    if not command:
+        raise InstructionSharesError("no command: give it after --")
+    if not shutil.which(command[0]):
+        raise InstructionSharesError(f"{command[0]}: no such executable")
+    shown = " ".join(command)
     with tempfile.TemporaryDirectory() as tmp:
         out = os.path.join(tmp, "callgrind.out")
-        run(["valgrind", "--tool=callgrind", f"--callgrind-out-file={out}", program,
-             f"--benchmark_filter=^{re.escape(benchmark)}$",
-             f"--benchmark_min_time={min_time}"],
-            f"{program}:{benchmark} under callgrind")
+        run(["valgrind", "--tool=callgrind", f"--callgrind-out-file={out}"] + command,
+            f"{shown} under callgrind")
         if not os.path.exists(out):
-            raise InstructionSharesError(f"{program}:{benchmark}: callgrind wrote no profile")
+            raise InstructionSharesError(f"{shown}: callgrind wrote no profile")
         counts = inclusive_counts(
             run(["callgrind_annotate", "--inclusive=yes", "--threshold=100", out],
                 "callgrind_annotate"))
@@ -142,7 +143,7 @@ def shares(program, benchmark, per, stages, min_time):
                    "callgrind_annotate")
     if per not in counts:
         raise InstructionSharesError(
-            f"--per {per!r}: not called in {program}:{benchmark} (or not its exact name)")
+            f"--per {per!r}: not called in {shown} (or not its exact name)")
     calls = calls_of(tree, per)
     if calls == 0:
         raise InstructionSharesError(f"--per {per!r}: no calls counted")
@@ -155,19 +156,15 @@ def shares(program, benchmark, per, stages, min_time):
 
 def main(argv=None):
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    parser.add_argument("--program", required=True)
-    parser.add_argument("--benchmark", required=True, help="as Google Benchmark prints it")
     parser.add_argument("--per", required=True, help="the function whose calls are counted")
     parser.add_argument("--stage", action="append", default=[], help="LABEL=PATTERN")
-    parser.add_argument("--min-time", type=float, default=2.0,
-                        help="--benchmark_min_time (s, of the run under callgrind)")
+    parser.add_argument("command", nargs=argparse.REMAINDER, help="-- COMMAND [ARG ...]")
     args = parser.parse_args(argv)
+    command = args.command[1:] if args.command[:1] == ["--"] else args.command
     try:
-        if not args.min_time > 0.0:
-            raise InstructionSharesError(f"--min-time {args.min_time}: must be > 0")
         stages = [parse_stage(spec) for spec in args.stage]
-        calls, total, rows = shares(args.program, args.benchmark, args.per, stages, args.min_time)
-        print(f"`{args.benchmark}`: {calls} calls of `{args.per}`, "
+        calls, total, rows = shares(command, args.per, stages)
+        print(f"`{' '.join(command)}`: {calls} calls of `{args.per}`, "
               f"{total / calls / 1e6:.3f} M instructions a call")
         print()
         print("| stage | function | M instructions a call | share |")

@@ -79,14 +79,16 @@ class InstructionSharesTest(unittest.TestCase):
         os.environ.pop("FAKE_STATUS", None)
         self.tmp.cleanup()
 
-    def run_main(self, *stages, per=TRACK, program=None):
-        args = ["--program", program or str(self.dir / "prog"), "--benchmark", "BM_Track/2",
-                "--per", per, "--min-time", "0.5"]
+    def run_main(self, *stages, per=TRACK, command=None):
+        args = ["--per", per]
         for stage in stages:
             args += ["--stage", stage]
+        if command is None:
+            command = [str(self.dir / "prog"), "--benchmark_filter=^BM_Track/2$",
+                       "--benchmark_min_time=0.5"]
         out, err = io.StringIO(), io.StringIO()
         with contextlib.redirect_stdout(out), contextlib.redirect_stderr(err):
-            status = instruction_shares.main(args)
+            status = instruction_shares.main(args + ["--"] + command)
         return status, out.getvalue(), err.getvalue()
 
     def test_shares_of_the_calls(self):
@@ -100,12 +102,12 @@ class InstructionSharesTest(unittest.TestCase):
         self.assertIn("| detect | `ns::Detect(ns::Frame const&)` | 0.000 | 30.0% |", out)
         self.assertIn("| helper | `ns::Helper(int)` | 0.000 | 4.0% |", out)
 
-    def test_runs_the_benchmark_under_callgrind(self):
+    def test_runs_the_command_under_callgrind(self):
         self.run_main("fit=ns::Fit(")
         logged = (self.dir / "valgrind.log").read_text()
         self.assertIn("--tool=callgrind", logged)
-        self.assertIn(f"{self.dir / 'prog'} --benchmark_filter=^BM_Track/2$ "
-                      "--benchmark_min_time=0.5", logged)
+        self.assertTrue(logged.rstrip().endswith(
+            f"{self.dir / 'prog'} --benchmark_filter=^BM_Track/2$ --benchmark_min_time=0.5"))
 
     def test_bad_input_exits_2_naming_it(self):
         cases = [
@@ -113,7 +115,8 @@ class InstructionSharesTest(unittest.TestCase):
             (("any=ns::",), {}, "--stage 'any': 'ns::': 4 functions"),
             (("fit",), {}, "--stage 'fit': expected LABEL=PATTERN"),
             (("fit=ns::Fit(",), {"per": "ns::Track("}, "--per 'ns::Track(': not called"),
-            (("fit=ns::Fit(",), {"program": "/no/such/prog"}, "/no/such/prog: no such executable"),
+            (("fit=ns::Fit(",), {"command": ["/no/such/prog"]}, "/no/such/prog: no such executable"),
+            (("fit=ns::Fit(",), {"command": []}, "no command: give it after --"),
         ]
         for stages, keywords, message in cases:
             with self.subTest(message=message):
@@ -126,7 +129,7 @@ class InstructionSharesTest(unittest.TestCase):
         os.environ["FAKE_STATUS"] = "3"
         status, _, err = self.run_main("fit=ns::Fit(")
         self.assertEqual(status, 2)
-        self.assertIn("BM_Track/2 under callgrind: exit status 3", err)
+        self.assertIn("--benchmark_min_time=0.5 under callgrind: exit status 3", err)
 
     def test_without_valgrind_exits_2_saying_where_it_comes_from(self):
         (self.dir / "valgrind").unlink()
