@@ -55,7 +55,9 @@ def function_name(located):
 
 
 def inclusive_counts(annotated):
-    """Each function's inclusive count from `callgrind_annotate --inclusive=yes` output."""
+    """Each function's inclusive count from `callgrind_annotate --inclusive=yes` output: the
+    largest of its lines (a build with debug information lists a function whole, and again in
+    parts by the source files its code comes from, its own and the headers inlined into it)."""
     counts = {}
     for line in annotated.splitlines():
         match = FUNCTION_LINE.match(line)
@@ -63,7 +65,7 @@ def inclusive_counts(annotated):
             continue
         name = function_name(match.group(3))
         if name:
-            counts[name] = int(match.group(1).replace(",", ""))
+            counts[name] = max(counts.get(name, 0), int(match.group(1).replace(",", "")))
     return counts
 
 

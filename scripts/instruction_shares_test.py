@@ -23,7 +23,8 @@ exit ${FAKE_STATUS:-0}
 """
 
 # callgrind_annotate's two outputs for a Track (2 calls of 500) that runs Detect (its lambda
-# inside it), Fit twice over, and a helper called from both.
+# inside it; listed whole and in parts by file, as with debug information), Fit twice over,
+# and a helper called from both.
 INCLUSIVE = """--------------------------------------------------------------------------------
 Ir
 --------------------------------------------------------------------------------
@@ -34,7 +35,9 @@ Ir                 file:function
 --------------------------------------------------------------------------------
 1,000 (50.00%)  ???:ns::Tracker::Track(ns::Frame const&) [/build/prog]
   600 (30.00%)  ???:ns::Fit(ns::Frame const&, double) [clone .constprop.0] [/build/prog]
-  300 (15.00%)  ./src/detect.cc:ns::Detect(ns::Frame const&) [/build/prog]
+  300 (15.00%)  /src/detect.cc:ns::Detect(ns::Frame const&) [/build/prog]
+  280 (14.00%)  src/detect.cc:ns::Detect(ns::Frame const&) [/build/prog]
+   20 ( 1.00%)  /usr/include/c++/12/bits/stl_vector.h:ns::Detect(ns::Frame const&) [/build/prog]
   120 ( 6.00%)  ???:ns::Detect(ns::Frame const&)::{lambda(int)#1}::operator()(int) const [/build/prog]
    50 ( 2.50%)  ???:std::_Function_handler<void (), ns::Detect(ns::Frame const&)::{lambda()#2}> [/build/prog]
    40 ( 2.00%)  ???:ns::Helper(int) [/lib/libx.so]
@@ -98,7 +101,8 @@ class InstructionSharesTest(unittest.TestCase):
         self.assertIn(f"2 calls of `{TRACK}`, 0.001 M instructions a call", out)
         self.assertIn("| fit | `ns::Fit(ns::Frame const&, double) [clone .constprop.0]` | "
                       "0.000 | 60.0% |", out)
-        # Detect's own count, not its lambda's (defined inside it) nor a handler of one.
+        # Detect's whole count, not a part's, nor its lambda's (defined inside it) nor a
+        # handler of one's.
         self.assertIn("| detect | `ns::Detect(ns::Frame const&)` | 0.000 | 30.0% |", out)
         self.assertIn("| helper | `ns::Helper(int)` | 0.000 | 4.0% |", out)
 
