@@ -11,6 +11,7 @@
 
 #include "core/rigid3.h"
 #include "testing/linear_pixel_model.h"
+#include "testing/unevaluable_pixel_model.h"
 
 namespace markerbench {
 namespace {
@@ -167,27 +168,11 @@ TEST(FitPixelsAtTheirNoise, MeasuresTheNoiseAtTheStartUnlessARoundBeforeDid) {
   EXPECT_NEAR(after_a_bad_round.noise_sigma(), 0.05, 0.005);
 }
 
-// A model that cannot be evaluated at the start (a disk whose image there is no ellipse).
-struct UnevaluableModel {
-  int Parameters() const { return 9; }
-  double MinSigmaPx() const { return 0.2; }
-  Eigen::VectorXd StartLevels() const { return UnitGainLevels(Parameters()); }
-  Eigen::VectorXd LevelsShownAtStart(std::vector<ModelledPixel>*) const { return StartLevels(); }
-  double noise_sigma() const { return 0.05; }
-  void set_noise_sigma(double) {}
-  double Evaluate(const Eigen::VectorXd&,
-                  Eigen::MatrixXd*,
-                  Eigen::VectorXd*,
-                  std::vector<ModelledPixel>*) const {
-    return INFINITY;
-  }
-};
-
-// Such a start gives no fit, for its callers to drop.
+// A start the model cannot evaluate gives no fit, for its callers to drop.
 TEST(FitPixelsAtTheirNoise, GivesNoFitWhereTheStartCannotBeEvaluated) {
   Rigid3 start;
   start.translation = Eigen::Vector3d(0.0, 0.0, 0.5);
-  UnevaluableModel model;
+  UnevaluablePixelModel model;
   EXPECT_FALSE(FitPixelsAtTheirNoise(model, start, 1.0, 15, FitRound{}).has_value());
   EXPECT_FALSE(FitPixelsAtTheirNoise(model, start, 1.0, 15, FitRound{false, true}).has_value());
 }

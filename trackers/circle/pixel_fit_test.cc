@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "testing/linear_pixel_model.h"
+#include "testing/unevaluable_pixel_model.h"
 
 namespace markerbench {
 namespace {
@@ -35,26 +36,11 @@ TEST(FitPixels, StopsAtTheMinimumOfAQuadraticCostWithoutASecondStep) {
   EXPECT_LT((theta - model.solution()).norm(), 1e-3 * model.solution().norm());
 }
 
-// A model that cannot be evaluated at the start (a disk whose image there is no ellipse): an
-// infinite cost, and no normal equations.
-struct UnevaluableModel {
-  int Parameters() const { return 9; }
-  double MinSigmaPx() const { return 0.2; }
-  double Evaluate(const Eigen::VectorXd&,
-                  Eigen::MatrixXd*,
-                  Eigen::VectorXd*,
-                  std::vector<ModelledPixel>*) const {
-    ++evaluations;
-    return INFINITY;
-  }
-  mutable int evaluations = 0;
-};
-
-// Such a start is a failed fit at the start, with its infinite cost, and no step is taken from
-// it (there were none to solve for: before, the step read JᵀJ of no size, and crashed on the
-// negative set under heavy blur).
+// A start the model cannot evaluate (a disk whose image there is no ellipse) is a failed fit
+// at the start, with its infinite cost, and no step is taken from it (there were none to solve
+// for: before, the step read JᵀJ of no size, and crashed on the negative set under heavy blur).
 TEST(FitPixels, GivesAFailedFitWhereTheStartCannotBeEvaluated) {
-  const UnevaluableModel model;
+  const UnevaluablePixelModel model;
   Rigid3 start;
   start.translation = Eigen::Vector3d(0.0, 0.0, 0.5);
   const PixelFit fit = FitPixels(model, start, 1.0, UnitGainLevels(9), 15);
