@@ -41,6 +41,10 @@ struct PixelProfileValue {
 inline double BlurSigmaOfEdges(double edge_sigma_px) {
   return std::sqrt(std::max(0.0, edge_sigma_px * edge_sigma_px - 1.0 / 12.0));
 }
+// Its inverse: the σ of the edges of an image of blur σ.
+inline double EdgeSigmaOfBlur(double blur_sigma_px) {
+  return std::sqrt(blur_sigma_px * blur_sigma_px + 1.0 / 12.0);
+}
 // Such a model's least σ: a sharp image takes it to 0; not quite, for z = -d/σ.
 constexpr double kMinBlurSigmaPx = 0.02;
 

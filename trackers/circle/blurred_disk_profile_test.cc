@@ -135,5 +135,15 @@ TEST(BlurredDiskProfile, ANanPointGivesNan) {
   }
 }
 
+// The blur of a model over pixels and the σ of its image's edges convert both ways: the edges
+// hold the pixel's area (variance 1/12) on top of the blur.
+TEST(BlurredDiskProfile, BlurAndEdgeSigmaRoundTrip) {
+  for (const double blur : {0.0, 0.02, 0.5, 3.0, 10.0}) {
+    const double edge = EdgeSigmaOfBlur(blur);
+    EXPECT_NEAR(edge * edge, blur * blur + 1.0 / 12.0, 1e-12) << blur;
+    EXPECT_NEAR(BlurSigmaOfEdges(edge), blur, 1e-9) << blur;
+  }
+}
+
 }  // namespace
 }  // namespace markerbench

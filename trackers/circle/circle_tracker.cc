@@ -96,6 +96,42 @@ bool MatchPrediction(const CircleDiagnostics& detected,
                                 max_error * EllipseFromConic(predicted_conics_px[0]).semi_minor;
 }
 
+// Tracking on the pixels (CircleTracker::TrackOnPixels): the most the fit's residuals may show
+// of noise against the last frame's fit (a fit that missed the marker's edges, moved beyond the
+// pixels' band, leaves their steps in the residuals), and the factor by which each channel's
+// gain may differ from the last frame's (a fit on paper without the marker, where it was, takes
+// its gains to 0 and shows the paper's noise alone).
+constexpr double kMaxNoiseGrowth = 1.5;
+constexpr double kMaxContrastChange = 2.0;
+// It is tried where the last frame's image lay within this many px of its prediction
+// (PredictionErrorPx): a fit from a prediction off by more than its pixels' band takes several
+// rounds. Measured: on an orbit (scenarios/sequences/orbit.yaml, σ² 0.02) the motion's
+// predictions were off by at most 0.16 px, and the fit took 2.7 evaluations; in the speed
+// benchmark's hand-held shake by 1-10 px, and it took 12-28, where full detection's fit takes
+// about 5 (results/speed.md).
+constexpr double kMaxLastPredictionErrorPx = 0.5;
+
+// How far the marker's image at a pose lies from a prediction of it: over its ellipses, the
+// largest shift of a centre plus the largest change of a semi-axis (px), a bound on how far
+// an edge point moved to first order.
+double PredictionErrorPx(const CircleGeometry& geometry,
+                         const Camera& camera,
+                         const Rigid3& cam_from_paper,
+                         const PredictedImage& predicted) {
+  const Eigen::Matrix3d H = camera.K() * RayFromPlane(cam_from_paper);
+  double error = 0.0;
+  for (size_t i = 0; i < geometry.centers.size(); ++i) {
+    const Ellipse at = EllipseFromConic(
+        CanonicalConic(ImageOfCircle<double>(H, geometry.centers[i], geometry.radii_m[i])));
+    const Ellipse p = EllipseFromConic(predicted.conics_px[i]);
+    error =
+        std::max(error,
+                 (at.center - p.center).norm() + std::max(std::abs(at.semi_major - p.semi_major),
+                                                          std::abs(at.semi_minor - p.semi_minor)));
+  }
+  return error;
+}
+
 // RMS of the edge points' PND distances to the circles projected from a pose (px).
 double EdgeRmsPx(const RefinementProblem& problem, const Rigid3& cam_from_paper) {
   const Eigen::Matrix3d H = problem.K * RayFromPlane(cam_from_paper);
@@ -290,6 +326,8 @@ TrackResult CircleTracker::FindInFrame(const Observation& observation) {
   if (!geometry) return CannotTrack("the circle tracker", marker, error);
   const Image8& image = *observation.image;
   const cv::Rect whole(0, 0, image.width, image.height);
+  const std::optional<double> last_prediction_error_px = prediction_error_px_;
+  prediction_error_px_.reset();
   if (options_.tracking && previous_cam_from_paper_) {
     // The pose predicted for this frame, and the marker's image there.
     const Camera& camera = *observation.camera;
@@ -299,20 +337,35 @@ TrackResult CircleTracker::FindInFrame(const Observation& observation) {
     const std::optional<PredictedImage> prediction =
         PredictImage(*geometry, camera, predicted_pose, options_.roi_margin, whole);
     if (prediction) {
-      // The predicted ellipses first, then a search of the region, then the whole image. A
-      // result counts only where its ellipses are the predicted ones: otherwise the prediction
-      // says nothing about this frame (a cut, a jump, unrelated images), and the frame
-      // gets exactly the full detection a first frame gets, never a lock on the old pose.
+      // The fit on the pixels from the prediction where the last pose came from one and the
+      // last prediction was good (kMaxLastPredictionErrorPx), then the predicted ellipses, then
+      // a search of the region, then the whole image. A result counts only where its ellipses
+      // are the predicted ones: otherwise the prediction says nothing about this frame (a cut,
+      // a jump, unrelated images), and the frame gets exactly the full detection a first frame
+      // gets, never a lock on the old pose.
+      const auto found_as_predicted = [&](const TrackResult& result) {
+        if (result.status != TrackStatus::kOk ||
+            !MatchPrediction(diagnostics_, *prediction, options_.max_prediction_error)) {
+          return false;
+        }
+        prediction_error_px_ =
+            PredictionErrorPx(*geometry, camera, *previous_cam_from_paper_, *prediction);
+        return true;
+      };
+      if (previous_on_pixels_ && last_prediction_error_px &&
+          *last_prediction_error_px <= kMaxLastPredictionErrorPx) {
+        const PixelFitFound last = *previous_on_pixels_;
+        const TrackResult result = TrackOnPixels(observation, *geometry, predicted_pose, last);
+        diagnostics_.used_tracking_region = true;
+        if (found_as_predicted(result)) return result;
+      }
       const std::vector<Eigen::Matrix3d>* const starts[] = {&prediction->conics_px, nullptr};
       for (const std::vector<Eigen::Matrix3d>* start : starts) {
         TrackResult result =
             TrackIn(observation, *geometry, prediction->region, start, &predicted_pose);
         diagnostics_.used_tracking_region = true;
         diagnostics_.used_predicted_ellipses = start != nullptr;
-        if (result.status == TrackStatus::kOk &&
-            MatchPrediction(diagnostics_, *prediction, options_.max_prediction_error)) {
-          return result;
-        }
+        if (found_as_predicted(result)) return result;
       }
     }
   }
@@ -328,6 +381,7 @@ TrackResult CircleTracker::TrackIn(const Observation& observation,
                                    const Rigid3* predicted_cam_from_paper) {
   diagnostics_ = CircleDiagnostics{};
   previous_cam_from_paper_.reset();
+  previous_on_pixels_.reset();
   TrackResult result;
   const Camera& camera = *observation.camera;
   const Eigen::Matrix3d K = camera.K();
@@ -490,11 +544,12 @@ TrackResult CircleTracker::TrackIn(const Observation& observation,
   // ellipses that do not fit (most of them clutter) it would cost its time for nothing.
   const double ellipses_rms_px = EdgeRmsPx(problem, cam_from_paper);
   diagnostics_.edge_rms_px = ellipses_rms_px;
+  PixelFitFound on_pixels;
   if (options_.refine && options_.photometric && ellipses_rms_px <= options_.max_edge_rms_px) {
     const std::vector<Rigid3> starts =
         PixelFitStarts(problem, geometry.roll_from_design, cam_from_paper, ellipses_rms_px);
     const std::optional<Rigid3> direct =
-        OnPixels(observation, geometry.roll_from_design, starts, paper_from_marker);
+        OnPixels(observation, geometry.roll_from_design, starts, paper_from_marker, &on_pixels);
     // Kept unless it leaves the edges (a fit gone astray: the pixels and the edge points
     // measure the same edges) by more than half a pixel RMS. For (e) and (f) the edge points
     // under blur are pulled by the design next to the rim (f's wedge meets it) by up to a
@@ -539,7 +594,99 @@ TrackResult CircleTracker::TrackIn(const Observation& observation,
         "ellipses rejected: edge residual " + NumberText(ellipses_rms_px) + " px > max_edge_rms_px";
     return result;
   }
+  result = Accept(observation, cam_from_paper, cam_from_marker);
+  if (result.status == TrackStatus::kOk && diagnostics_.photometric_used &&
+      !geometry.roll_from_design) {
+    previous_on_pixels_ = on_pixels;
+  }
+  return result;
+}
 
+TrackResult CircleTracker::TrackOnPixels(const Observation& observation,
+                                         const CircleGeometry& geometry,
+                                         const Rigid3& predicted_cam_from_paper,
+                                         const PixelFitFound& last) {
+  diagnostics_ = CircleDiagnostics{};
+  diagnostics_.tracked_on_pixels = true;
+  previous_cam_from_paper_.reset();
+  previous_on_pixels_.reset();
+  TrackResult result;
+  result.status = TrackStatus::kNotDetected;
+  const Camera& camera = *observation.camera;
+  const Rigid3 paper_from_marker = geometry.marker_from_paper.Inverse();
+  const std::optional<PhotometricResult> fit =
+      RefinePhotometric(*observation.image,
+                        camera,
+                        *observation.marker,
+                        predicted_cam_from_paper * paper_from_marker,
+                        last.edge_sigma_px,
+                        last.noise_sigma,
+                        options_.photometric_refinement);
+  if (!fit) {
+    result.message = "no fit on the pixels from the predicted pose";
+    return result;
+  }
+  const Rigid3& cam_from_marker = fit->fit.cam_from_marker;
+  const Rigid3 cam_from_paper = cam_from_marker * geometry.marker_from_paper;
+  const PixelFitFound found{EdgeSigmaOfBlur(fit->fit.sigma_px), fit->noise_sigma, fit->fit.levels};
+  diagnostics_.blur_sigma_px = diagnostics_.image_blur_sigma_px = found.edge_sigma_px;
+  diagnostics_.noise_sigma = found.noise_sigma;
+  diagnostics_.photometric_used = true;
+  diagnostics_.refined_cam_from_marker = cam_from_marker;
+  // The fitted pose's ellipses (for the check against the prediction), each whole in the frame:
+  // a marker leaving it has edges the fit does not see.
+  const Eigen::Matrix3d H = camera.K() * RayFromPlane(cam_from_paper);
+  const cv::Rect2d frame(0.0, 0.0, observation.image->width, observation.image->height);
+  bool within_frame = true;
+  for (size_t i = 0; i < geometry.centers.size(); ++i) {
+    diagnostics_.conics_px.push_back(
+        CanonicalConic(ImageOfCircle<double>(H, geometry.centers[i], geometry.radii_m[i])));
+    const cv::Rect2d box = EllipseBox(diagnostics_.conics_px.back());
+    within_frame = within_frame && (box & frame) == box;
+  }
+  diagnostics_.m1_px = (H * Eigen::Vector3d(geometry.Lx, 0.0, 1.0)).hnormalized();
+  if (!within_frame) {
+    result.message = "the marker's image at the fitted pose leaves the frame";
+    return result;
+  }
+  for (int gain = 1; gain < found.levels.size(); gain += 2) {
+    if (!(found.levels[gain] >= last.levels[gain] / kMaxContrastChange &&
+          found.levels[gain] <= last.levels[gain] * kMaxContrastChange)) {
+      result.message = "the fit's contrast " + NumberText(found.levels[gain]) + " in channel " +
+                       std::to_string(gain / 2) + ", the last frame's " +
+                       NumberText(last.levels[gain]);
+      return result;
+    }
+  }
+  if (!(found.noise_sigma <= kMaxNoiseGrowth * last.noise_sigma)) {
+    result.message = "the fit's residuals show noise " + NumberText(255.0 * found.noise_sigma) +
+                     " grey levels, the last frame's " + NumberText(255.0 * last.noise_sigma);
+    return result;
+  }
+  // The circle's other tilt, where apart, must lie beyond 2 ln Λ = max_other_tilt_log_ratio of
+  // the fit (its squared distance in standard errors, to second order): else which tilt is
+  // seen needs both fitted (full detection).
+  const Rigid3 other = OtherTilt(cam_from_paper);
+  if (other.rotation.col(2).dot(cam_from_paper.rotation.col(2)) <
+      std::cos(options_.min_branch_angle_rad)) {
+    const double standard_errors =
+        PoseMoveInStandardErrors(fit->fit, other * paper_from_marker, found.noise_sigma);
+    if (!(standard_errors * standard_errors >= options_.max_other_tilt_log_ratio)) {
+      result.message = "the circle's other tilt is " + NumberText(standard_errors) +
+                       " standard errors from the fit";
+      return result;
+    }
+  }
+  result = Accept(observation, cam_from_paper, cam_from_marker);
+  if (result.status == TrackStatus::kOk) previous_on_pixels_ = found;
+  return result;
+}
+
+TrackResult CircleTracker::Accept(const Observation& observation,
+                                  const Rigid3& cam_from_paper,
+                                  const Rigid3& cam_from_marker) {
+  TrackResult result;
+  const Camera& camera = *observation.camera;
   const AppearanceFit appearance = CheckPrintedAppearance(*observation.image,
                                                           camera,
                                                           *observation.marker,
@@ -554,7 +701,6 @@ TrackResult CircleTracker::TrackIn(const Observation& observation,
                      " standard errors) > max_appearance_misfit";
     return result;
   }
-
   result.status = TrackStatus::kOk;
   result.hypotheses = {cam_from_marker};
   for (const Eigen::Vector2d& k : observation.marker->keypoints) {
@@ -599,7 +745,8 @@ std::vector<Rigid3> CircleTracker::PixelFitStarts(const RefinementProblem& probl
 std::optional<Rigid3> CircleTracker::OnPixels(const Observation& observation,
                                               bool whole_design,
                                               const std::vector<Rigid3>& cam_from_paper_starts,
-                                              const Rigid3& paper_from_marker) const {
+                                              const Rigid3& paper_from_marker,
+                                              PixelFitFound* found) const {
   const Image8& image = *observation.image;
   const Camera& camera = *observation.camera;
   const MarkerSpec& marker = *observation.marker;
@@ -622,6 +769,7 @@ std::optional<Rigid3> CircleTracker::OnPixels(const Observation& observation,
                                   diagnostics_.noise_sigma,
                                   options_.photometric_refinement);
   if (!fit) return std::nullopt;
+  *found = {EdgeSigmaOfBlur(fit->fit.sigma_px), fit->noise_sigma, fit->fit.levels};
   return fit->fit.cam_from_marker;
 }
 

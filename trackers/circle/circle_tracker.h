@@ -3,8 +3,11 @@
 // (CircleDetector), l_inf and the analytic pose (SolveAnalytic), then Ceres LM (RefinePose);
 // for markers e and f the roll (and f's centre) from the design inside the circle
 // (RollFeature).
-// In tracking mode (the paper's step 5) the previous pose predicts the ellipses and only a
-// region around them is searched; a miss there, or ellipses that are not the predicted ones,
+// In tracking mode (the paper's step 5) the previous poses predict this frame's: where the last
+// pose came from the fit on the disks' pixels (a-d) and from a prediction that held (a smooth
+// motion), that fit runs again straight from this frame's prediction, without the detector;
+// otherwise, or where its result fails the checks of a detection, the predicted ellipses are
+// searched in a region around them; a miss there, or ellipses that are not the predicted ones,
 // fall back to full detection of the whole image.
 #pragma once
 
@@ -80,6 +83,9 @@ struct CircleTrackerOptions {
 struct CircleDiagnostics {
   bool used_tracking_region = false;
   bool used_predicted_ellipses = false;  // the result is one edge pass from the predicted ellipses
+  // The result is the fit on the pixels from the predicted pose (no detector; conics_px and m1_px
+  // are the fitted pose's image, edges empty).
+  bool tracked_on_pixels = false;
   std::vector<Eigen::Matrix3d> conics_px;           // fitted, canonical
   std::vector<std::vector<Eigen::Vector2d>> edges;  // per circle, bias-corrected
   std::vector<int> edge_passes;                     // per circle, run
@@ -105,6 +111,8 @@ class CircleTracker final : public Tracker {
   bool CanTrack(const MarkerSpec& marker) const override;
   void Reset() override {
     previous_cam_from_paper_.reset();
+    previous_on_pixels_.reset();
+    prediction_error_px_.reset();
     last_motion_.reset();
   }
   std::vector<std::pair<std::string, std::string>> Parameters() const override;
@@ -112,8 +120,29 @@ class CircleTracker final : public Tracker {
   const CircleDiagnostics& diagnostics() const { return diagnostics_; }
 
  private:
+  // What a fit on the disks' pixels found of the image: its blur, noise and levels.
+  struct PixelFitFound {
+    double edge_sigma_px = 0.0;  // the blur with the pixel's area, as edge points measure it
+    double noise_sigma = 0.0;    // 0-1
+    Eigen::VectorXd levels;      // offset and gain per channel (PixelFit::levels)
+  };
+
   // Tracking mode around the predicted pose first, then the whole image.
   TrackResult FindInFrame(const Observation& observation);
+  // The fit on the disks' pixels (a-d) from the predicted pose, at the last frame's blur and
+  // noise, with the checks of a detection that need no edge points: the marker's image within the
+  // frame, its contrast (each channel's gain) within kMaxContrastChange of the last frame's, the
+  // residuals' noise at most kMaxNoiseGrowth times the last frame's, the other tilt ruled out by
+  // the fit's information, and the printed design.
+  TrackResult TrackOnPixels(const Observation& observation,
+                            const CircleGeometry& geometry,
+                            const Rigid3& predicted_cam_from_paper,
+                            const PixelFitFound& last);
+  // The check of the printed design at a pose (CheckPrintedAppearance), and the result: found,
+  // and the pose kept for the next frame's prediction, or not detected.
+  TrackResult Accept(const Observation& observation,
+                     const Rigid3& cam_from_paper,
+                     const Rigid3& cam_from_marker);
   TrackResult TrackIn(const Observation& observation,
                       const CircleGeometry& geometry,
                       const cv::Rect& region,
@@ -128,13 +157,20 @@ class CircleTracker final : public Tracker {
   // The pose refined on the pixels from each start, the one that explains them best: around
   // the disks' edges (photometric_refinement.h), or (e, f) around every edge of the whole
   // design (design_refinement.h).
+  // With the disks' fit, what it found of the image (`found`).
   std::optional<Rigid3> OnPixels(const Observation& observation,
                                  bool whole_design,
                                  const std::vector<Rigid3>& cam_from_paper_starts,
-                                 const Rigid3& paper_from_marker) const;
+                                 const Rigid3& paper_from_marker,
+                                 PixelFitFound* found) const;
 
   CircleTrackerOptions options_;
   std::optional<Rigid3> previous_cam_from_paper_;
+  // Where that pose is the disks' fit on the pixels: what it found of the image.
+  std::optional<PixelFitFound> previous_on_pixels_;
+  // Where that pose was found from a prediction: how far its image lay from it
+  // (PredictionErrorPx).
+  std::optional<double> prediction_error_px_;
   std::optional<Rigid3> last_motion_;  // cam_previous_from_cam_before, both frames with a pose
   CircleDiagnostics diagnostics_;
 };

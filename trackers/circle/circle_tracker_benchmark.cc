@@ -1,7 +1,8 @@
 // circle tracker per-frame time on one thread (issue 3; results/speed.md): full detection +
 // analytic pose + refinement (with and without the refinement on the pixels), tracking mode
 // (the region predicted from the frames before: one with no history, two of a smooth hand-held
-// video), and two of their steps alone: the fit on the disks' pixels and the check of the
+// video; three of a steady glide, tracked on the pixels from the prediction), and two of their
+// steps alone: the fit on the disks' pixels and the check of the
 // printed design. circles_a with a 0.1 m equal-area footprint at 0.6 m, σ² = 0.02, the frames
 // of the other tracker benchmarks; at 1 m under blur σ 2 and 8 (the whole disks' model); and
 // full detection of markers (e) and (f) on the same poses (issue 22: their pose fitted on the
@@ -79,7 +80,7 @@ void TimeLastFramesOfVideos(benchmark::State& state,
                             const std::vector<std::vector<Image8>>& videos) {
   const Camera camera;
   CircleTracker tracker;
-  size_t i = 0, ok = 0, in_region = 0, from_prediction = 0;
+  size_t i = 0, ok = 0, in_region = 0, from_prediction = 0, on_pixels = 0;
   for (auto _ : state) {
     const size_t k = i++ % videos.front().size();
     state.PauseTiming();
@@ -89,12 +90,15 @@ void TimeLastFramesOfVideos(benchmark::State& state,
     ok += tracker.Track({&videos.back()[k], &camera, &marker}).status == TrackStatus::kOk;
     in_region += tracker.diagnostics().used_tracking_region;
     from_prediction += tracker.diagnostics().used_predicted_ellipses;
+    on_pixels += tracker.diagnostics().tracked_on_pixels;
   }
   state.counters["ok_fraction"] = static_cast<double>(ok) / static_cast<double>(i);
   state.counters["region_fraction"] = static_cast<double>(in_region) / static_cast<double>(i);
   // Found by the edge pass from the predicted ellipses (else by the search of the region).
   state.counters["predicted_fraction"] =
       static_cast<double>(from_prediction) / static_cast<double>(i);
+  // Found by the fit on the pixels from the predicted pose, without the detector.
+  state.counters["on_pixels_fraction"] = static_cast<double>(on_pixels) / static_cast<double>(i);
 }
 
 // Each frame followed by the next frame of a hand-held video with no history (the camera moved
@@ -121,19 +125,46 @@ std::function<Rigid3(int)> HandheldShakeMove(int frames) {
   };
 }
 
-// Three frames of that smooth hand-held video (new noise in each): the third timed, predicted
-// from the motion between the first two (`predict_motion`), as in a video.
-void BM_CircleTrackingModeHandheld(benchmark::State& state) {
+// The first `frames` frames of a video of circles_a (new noise in each) whose camera moves from
+// the first frame to frame j by move_to(j) (a move for each pose), timed on the last: predicted
+// from the frames before it, as in a video.
+void TimeLastFramesOfMotion(benchmark::State& state,
+                            int frames,
+                            const std::function<std::function<Rigid3(int)>(int)>& move_to) {
   cv::setNumThreads(1);
   const MarkerSpec marker = PaperMarker("circles_a");
   std::vector<std::vector<Image8>> videos;
-  for (int j = 0; j < 3; ++j) {
+  for (int j = 0; j < frames; ++j) {
     BenchmarkFrameOptions options;
-    options.camera_move = HandheldShakeMove(j);
+    options.camera_move = move_to(j);
     options.video_frame = static_cast<uint64_t>(j);
     videos.push_back(BenchmarkFrames(marker, 16, options));
   }
   TimeLastFramesOfVideos(state, marker, videos);
+}
+
+// Three frames of that smooth hand-held video: the third timed, predicted from the motion
+// between the first two (`predict_motion`).
+void BM_CircleTrackingModeHandheld(benchmark::State& state) {
+  TimeLastFramesOfMotion(state, 3, HandheldShakeMove);
+}
+
+// The camera's move over `frames` frames of a steady glide: each frame the same move as
+// RandomHandheldFrameMotion's for the pose (5 mm and 1°), a constant velocity.
+std::function<Rigid3(int)> SteadyGlideMove(int frames) {
+  return [frames](int i) {
+    const Rigid3 step = RandomHandheldFrameMotion(i);
+    Rigid3 move;
+    for (int k = 0; k < frames; ++k) move = step * move;
+    return move;
+  };
+}
+
+// Four frames of a steady glide: the fourth timed, predicted from the motion of the second and
+// third, where the third's image lay where its prediction put it, so tracked on the pixels from
+// the prediction, without the detector (as on a smooth video).
+void BM_CircleTrackingModeSteady(benchmark::State& state) {
+  TimeLastFramesOfMotion(state, 4, SteadyGlideMove);
 }
 
 // What `tracker` finds on each frame it finds the marker in (untimed): the frame, the pose, and
@@ -222,6 +253,7 @@ BENCHMARK_CAPTURE(BM_CircleDesignFullDetection, circle_f, std::string("circle_f"
     ->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_CircleTrackingMode)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_CircleTrackingModeHandheld)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_CircleTrackingModeSteady)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_CirclePixelFit)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_CircleAppearanceCheck)->Unit(benchmark::kMillisecond);
 
