@@ -29,6 +29,19 @@ cv::Rect2d EllipseBox(const Eigen::Matrix3d& C) {
   return {e.center.x() - hw, e.center.y() - hh, 2 * hw, 2 * hh};
 }
 
+// The marker's circles imaged at a pose (canonical conics, px).
+std::vector<Eigen::Matrix3d> CirclesImagedAt(const CircleGeometry& geometry,
+                                             const Camera& camera,
+                                             const Rigid3& cam_from_paper) {
+  const Eigen::Matrix3d H = camera.K() * RayFromPlane(cam_from_paper);
+  std::vector<Eigen::Matrix3d> conics_px;
+  for (size_t i = 0; i < geometry.centers.size(); ++i) {
+    conics_px.push_back(
+        CanonicalConic(ImageOfCircle<double>(H, geometry.centers[i], geometry.radii_m[i])));
+  }
+  return conics_px;
+}
+
 // The marker's image at a predicted pose: its ellipses, its point m1, and the region around
 // them (their box grown by `roi_margin` of its size and 10 px, within the image).
 struct PredictedImage {
@@ -44,16 +57,18 @@ std::optional<PredictedImage> PredictImage(const CircleGeometry& geometry,
                                            const Rigid3& cam_from_paper,
                                            double roi_margin,
                                            const cv::Rect& image) {
-  const Eigen::Matrix3d H = camera.K() * RayFromPlane(cam_from_paper);
-  PredictedImage predicted;
-  cv::Rect2d box;
   for (size_t i = 0; i < geometry.centers.size(); ++i) {
     const Eigen::Vector2d& c = geometry.centers[i];
     if (!((cam_from_paper * Eigen::Vector3d(c.x(), c.y(), 0.0)).z() > geometry.radii_m[i])) {
       return std::nullopt;
     }
-    predicted.conics_px.push_back(CanonicalConic(ImageOfCircle<double>(H, c, geometry.radii_m[i])));
-    const cv::Rect2d b = EllipseBox(predicted.conics_px.back());
+  }
+  const Eigen::Matrix3d H = camera.K() * RayFromPlane(cam_from_paper);
+  PredictedImage predicted;
+  predicted.conics_px = CirclesImagedAt(geometry, camera, cam_from_paper);
+  cv::Rect2d box;
+  for (size_t i = 0; i < predicted.conics_px.size(); ++i) {
+    const cv::Rect2d b = EllipseBox(predicted.conics_px[i]);
     box = i == 0 ? b : (box | b);
   }
   predicted.m1_px = (H * Eigen::Vector3d(geometry.Lx, 0.0, 1.0)).hnormalized();
@@ -118,11 +133,10 @@ double PredictionErrorPx(const CircleGeometry& geometry,
                          const Camera& camera,
                          const Rigid3& cam_from_paper,
                          const PredictedImage& predicted) {
-  const Eigen::Matrix3d H = camera.K() * RayFromPlane(cam_from_paper);
+  const std::vector<Eigen::Matrix3d> conics_px = CirclesImagedAt(geometry, camera, cam_from_paper);
   double error = 0.0;
-  for (size_t i = 0; i < geometry.centers.size(); ++i) {
-    const Ellipse at = EllipseFromConic(
-        CanonicalConic(ImageOfCircle<double>(H, geometry.centers[i], geometry.radii_m[i])));
+  for (size_t i = 0; i < conics_px.size(); ++i) {
+    const Ellipse at = EllipseFromConic(conics_px[i]);
     const Ellipse p = EllipseFromConic(predicted.conics_px[i]);
     error =
         std::max(error,
@@ -635,15 +649,14 @@ TrackResult CircleTracker::TrackOnPixels(const Observation& observation,
   diagnostics_.refined_cam_from_marker = cam_from_marker;
   // The fitted pose's ellipses (for the check against the prediction), each whole in the frame:
   // a marker leaving it has edges the fit does not see.
-  const Eigen::Matrix3d H = camera.K() * RayFromPlane(cam_from_paper);
+  diagnostics_.conics_px = CirclesImagedAt(geometry, camera, cam_from_paper);
   const cv::Rect2d frame(0.0, 0.0, observation.image->width, observation.image->height);
   bool within_frame = true;
-  for (size_t i = 0; i < geometry.centers.size(); ++i) {
-    diagnostics_.conics_px.push_back(
-        CanonicalConic(ImageOfCircle<double>(H, geometry.centers[i], geometry.radii_m[i])));
-    const cv::Rect2d box = EllipseBox(diagnostics_.conics_px.back());
+  for (const Eigen::Matrix3d& conic_px : diagnostics_.conics_px) {
+    const cv::Rect2d box = EllipseBox(conic_px);
     within_frame = within_frame && (box & frame) == box;
   }
+  const Eigen::Matrix3d H = camera.K() * RayFromPlane(cam_from_paper);
   diagnostics_.m1_px = (H * Eigen::Vector3d(geometry.Lx, 0.0, 1.0)).hnormalized();
   if (!within_frame) {
     result.message = "the marker's image at the fitted pose leaves the frame";

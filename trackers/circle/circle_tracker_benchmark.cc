@@ -2,11 +2,11 @@
 // analytic pose + refinement (with and without the refinement on the pixels), tracking mode
 // (the region predicted from the frames before: one with no history, two of a smooth hand-held
 // video; three of a steady glide, tracked on the pixels from the prediction), and two of their
-// steps alone: the fit on the disks' pixels and the check of the
-// printed design. circles_a with a 0.1 m equal-area footprint at 0.6 m, σ² = 0.02, the frames
-// of the other tracker benchmarks; at 1 m under blur σ 2 and 8 (the whole disks' model); and
-// full detection of markers (e) and (f) on the same poses (issue 22: their pose fitted on the
-// pixels of the whole design). Run from the project root.
+// steps alone: the fit on the disks' pixels and the check of the printed design. circles_a with
+// a 0.1 m equal-area footprint at 0.6 m, σ² = 0.02, the frames of the other tracker benchmarks;
+// at 1 m under blur σ 2 and 8 (the whole disks' model); and full detection of markers (e) and
+// (f) on the same poses (issue 22: their pose fitted on the pixels of the whole design). Run from
+// the project root.
 #include <benchmark/benchmark.h>
 
 #include <algorithm>
