@@ -7,6 +7,7 @@
 
 #include <cstdint>
 #include <functional>
+#include <limits>
 #include <optional>
 
 #include "core/binomial_tail.h"
@@ -15,6 +16,7 @@
 #include "renderer/test_scenes.h"
 #include "testing/square_tracker_testing.h"
 #include "trackers/circle/circle_geometry.h"
+#include "trackers/circle/design_refinement.h"
 #include "trackers/circle/photometric_refinement.h"
 #include "trackers/tracker.h"
 
@@ -57,6 +59,25 @@ inline FitFromTruthAndMirror PixelFitFromTruthAndMirror(const Camera& camera,
              const Image8& image, const Rigid3& truth) -> std::optional<Rigid3> {
     const std::optional<PhotometricResult> fit = RefinePhotometricFromStarts(
         image, camera, marker, {truth, OtherTilt(truth)}, edge_sigma_px, noise_sigma);
+    if (!fit) return std::nullopt;
+    return fit->fit.cam_from_marker;
+  };
+}
+
+// That fit for the designs of e and f: the likelier of the fits on their design's pixels
+// (RefineDesignFromStarts) from the truth and from OtherTilt(truth), each fit to its end, started
+// at the edges' σ `edge_sigma_px` and noise σ `noise_sigma` (0-1). `camera` and `marker` must
+// outlive it.
+inline FitFromTruthAndMirror DesignFitFromTruthAndMirror(const Camera& camera,
+                                                         const MarkerSpec& marker,
+                                                         double edge_sigma_px,
+                                                         double noise_sigma) {
+  DesignRefinementOptions to_the_end;
+  to_the_end.max_first_round_log_ratio = std::numeric_limits<double>::infinity();
+  return [&camera, &marker, edge_sigma_px, noise_sigma, to_the_end](
+             const Image8& image, const Rigid3& truth) -> std::optional<Rigid3> {
+    const std::optional<DesignRefinement> fit = RefineDesignFromStarts(
+        image, camera, marker, {truth, OtherTilt(truth)}, edge_sigma_px, noise_sigma, to_the_end);
     if (!fit) return std::nullopt;
     return fit->fit.cam_from_marker;
   };

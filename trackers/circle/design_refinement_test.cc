@@ -182,21 +182,6 @@ TEST(DesignRefinement, KeepsTheTrueTiltWithoutNoise) {
   }
 }
 
-// The likelier of the design's fits from the true pose and from its mirror (tilt_choice.h),
-// started at blur `sigma_px` and the frames' noise, each fit to its end.
-std::function<std::optional<Rigid3>(const Image8&, const Rigid3&)> FromTruthAndMirror(
-    const Camera& camera, const MarkerSpec& marker, const TiltedFrames& views, double sigma_px) {
-  const double noise_sigma = std::sqrt(views.noise_var);
-  DesignRefinementOptions to_the_end;
-  to_the_end.max_first_round_log_ratio = std::numeric_limits<double>::infinity();
-  return [&camera, &marker, sigma_px, noise_sigma, to_the_end](const Image8& image,
-                                                               const Rigid3& truth) {
-    const std::optional<DesignRefinement> fit = RefineDesignFromStarts(
-        image, camera, marker, {truth, OtherTilt(truth)}, sigma_px, noise_sigma, to_the_end);
-    return fit ? std::optional<Rigid3>(fit->fit.cam_from_marker) : std::nullopt;
-  };
-}
-
 // Near fronto-parallel and far, or blurred, f's design tells its two tilts apart only weakly: at
 // 1.5 m (the circle 40 px across) and 3-8° of tilt, the best fit at the mirrored pose differs from
 // the true pose's image by about one noise σ in all (0.7-1.6 σ on noise-free renders), and so at 1
@@ -231,8 +216,12 @@ TEST(DesignRefinement, ChoosesTheTiltAsOftenAsFromTheTruePoseAndItsMirror) {
     views.pose_seed = c.pose_seed;
     views.first_noise_seed = 200;
     views.frames = 60;
-    const TiltChoiceCounts counts = CountTiltChoices(
-        marker, tracker, views, FromTruthAndMirror(camera, marker, views, std::max(c.blur, 0.3)));
+    const TiltChoiceCounts counts =
+        CountTiltChoices(marker,
+                         tracker,
+                         views,
+                         DesignFitFromTruthAndMirror(
+                             camera, marker, std::max(c.blur, 0.3), std::sqrt(views.noise_var)));
     // The premise: even the likelier of the two fits keeps the mirror on some frames.
     EXPECT_GE(counts.from_truth_wrong, 2);
     // Two tests, so each at 0.05/2 (Bonferroni), as the far-away test below.
@@ -271,8 +260,11 @@ TEST(DesignRefinement, FarAwayChoosesTheTiltAsOftenAsFromTheTruePoseAndItsMirror
     views.frames = 100;
     views.pose_seed = 32;
     views.first_noise_seed = 500;
-    const TiltChoiceCounts counts =
-        CountTiltChoices(marker, tracker, views, FromTruthAndMirror(camera, marker, views, 0.3));
+    const TiltChoiceCounts counts = CountTiltChoices(
+        marker,
+        tracker,
+        views,
+        DesignFitFromTruthAndMirror(camera, marker, 0.3, std::sqrt(views.noise_var)));
     // The premise: the likelier of the two fits is often the mirror.
     EXPECT_GE(counts.from_truth_wrong, views.frames / 10);
     EXPECT_GT(counts.OursWrongMoreOftenP(), 0.05 / cases.size())
