@@ -366,24 +366,29 @@ TrackResult CircleTracker::FindInFrame(const Observation& observation) {
             PredictionErrorPx(*geometry, camera, *previous_cam_from_paper_, *prediction);
         return true;
       };
-      if (previous_on_pixels_ && last_prediction_error_px &&
+      const std::optional<PixelFitFound> last_on_pixels = previous_on_pixels_;
+      if (last_on_pixels && last_prediction_error_px &&
           *last_prediction_error_px <= kMaxLastPredictionErrorPx) {
-        const PixelFitFound last = *previous_on_pixels_;
-        const TrackResult result = TrackOnPixels(observation, *geometry, predicted_pose, last);
+        const TrackResult result =
+            TrackOnPixels(observation, *geometry, predicted_pose, *last_on_pixels);
         diagnostics_.used_tracking_region = true;
         if (found_as_predicted(result)) return result;
       }
       const std::vector<Eigen::Matrix3d>* const starts[] = {&prediction->conics_px, nullptr};
       for (const std::vector<Eigen::Matrix3d>* start : starts) {
-        TrackResult result =
-            TrackIn(observation, *geometry, prediction->region, start, &predicted_pose);
+        TrackResult result = TrackIn(observation,
+                                     *geometry,
+                                     prediction->region,
+                                     start,
+                                     &predicted_pose,
+                                     last_on_pixels ? &*last_on_pixels : nullptr);
         diagnostics_.used_tracking_region = true;
         diagnostics_.used_predicted_ellipses = start != nullptr;
         if (found_as_predicted(result)) return result;
       }
     }
   }
-  TrackResult result = TrackIn(observation, *geometry, whole, nullptr, nullptr);
+  TrackResult result = TrackIn(observation, *geometry, whole, nullptr, nullptr, nullptr);
   diagnostics_.used_tracking_region = false;
   return result;
 }
@@ -392,7 +397,8 @@ TrackResult CircleTracker::TrackIn(const Observation& observation,
                                    const CircleGeometry& geometry,
                                    const cv::Rect& region,
                                    const std::vector<Eigen::Matrix3d>* predicted_conics_px,
-                                   const Rigid3* predicted_cam_from_paper) {
+                                   const Rigid3* predicted_cam_from_paper,
+                                   const PixelFitFound* last_on_pixels) {
   diagnostics_ = CircleDiagnostics{};
   previous_cam_from_paper_.reset();
   previous_on_pixels_.reset();
@@ -562,8 +568,12 @@ TrackResult CircleTracker::TrackIn(const Observation& observation,
   if (options_.refine && options_.photometric && ellipses_rms_px <= options_.max_edge_rms_px) {
     const std::vector<Rigid3> starts =
         PixelFitStarts(problem, geometry.roll_from_design, cam_from_paper, ellipses_rms_px);
-    const std::optional<Rigid3> direct =
-        OnPixels(observation, geometry.roll_from_design, starts, paper_from_marker, &on_pixels);
+    const std::optional<Rigid3> direct = OnPixels(observation,
+                                                  geometry.roll_from_design,
+                                                  starts,
+                                                  paper_from_marker,
+                                                  last_on_pixels,
+                                                  &on_pixels);
     // Kept unless it leaves the edges (a fit gone astray: the pixels and the edge points
     // measure the same edges) by more than half a pixel RMS. For (e) and (f) the edge points
     // under blur are pulled by the design next to the rim (f's wedge meets it) by up to a
@@ -635,7 +645,8 @@ TrackResult CircleTracker::TrackOnPixels(const Observation& observation,
                         predicted_cam_from_paper * paper_from_marker,
                         last.edge_sigma_px,
                         last.noise_sigma,
-                        options_.photometric_refinement);
+                        options_.photometric_refinement,
+                        last.levels);
   if (!fit) {
     result.message = "no fit on the pixels from the predicted pose";
     return result;
@@ -759,6 +770,7 @@ std::optional<Rigid3> CircleTracker::OnPixels(const Observation& observation,
                                               bool whole_design,
                                               const std::vector<Rigid3>& cam_from_paper_starts,
                                               const Rigid3& paper_from_marker,
+                                              const PixelFitFound* last,
                                               PixelFitFound* found) const {
   const Image8& image = *observation.image;
   const Camera& camera = *observation.camera;
@@ -773,14 +785,19 @@ std::optional<Rigid3> CircleTracker::OnPixels(const Observation& observation,
     if (!fit) return std::nullopt;
     return fit->fit.cam_from_marker;
   }
+  // A tracked frame's fit starts from the levels and noise the last one found.
+  const double noise_sigma = last ? last->noise_sigma : diagnostics_.noise_sigma;
+  std::optional<Eigen::VectorXd> levels;
+  if (last) levels = last->levels;
   const std::optional<PhotometricResult> fit =
       RefinePhotometricFromStarts(image,
                                   camera,
                                   marker,
                                   starts,
                                   sigma_px,
-                                  diagnostics_.noise_sigma,
-                                  options_.photometric_refinement);
+                                  noise_sigma,
+                                  options_.photometric_refinement,
+                                  levels);
   if (!fit) return std::nullopt;
   *found = {EdgeSigmaOfBlur(fit->fit.sigma_px), fit->noise_sigma, fit->fit.levels};
   return fit->fit.cam_from_marker;

@@ -129,11 +129,11 @@ class CircleTracker final : public Tracker {
 
   // Tracking mode around the predicted pose first, then the whole image.
   TrackResult FindInFrame(const Observation& observation);
-  // The fit on the disks' pixels (a-d) from the predicted pose, at the last frame's blur and
-  // noise, with the checks of a detection that need no edge points: the marker's image within the
-  // frame, its contrast (each channel's gain) within kMaxContrastChange of the last frame's, the
-  // residuals' noise at most kMaxNoiseGrowth times the last frame's, the other tilt ruled out by
-  // the fit's information, and the printed design.
+  // The fit on the disks' pixels (a-d) from the predicted pose, at the last frame's blur, noise
+  // and levels, with the checks of a detection that need no edge points: the marker's image within
+  // the frame, its contrast (each channel's gain) within kMaxContrastChange of the last frame's,
+  // the residuals' noise at most kMaxNoiseGrowth times the last frame's, the other tilt ruled out
+  // by the fit's information, and the printed design.
   TrackResult TrackOnPixels(const Observation& observation,
                             const CircleGeometry& geometry,
                             const Rigid3& predicted_cam_from_paper,
@@ -143,11 +143,15 @@ class CircleTracker final : public Tracker {
   TrackResult Accept(const Observation& observation,
                      const Rigid3& cam_from_paper,
                      const Rigid3& cam_from_marker);
+  // The detection in `region` (from the predicted ellipses where given); the fit on the disks'
+  // pixels there starts from the levels and noise the last frame's found (`last_on_pixels`)
+  // where given.
   TrackResult TrackIn(const Observation& observation,
                       const CircleGeometry& geometry,
                       const cv::Rect& region,
                       const std::vector<Eigen::Matrix3d>* predicted_conics_px,
-                      const Rigid3* predicted_cam_from_paper);
+                      const Rigid3* predicted_cam_from_paper,
+                      const PixelFitFound* last_on_pixels);
   // Where the fit on the pixels starts: the refined pose (`cam_from_paper`, whose edge
   // residual is `edge_rms_px`), and the circle's other tilt where it may be the one seen.
   std::vector<Rigid3> PixelFitStarts(const RefinementProblem& problem,
@@ -157,11 +161,13 @@ class CircleTracker final : public Tracker {
   // The pose refined on the pixels from each start, the one that explains them best: around
   // the disks' edges (photometric_refinement.h), or (e, f) around every edge of the whole
   // design (design_refinement.h).
-  // With the disks' fit, what it found of the image (`found`).
+  // With the disks' fit, what it found of the image (`found`); it starts from the levels and
+  // noise of `last` where given.
   std::optional<Rigid3> OnPixels(const Observation& observation,
                                  bool whole_design,
                                  const std::vector<Rigid3>& cam_from_paper_starts,
                                  const Rigid3& paper_from_marker,
+                                 const PixelFitFound* last,
                                  PixelFitFound* found) const;
 
   CircleTrackerOptions options_;

@@ -93,8 +93,9 @@ constexpr int kMaxNoiseRefits = 4;
 // residuals show one more than 10 % off (kMaxNoiseRefits). A global estimate on an image of
 // clipped white paper puts the noise far too low (the detector's: 0.06 for a true 0.14). A round
 // that follows another starts from the noise that one showed at its result, which the model has,
-// and is not measured at the start. nullopt where a fit fails (a start the model cannot
-// evaluate: FitPixels' cost not finite).
+// and is not measured at the start; nor is a first round given `start_levels` (a tracked
+// frame's last levels, the model at the noise that frame showed): it starts from them. nullopt
+// where a fit fails (a start the model cannot evaluate: FitPixels' cost not finite).
 //
 // Measured at the levels of a white paper and a black ink (offset 0, gain 1), the noise at the
 // start was 1.06-1.13× what the result showed on the first frames of the circle tracker's speed
@@ -106,7 +107,8 @@ std::optional<PixelFit> FitPixelsAtTheirNoise(Model& model,
                                               const Rigid3& cam_from_marker,
                                               double sigma_px,
                                               int max_iterations,
-                                              const FitRound& round) {
+                                              const FitRound& round,
+                                              const Eigen::VectorXd* start_levels = nullptr) {
   // Whether the noise the pixels show is more than 10 % off the model's; the model then
   // takes it.
   const auto takes_the_noise_shown = [&](const std::vector<ModelledPixel>& modelled) {
@@ -118,7 +120,9 @@ std::optional<PixelFit> FitPixelsAtTheirNoise(Model& model,
   const double function_tolerance = round.function_tolerance();
   std::vector<ModelledPixel> modelled;
   Eigen::VectorXd levels = model.StartLevels();
-  if (!round.follows_another) {
+  if (!round.follows_another && start_levels && start_levels->size() == levels.size()) {
+    levels = *start_levels;
+  } else if (!round.follows_another) {
     model.Evaluate(
         PixelFitParameters(cam_from_marker, sigma_px, levels), nullptr, nullptr, &modelled);
     levels = model.LevelsShownAtStart(&modelled);

@@ -168,6 +168,30 @@ TEST(FitPixelsAtTheirNoise, MeasuresTheNoiseAtTheStartUnlessARoundBeforeDid) {
   EXPECT_NEAR(after_a_bad_round.noise_sigma(), 0.05, 0.005);
 }
 
+// A first round given the levels to start from (a tracked frame's last) starts from them at the
+// noise the model has, and lists no pixels at the start; levels of another size are not the
+// model's, and it measures its own there.
+TEST(FitPixelsAtTheirNoise, StartsFromTheLevelsGivenWithoutMeasuringThem) {
+  Rigid3 start;
+  start.translation = Eigen::Vector3d(0.0, 0.0, 0.5);
+  Eigen::VectorXd levels(2);
+  levels << 0.01, 0.98;
+  LinearPixelModel tracked(kNoisyPixels, 0.05);
+  const std::optional<PixelFit> at_start =
+      FitPixelsAtTheirNoise(tracked, start, 1.0, 0, FitRound{}, &levels);
+  ASSERT_TRUE(at_start.has_value());
+  EXPECT_EQ(at_start->levels, levels);
+  EXPECT_EQ(tracked.evaluations_without_normal_equations(), 0);
+
+  const Eigen::VectorXd other_size = Eigen::VectorXd::Zero(4);
+  LinearPixelModel other(kNoisyPixels, 0.05);
+  const std::optional<PixelFit> measured =
+      FitPixelsAtTheirNoise(other, start, 1.0, 0, FitRound{}, &other_size);
+  ASSERT_TRUE(measured.has_value());
+  EXPECT_EQ(measured->levels, other.StartLevels());
+  EXPECT_EQ(other.evaluations_without_normal_equations(), 1);
+}
+
 // A start the model cannot evaluate gives no fit, for its callers to drop.
 TEST(FitPixelsAtTheirNoise, GivesNoFitWhereTheStartCannotBeEvaluated) {
   Rigid3 start;

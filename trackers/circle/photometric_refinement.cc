@@ -654,7 +654,8 @@ std::optional<ModelledPixels> PixelsAt(const Image8& image,
 }
 
 // One solve on the pixels near the edges at `cam_from_marker`, each tied to its edges' points,
-// at the noise they show, as `round` of a fit in rounds (pixel_fit.h).
+// at the noise they show, as `round` of a fit in rounds (pixel_fit.h); a first round from
+// `start_levels` if given (FitPixelsAtTheirNoise).
 std::optional<PhotometricResult> RefineOnce(const Image8& image,
                                             const Camera& camera,
                                             const MarkerSpec& marker,
@@ -662,7 +663,8 @@ std::optional<PhotometricResult> RefineOnce(const Image8& image,
                                             double sigma_px,
                                             double noise_sigma,
                                             const FitRound& round,
-                                            const PhotometricOptions& options) {
+                                            const PhotometricOptions& options,
+                                            const Eigen::VectorXd* start_levels) {
   PhotometricOptions round_options = options;
   if (round.first_of_several) round_options.band_sigmas = options.first_round_band_sigmas;
   const std::optional<ModelledPixels> at =
@@ -674,8 +676,8 @@ std::optional<PhotometricResult> RefineOnce(const Image8& image,
                    image.channels,
                    ModelNoiseSigma(noise_sigma),
                    options.chords_below_noise);
-  const std::optional<PixelFit> fit =
-      FitPixelsAtTheirNoise(model, cam_from_marker, at->sigma_px, options.max_iterations, round);
+  const std::optional<PixelFit> fit = FitPixelsAtTheirNoise(
+      model, cam_from_marker, at->sigma_px, options.max_iterations, round, start_levels);
   if (!fit) return std::nullopt;
   return PhotometricResult{*fit, static_cast<int>(at->pixels.pixels.size()), model.noise_sigma()};
 }
@@ -716,7 +718,8 @@ std::optional<PhotometricResult> RefinePhotometric(const Image8& image,
                                                    const Rigid3& cam_from_marker,
                                                    double sigma_px,
                                                    double noise_sigma,
-                                                   const PhotometricOptions& options) {
+                                                   const PhotometricOptions& options,
+                                                   const std::optional<Eigen::VectorXd>& levels) {
   // Whether a round moved the pose by less than `standard_errors` from its start.
   const auto moved_less_than = [](double standard_errors) {
     return [standard_errors](const Rigid3& start, const PhotometricResult& round) {
@@ -733,23 +736,34 @@ std::optional<PhotometricResult> RefinePhotometric(const Image8& image,
       noise_sigma,
       options.max_rounds,
       [&](const Rigid3& start, double sigma, double noise, const FitRound& round) {
-        return RefineOnce(image, camera, marker, start, sigma, noise, round, options);
+        return RefineOnce(image,
+                          camera,
+                          marker,
+                          start,
+                          sigma,
+                          noise,
+                          round,
+                          options,
+                          levels ? &*levels : nullptr);
       },
       first_settles,
       moved_less_than(options.later_round_settles_within_standard_errors));
 }
 
-std::optional<PhotometricResult> RefinePhotometricFromStarts(const Image8& image,
-                                                             const Camera& camera,
-                                                             const MarkerSpec& marker,
-                                                             const std::vector<Rigid3>& starts,
-                                                             double sigma_px,
-                                                             double noise_sigma,
-                                                             const PhotometricOptions& options) {
+std::optional<PhotometricResult> RefinePhotometricFromStarts(
+    const Image8& image,
+    const Camera& camera,
+    const MarkerSpec& marker,
+    const std::vector<Rigid3>& starts,
+    double sigma_px,
+    double noise_sigma,
+    const PhotometricOptions& options,
+    const std::optional<Eigen::VectorXd>& levels) {
   return BestFitFromStarts<PhotometricResult>(
       starts,
       [&](const Rigid3& start, const std::vector<PhotometricResult>&) {
-        return RefinePhotometric(image, camera, marker, start, sigma_px, noise_sigma, options);
+        return RefinePhotometric(
+            image, camera, marker, start, sigma_px, noise_sigma, options, levels);
       },
       [&](const std::vector<PhotometricResult>& fits) {
         return BestPhotometricFit(image, camera, marker, fits, options);

@@ -112,20 +112,26 @@ struct PhotometricResult {
 
 // `sigma_px`: the edges' σ at the start (the blur with the pixel's area, as edge points measure
 // it; the fit's, PixelFit::sigma_px, is the blur alone). `noise_sigma`: a first estimate of the
-// image's, 0-1 units. nullopt for designs with layers other than disks, blur beyond
-// max_blur_per_radius, or too few pixels.
-std::optional<PhotometricResult> RefinePhotometric(const Image8& image,
-                                                   const Camera& camera,
-                                                   const MarkerSpec& marker,
-                                                   const Rigid3& cam_from_marker,
-                                                   double sigma_px,
-                                                   double noise_sigma,
-                                                   const PhotometricOptions& options = {});
+// image's, 0-1 units. `levels`: the offset and gain per channel to start from where they are
+// known (a tracked frame's last, `noise_sigma` the noise that frame showed): the fit then lists
+// no pixels at the start to fit them and measure the noise (one evaluation of the model less).
+// nullopt for designs with layers other than disks, blur beyond max_blur_per_radius, or too few
+// pixels.
+std::optional<PhotometricResult> RefinePhotometric(
+    const Image8& image,
+    const Camera& camera,
+    const MarkerSpec& marker,
+    const Rigid3& cam_from_marker,
+    double sigma_px,
+    double noise_sigma,
+    const PhotometricOptions& options = {},
+    const std::optional<Eigen::VectorXd>& levels = std::nullopt);
 
 // The refinement from each start (RefinePhotometric) that explains the image best (the least
 // cost, the clipped pixels' likelihood, over the pixels near the edges at each fit in turn, each
 // fit judged on the same pixels with its own σ and levels: for the circle's two tilts, whose
-// images nearly coincide far away or under heavy blur); nullopt when no start gives one.
+// images nearly coincide far away or under heavy blur); nullopt when no start gives one. Each
+// from `levels` where given, as RefinePhotometric's.
 std::optional<PhotometricResult> RefinePhotometricFromStarts(
     const Image8& image,
     const Camera& camera,
@@ -133,7 +139,8 @@ std::optional<PhotometricResult> RefinePhotometricFromStarts(
     const std::vector<Rigid3>& starts,
     double sigma_px,
     double noise_sigma,
-    const PhotometricOptions& options = {});
+    const PhotometricOptions& options = {},
+    const std::optional<Eigen::VectorXd>& levels = std::nullopt);
 
 // The model's cost and normal equations (pixel_fit.h) at θ = (angle-axis, translation, σ,
 // then offset and gain per channel), on the pixels chosen and tied at `cam_from_marker` for
