@@ -120,13 +120,15 @@ std::optional<PixelFit> FitPixelsAtTheirNoise(Model& model,
   const double function_tolerance = round.function_tolerance();
   std::vector<ModelledPixel> modelled;
   Eigen::VectorXd levels = model.StartLevels();
-  if (!round.follows_another && start_levels && start_levels->size() == levels.size()) {
-    levels = *start_levels;
-  } else if (!round.follows_another) {
-    model.Evaluate(
-        PixelFitParameters(cam_from_marker, sigma_px, levels), nullptr, nullptr, &modelled);
-    levels = model.LevelsShownAtStart(&modelled);
-    takes_the_noise_shown(modelled);
+  if (!round.follows_another) {
+    if (start_levels && start_levels->size() == levels.size()) {
+      levels = *start_levels;
+    } else {
+      model.Evaluate(
+          PixelFitParameters(cam_from_marker, sigma_px, levels), nullptr, nullptr, &modelled);
+      levels = model.LevelsShownAtStart(&modelled);
+      takes_the_noise_shown(modelled);
+    }
   }
   PixelFit fit = FitPixels(
       model, cam_from_marker, sigma_px, levels, max_iterations, function_tolerance, &modelled);
