@@ -1,0 +1,134 @@
+// Nothing of a sweep is lost: a run killed with kill -9, torn mid-row or out of disk resumes to
+// the bytes of an uninterrupted one; a folder another run is writing or another scenario wrote
+// is refused; --overwrite leaves nothing of the run before.
+
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+#include <signal.h>
+
+#include <chrono>
+#include <filesystem>
+#include <fstream>
+#include <thread>
+
+#include "bench/cli/sweep_cli_test.h"
+
+namespace markerbench {
+namespace {
+
+using ::testing::HasSubstr;
+namespace fs = std::filesystem;
+
+TEST_F(SweepCliTest, KilledRunResumesToTheSameFile) {
+  const std::string scenario = Scenario("resume", 30);
+  const std::string reference = (work_ / "reference").string(),
+                    killed = (work_ / "killed").string();
+  ASSERT_EQ(Run({"sweep", scenario, "--out", reference, "--threads", "2"}).status, 0);
+  const size_t total = Lines(reference + "/resume/frames.csv");
+
+  const pid_t pid = Start({"sweep", scenario, "--out", killed, "--threads", "2"});
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(60);
+  while (Lines(killed + "/resume/frames.csv") < total / 4 &&
+         std::chrono::steady_clock::now() < deadline) {
+    std::this_thread::sleep_for(std::chrono::milliseconds(5));
+  }
+  ASSERT_EQ(::kill(pid, SIGKILL), 0);
+  ASSERT_EQ(Wait(pid).status, 128 + SIGKILL);
+  const size_t kept = Lines(killed + "/resume/frames.csv");
+  ASSERT_GE(kept, total / 4);
+  ASSERT_LT(kept, total) << "the run finished before it was killed";
+  // What the killed run kept is a prefix of the uninterrupted file.
+  const std::string prefix = Read(killed + "/resume/frames.csv");
+  EXPECT_EQ(Read(reference + "/resume/frames.csv").compare(0, prefix.size(), prefix), 0);
+
+  // Without --resume the folder is refused; with it the run completes to the same bytes.
+  const Finished refused = Run({"sweep", scenario, "--out", killed});
+  EXPECT_EQ(refused.status, 2);
+  EXPECT_THAT(refused.error, HasSubstr("pass --resume"));
+  EXPECT_EQ(Lines(killed + "/resume/frames.csv"), kept);
+  ASSERT_EQ(Run({"sweep", scenario, "--out", killed, "--threads", "2", "--resume"}).status, 0);
+  EXPECT_EQ(Read(killed + "/resume/frames.csv"), Read(reference + "/resume/frames.csv"));
+  EXPECT_EQ(Lines(killed + "/resume/timing.csv"), total);
+}
+
+// A full disk, made by a file size limit (RLIMIT_FSIZE, SIGXFSZ ignored so that writes fail
+// with EFBIG): exit 1 naming the file and the error, run.json intact, and once there is room
+// again --resume completes to the bytes of an uninterrupted run.
+TEST_F(SweepCliTest, AFullDiskIsExitOneAndTheRunStaysResumable) {
+  const std::string scenario = Scenario("full", 10);
+  const std::string reference = (work_ / "reference").string(), full = (work_ / "full").string();
+  ASSERT_EQ(Run({"sweep", scenario, "--out", reference, "--threads", "2"}).status, 0);
+  const uintmax_t size = fs::file_size(reference + "/full/frames.csv");
+  // bash's ulimit -f counts 1024-byte blocks; the limit falls in the middle of frames.csv.
+  const std::string limit = std::to_string(size / 2 / 1024);
+  const std::string limited = "ulimit -f " + limit + "; trap '' XFSZ; exec \"$0\" \"$@\"";
+  for (int attempt = 0; attempt < 2; ++attempt) {
+    std::vector<std::string> args = {
+        "-c", limited, MARKERBENCH_BINARY, "sweep", scenario, "--out", full, "--threads", "2"};
+    if (attempt == 1) args.push_back("--resume");
+    const Finished filled = RunProgram("/bin/bash", args);
+    EXPECT_EQ(filled.status, 1) << filled.error;
+    EXPECT_THAT(filled.error, HasSubstr("full/frames.csv: write failed: File too large"));
+    EXPECT_THAT(Read(full + "/full/run.json"), HasSubstr("\"fingerprint\""));
+    EXPECT_LT(fs::file_size(full + "/full/frames.csv"), size);
+  }
+  ASSERT_EQ(Run({"sweep", scenario, "--out", full, "--threads", "2", "--resume"}).status, 0);
+  EXPECT_EQ(Read(full + "/full/frames.csv"), Read(reference + "/full/frames.csv"));
+  EXPECT_EQ(Lines(full + "/full/timing.csv"), Lines(reference + "/full/timing.csv"));
+}
+
+TEST_F(SweepCliTest, TornTailIsCutOnResume) {
+  const std::string scenario = Scenario("torn", 2);
+  const std::string out = (work_ / "out").string();
+  ASSERT_EQ(Run({"sweep", scenario, "--out", out}).status, 0);
+  const std::string full = Read(out + "/torn/frames.csv");
+  // Keep the header, three rows and half of the fourth, as a crash might.
+  size_t cut = 0;
+  for (int line = 0; line < 4; ++line) cut = full.find('\n', cut) + 1;
+  cut += 20;
+  fs::resize_file(out + "/torn/frames.csv", cut);
+  ASSERT_EQ(Run({"sweep", scenario, "--out", out, "--resume"}).status, 0);
+  EXPECT_EQ(Read(out + "/torn/frames.csv"), full);
+}
+
+TEST_F(SweepCliTest, ResumeRefusesAnotherScenariosFolder) {
+  const std::string out = (work_ / "out").string();
+  ASSERT_EQ(Run({"sweep", Scenario("same", 1), "--out", out}).status, 0);
+  const std::string before = Read(out + "/same/frames.csv");
+  // Same name, different trials: a different scenario.
+  const Finished f = Run({"sweep", Scenario("same", 2), "--out", out, "--resume"});
+  EXPECT_EQ(f.status, 2);
+  EXPECT_THAT(f.error, HasSubstr("was written by a different scenario"));
+  EXPECT_EQ(Read(out + "/same/frames.csv"), before);
+}
+
+// A second sweep into a folder that one is writing gets exit 2 naming the lock file, and the
+// first run's frames.csv is what it would have been alone.
+TEST_F(SweepCliTest, ASecondWriterIsRefused) {
+  const std::string scenario = Scenario("locked", 30);
+  const std::string reference = (work_ / "reference").string(), out = (work_ / "out").string();
+  ASSERT_EQ(Run({"sweep", scenario, "--out", reference, "--threads", "2"}).status, 0);
+  const pid_t first = Start({"sweep", scenario, "--out", out, "--threads", "2"});
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(60);
+  while (!fs::exists(out + "/locked/frames.csv") && std::chrono::steady_clock::now() < deadline) {
+    std::this_thread::sleep_for(std::chrono::milliseconds(5));
+  }
+  const Finished second = Run({"sweep", scenario, "--out", out, "--resume"});
+  EXPECT_EQ(second.status, 2);
+  EXPECT_THAT(second.error, HasSubstr(out + "/markerbench.lock: another markerbench sweep"));
+  ASSERT_EQ(Wait(first).status, 0);
+  EXPECT_EQ(Read(out + "/locked/frames.csv"), Read(reference + "/locked/frames.csv"));
+}
+
+// --overwrite starts from an empty folder: nothing of the earlier run stays.
+TEST_F(SweepCliTest, OverwriteLeavesNothingOfTheEarlierRun) {
+  const std::string out = (work_ / "out").string();
+  ASSERT_EQ(Run({"sweep", Scenario("again", 1), "--out", out}).status, 0);
+  std::ofstream(out + "/again/examples/stale.png") << "old";
+  ASSERT_EQ(Run({"sweep", Scenario("again", 1), "--out", out, "--overwrite"}).status, 0);
+  EXPECT_FALSE(fs::exists(out + "/again/examples/stale.png"));
+  EXPECT_TRUE(fs::exists(out + "/again/examples/apriltag.png"));
+}
+
+}  // namespace
+}  // namespace markerbench
