@@ -29,24 +29,27 @@ cv::Rect2d EllipseBox(const Eigen::Matrix3d& C) {
   return {e.center.x() - hw, e.center.y() - hh, 2 * hw, 2 * hh};
 }
 
-// The marker's circles imaged at a pose (canonical conics, px).
-std::vector<Eigen::Matrix3d> CirclesImagedAt(const CircleGeometry& geometry,
-                                             const Camera& camera,
-                                             const Rigid3& cam_from_paper) {
-  const Eigen::Matrix3d H = camera.K() * RayFromPlane(cam_from_paper);
+// The marker's image at a pose: its circles (canonical conics) and its point m1, in px.
+struct MarkerImage {
   std::vector<Eigen::Matrix3d> conics_px;
+  Eigen::Vector2d m1_px;
+};
+MarkerImage MarkerImagedAt(const CircleGeometry& geometry,
+                           const Camera& camera,
+                           const Rigid3& cam_from_paper) {
+  const Eigen::Matrix3d H = camera.K() * RayFromPlane(cam_from_paper);
+  MarkerImage image;
   for (size_t i = 0; i < geometry.centers.size(); ++i) {
-    conics_px.push_back(
+    image.conics_px.push_back(
         CanonicalConic(ImageOfCircle<double>(H, geometry.centers[i], geometry.radii_m[i])));
   }
-  return conics_px;
+  image.m1_px = (H * Eigen::Vector3d(geometry.Lx, 0.0, 1.0)).hnormalized();
+  return image;
 }
 
-// The marker's image at a predicted pose: its ellipses, its point m1, and the region around
-// them (their box grown by `roi_margin` of its size and 10 px, within the image).
-struct PredictedImage {
-  std::vector<Eigen::Matrix3d> conics_px;  // canonical
-  Eigen::Vector2d m1_px;
+// The marker's image at a predicted pose, and the region around it (the ellipses' and m1's box
+// grown by `roi_margin` of its size and 10 px, within the image).
+struct PredictedImage : MarkerImage {
   cv::Rect region;
 };
 
@@ -63,15 +66,13 @@ std::optional<PredictedImage> PredictImage(const CircleGeometry& geometry,
       return std::nullopt;
     }
   }
-  const Eigen::Matrix3d H = camera.K() * RayFromPlane(cam_from_paper);
   PredictedImage predicted;
-  predicted.conics_px = CirclesImagedAt(geometry, camera, cam_from_paper);
+  static_cast<MarkerImage&>(predicted) = MarkerImagedAt(geometry, camera, cam_from_paper);
   cv::Rect2d box;
   for (size_t i = 0; i < predicted.conics_px.size(); ++i) {
     const cv::Rect2d b = EllipseBox(predicted.conics_px[i]);
     box = i == 0 ? b : (box | b);
   }
-  predicted.m1_px = (H * Eigen::Vector3d(geometry.Lx, 0.0, 1.0)).hnormalized();
   box |= cv::Rect2d(predicted.m1_px.x(), predicted.m1_px.y(), 1.0, 1.0);
   const double grow = roi_margin * std::max(box.width, box.height) + 10.0;
   // Far off the image (or not finite): nothing to search, and no int holds its corners.
@@ -133,7 +134,8 @@ double PredictionErrorPx(const CircleGeometry& geometry,
                          const Camera& camera,
                          const Rigid3& cam_from_paper,
                          const PredictedImage& predicted) {
-  const std::vector<Eigen::Matrix3d> conics_px = CirclesImagedAt(geometry, camera, cam_from_paper);
+  const std::vector<Eigen::Matrix3d> conics_px =
+      MarkerImagedAt(geometry, camera, cam_from_paper).conics_px;
   double error = 0.0;
   for (size_t i = 0; i < conics_px.size(); ++i) {
     const Ellipse at = EllipseFromConic(conics_px[i]);
@@ -660,15 +662,15 @@ TrackResult CircleTracker::TrackOnPixels(const Observation& observation,
   diagnostics_.refined_cam_from_marker = cam_from_marker;
   // The fitted pose's ellipses (for the check against the prediction), each whole in the frame:
   // a marker leaving it has edges the fit does not see.
-  diagnostics_.conics_px = CirclesImagedAt(geometry, camera, cam_from_paper);
+  const MarkerImage fitted_image = MarkerImagedAt(geometry, camera, cam_from_paper);
+  diagnostics_.conics_px = fitted_image.conics_px;
   const cv::Rect2d frame(0.0, 0.0, observation.image->width, observation.image->height);
   bool within_frame = true;
   for (const Eigen::Matrix3d& conic_px : diagnostics_.conics_px) {
     const cv::Rect2d box = EllipseBox(conic_px);
     within_frame = within_frame && (box & frame) == box;
   }
-  const Eigen::Matrix3d H = camera.K() * RayFromPlane(cam_from_paper);
-  diagnostics_.m1_px = (H * Eigen::Vector3d(geometry.Lx, 0.0, 1.0)).hnormalized();
+  diagnostics_.m1_px = fitted_image.m1_px;
   if (!within_frame) {
     result.message = "the marker's image at the fitted pose leaves the frame";
     return result;
