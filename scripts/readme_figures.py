@@ -233,6 +233,8 @@ SPEED = [
      r"\(`BM_CircleFullDetectionEdgesOnly`\) \| [^|]* \| ([0-9.]+ ms)"),
     ("`circle`, tracking mode (the next frame of a hand-held video)",
      r"\(`BM_CircleTrackingMode`\) \| [^|]* \| ([0-9.]+ ms)"),
+    ("`circle`, tracking mode on a steady glide (fitted straight from the prediction)",
+     r"\(`BM_CircleTrackingModeSteady`\) \|[^|]*\| ([0-9.]+ ms)"),
     ("`apriltag` (the same frames, run alongside `circle`)",
      r"\| `apriltag` on the same poses[^|]*\|[^|]*\| *([^|]+?) *\|"),
     ("`apriltag-ippe` (the same frames)", r"\| `apriltag-ippe` \| +\| ([^|]+?) \|"),
