@@ -1,5 +1,5 @@
-// Test fixture for the tests of markerbench sweep as users run it (cli_test.h): a small
-// scenario of two tag markers that every one of them sweeps.
+// Test fixture for markerbench sweep run as users run it (cli_test.h), with the small scenario
+// the sweep, resume and external-tracker tests share.
 #pragma once
 
 #include <string>
