@@ -66,8 +66,7 @@ std::optional<PredictedImage> PredictImage(const CircleGeometry& geometry,
       return std::nullopt;
     }
   }
-  PredictedImage predicted;
-  static_cast<MarkerImage&>(predicted) = MarkerImagedAt(geometry, camera, cam_from_paper);
+  PredictedImage predicted{MarkerImagedAt(geometry, camera, cam_from_paper), cv::Rect()};
   cv::Rect2d box;
   for (size_t i = 0; i < predicted.conics_px.size(); ++i) {
     const cv::Rect2d b = EllipseBox(predicted.conics_px[i]);
