@@ -8,8 +8,12 @@ and is computed from results/ (summary.csv of results/circle_accuracy and result
 results/paper/breakdowns.csv, results/paper/report.md, results/speed.md, results/sequences/sequence_summary.csv,
 results/independent/*/summary.csv).
 
-    readme_figures.py --check   exit 1 naming each table that differs from results/ (ctest)
-    readme_figures.py --write   rewrite the tables in the documents (DOCUMENTS)
+The README's prose cites some of the same figures; each such phrase is listed in PHRASES with
+its numbers written {} and computed from results/ as well, and is checked and rewritten with
+the tables (its words and line breaks kept, only its numbers replaced).
+
+    readme_figures.py --check   exit 1 naming each table or phrase unlike results/ (ctest)
+    readme_figures.py --write   rewrite the tables and phrases in the documents (DOCUMENTS)
 """
 import csv
 import math
@@ -296,36 +300,52 @@ CIRCLE_MARKER_CELLS = [
 ]
 
 
+def circle_marker_series():
+    """The circle tracker's rows of the paper runs per marker, keyed by (scenario, value), and
+    the cells where circle_d is found in 95 % of the frames."""
+    rows = [r for r in read_summary("results/paper/summary.csv") if r["tracker"] == "circle"]
+    series = {m: {(r["scenario"], number(r["sweep_value"])): r for r in rows if r["marker"] == m}
+              for m in CIRCLE_MARKERS}
+    good = [k for k, r in series["circle_d"].items() if number(r["success_rate"]) >= 0.95]
+    return series, good
+
+
+def over_circle_d(series, good, marker):
+    """In the cells `good`: how many find `marker` in 95 % of the frames, and its median error
+    over circle_d's per cell."""
+    kept = sum(number(series[marker][k]["success_rate"]) >= 0.95 for k in good)
+    ratios = {k: number(series[marker][k]["position_error_median_m"]) /
+              number(series["circle_d"][k]["position_error_median_m"]) for k in good}
+    return kept, ratios
+
+
+def median(values):
+    ordered = sorted(values)
+    middle = len(ordered) // 2
+    return ordered[middle] if len(ordered) % 2 else 0.5 * (ordered[middle - 1] + ordered[middle])
+
+
 def circle_markers():
     """The circle tracker on markers a, d, e and f of the paper runs (issue 22): breakdowns,
     the cells where d is found in 95 % of frames and how e and f do there, and some cells."""
-    rows = [r for r in read_summary("results/paper/summary.csv") if r["tracker"] == "circle"]
-    def series(marker):
-        return {(r["scenario"], number(r["sweep_value"])): r for r in rows
-                if r["marker"] == marker}
-    d = series("circle_d")
-    good = [k for k, r in d.items() if number(r["success_rate"]) >= 0.95]
+    series, good = circle_marker_series()
     lines = ["| marker | " + " | ".join(f"breakdown: {label}" for _, label in BREAKDOWN_SWEEPS) +
              f" | success ≥ 95 % where `circle_d`'s is ({len(good)} cells) "
              "| median error over `circle_d`'s there: median, largest |",
              "|---|" + "---|" * (len(BREAKDOWN_SWEEPS) + 2)]
     for marker in CIRCLE_MARKERS:
-        mine = series(marker)
         texts = breakdown_texts("circle", marker)
-        kept = sum(number(mine[k]["success_rate"]) >= 0.95 for k in good)
-        ratios = sorted(number(mine[k]["position_error_median_m"]) /
-                        number(d[k]["position_error_median_m"]) for k in good)
-        middle = ratios[len(ratios) // 2] if len(ratios) % 2 else \
-            0.5 * (ratios[len(ratios) // 2 - 1] + ratios[len(ratios) // 2])
+        kept, ratios = over_circle_d(series, good, marker)
         lines.append(f"| `{marker}` | " + " | ".join(texts) + f" | {kept} | "
-                     f"{significant(middle)}, {significant(ratios[-1])} |")
+                     f"{significant(median(ratios.values()))}, "
+                     f"{significant(max(ratios.values()))} |")
     lines += ["", "| cell | " + " | ".join(f"`{m}`: success, median mm, ours / bound"
                                            for m in CIRCLE_MARKERS) + " |",
               "|---|" + "---|" * len(CIRCLE_MARKERS)]
     for scenario, value, name in CIRCLE_MARKER_CELLS:
         texts = []
         for marker in CIRCLE_MARKERS:
-            r = series(marker)[(scenario, value)]
+            r = series[marker][(scenario, value)]
             texts.append(f"{100 * number(r['success_rate']):.0f} %, "
                          f"{significant(1e3 * number(r['position_error_median_m']))}, "
                          f"{significant(number(r['efficiency']))}")
@@ -387,13 +407,19 @@ def independent_render():
     return lines
 
 
+def camera_response_row(scenario, gamma, tracker, marker):
+    [row] = [r for r in read_summary("results/camera_response/summary.csv")
+             if r["scenario"] == scenario and number(r["sweep_value"]) == gamma
+             and r["tracker"] == tracker and r["marker"] == marker]
+    return row
+
+
 def camera_response():
     """Every tracker of the paper runs on frames written with a gamma (results/camera_response):
     success and median error over the bound, linear frames, gamma 2.2 untold and told."""
     rows = read_summary("results/camera_response/summary.csv")
     def at(scenario, value, tracker, marker):
-        [row] = [r for r in rows if r["scenario"] == scenario and r["tracker"] == tracker
-                 and r["marker"] == marker and number(r["sweep_value"]) == value]
+        row = camera_response_row(scenario, value, tracker, marker)
         return (f"{100 * number(row['success_rate']):.0f} %, "
                 f"{significant(number(row['efficiency']))}")
     lines = ["| tracker: marker | linear frames | gamma 2.2, untold | gamma 2.2, told "
@@ -404,6 +430,253 @@ def camera_response():
                      f"{at('camera_gamma', 2.2, tracker, marker)} | "
                      f"{at('camera_gamma_linear_input', 2.2, tracker, marker)} |")
     return lines
+
+
+def percent(rate):
+    return f"{100 * rate:.0f}"
+
+
+def rounded(value, digits):
+    """A number of 100 or more to `digits` significant digits, in thousands with commas (280,
+    1,350)."""
+    return f"{float(f'{value:.{digits}g}'):,.0f}"
+
+
+def paper_row(scenario, value, tracker, marker):
+    [row] = [r for r in read_summary("results/paper/summary.csv")
+             if r["scenario"] == scenario and number(r["sweep_value"]) == value
+             and r["tracker"] == tracker and r["marker"] == marker and r.get("grid", "") == ""]
+    return row
+
+
+def camera_response_phrases():
+    """An untold gamma against linear frames: circles_a's error over the bound, the success of
+    artkplus, circle_f, runetag and aruco."""
+    def untold(gamma, tracker, marker):
+        return camera_response_row("camera_gamma", gamma, tracker, marker)
+
+    def told(gamma, tracker, marker):
+        return camera_response_row("camera_gamma_linear_input", gamma, tracker, marker)
+
+    circle = [untold(g, "circle", "circles_a")["efficiency"] for g in (1.0, 2.2)]
+    f = [percent(number(untold(g, "circle", "circle_f")["success_rate"])) for g in (1.8, 2.2, 2.6)]
+    untold_rates = [percent(number(untold(2.2, t, t)["success_rate"]))
+                    for t in ("runetag", "aruco")]
+    told_rates = [percent(number(told(2.2, t, t)["success_rate"])) for t in ("runetag", "aruco")]
+    # The trackers that locate edges (not the dots of RUNETag, nor ArUco's thresholded squares).
+    pairs = dict.fromkeys((r["tracker"], r["marker"])
+                          for r in read_summary("results/camera_response/summary.csv")
+                          if not r["tracker"].startswith(("runetag", "aruco")))
+    growth = [number(untold(2.2, t, m)["efficiency"]) / number(untold(1.0, t, m)["efficiency"])
+              for t, m in pairs]
+    return [
+        ("the errors of the trackers that locate edges grow {}-{} times",
+         [f"{min(growth):.1f}", f"{max(growth):.1f}"]),
+        ("(`circle` on `circles_a` {} → {}× the bound; `artkplus` finds {} % at 2.2)",
+         [f"{number(e):.2f}" for e in circle] +
+         [percent(number(untold(2.2, "artkplus", "artkplus")["success_rate"]))]),
+        ("f is found untold on {} % at 1.8 and {} % at 2.2", f[:2]),
+        ("but on {} % at 2.6, where the detector finds no ellipse", f[2:]),
+        ("find more frames untold ({} % and {} % against {} % and {} % told)",
+         untold_rates + told_rates),
+    ]
+
+
+def paper_phrases():
+    """The circle tracker at the ends of the paper sweeps, and every tracker without noise,
+    against the bound (results/paper/summary.csv)."""
+    def circle(scenario, value, marker="circles_a"):
+        return paper_row(scenario, value, "circle", marker)
+
+    def noise_free(tracker, marker):
+        return number(paper_row("fig6_noise", 0.0, tracker, marker)["efficiency"])
+
+    others = [noise_free(t, m) for t, m in (("apriltag", "apriltag"), ("apriltag-ippe", "apriltag"),
+                                            ("runetag", "runetag"), ("aruco", "aruco"))]
+    blur5, blur10 = circle("fig7_blur", 5.0), circle("fig7_blur", 10.0)
+    far, apriltag_far = circle("fig8_distance", 3.5), paper_row("fig8_distance", 3.5, "apriltag",
+                                                               "apriltag")
+    return [
+        ("(success {} % at σ = 10, {} % at 3.5 m;",
+         [percent(number(blur10["success_rate"])), percent(number(far["success_rate"]))]),
+        ("the circle tracker is {}× above its bound on `circles_a` and {}× on `circle_d`",
+         [f"{noise_free('circle', m):.2f}" for m in ("circles_a", "circle_d")]),
+        ("{}× and {}× on e and f (their fits', not the bound's: below), `artkplus-improved` {}×, "
+         "`runetag-improved` {}×, the others {}-{}× (`artkplus` {}×)",
+         [f"{noise_free('circle', m):.1f}" for m in ("circle_e", "circle_f")] +
+         [f"{noise_free('artkplus-improved', 'artkplus'):.0f}",
+          f"{noise_free('runetag-improved', 'runetag'):.0f}",
+          rounded(min(others), 2), rounded(max(others), 2),
+          rounded(noise_free("artkplus", "artkplus"), 3)]),
+        ("circle tracker finds {} % at blur σ = 5 and {} % at σ = 10 where the frames allow {} % "
+         "and {} %, and {} % at 3.5 m where they allow {} %",
+         [percent(number(r["success_rate"])) for r in (blur5, blur10)] +
+         [percent(number(r["success_at_bound"])) for r in (blur5, blur10)] +
+         [percent(number(far["success_rate"])), percent(number(far["success_at_bound"]))]),
+        ("AprilTag reaches {} % at 3.5 m of the same {} %",
+         [percent(number(apriltag_far["success_rate"])),
+          percent(number(apriltag_far["success_at_bound"]))]),
+    ]
+
+
+def circle_accuracy_phrases():
+    """What the 1 m blur σ = 10 and 3.5 m rows of results/circle_accuracy allow and leave."""
+    rows = read_summary("results/circle_accuracy/summary.csv")
+    (blur,) = cell(rows, "circle_accuracy_1m_blur10", 10.0, "circle")
+    (far,) = cell(rows, "circle_accuracy_3.5m", 3.5, "circle")
+    allowed = [100 * number(r["success_at_bound"]) for r in (blur, far)]
+    found = [100 * number(r["success_rate"]) for r in (blur, far)]
+    return [
+        ("what the frames allow one, is {} % and {} %", [f"{a:.0f}" for a in allowed]),
+        ("the tracker's {} % and {} % leave {} and {} points to gain",
+         [f"{s:.0f}" for s in found] + [f"{a - s:.0f}" for a, s in zip(allowed, found)]),
+    ]
+
+
+def circle_marker_phrases():
+    """Issue 22's goals for e and f where circle_d is found in 95 % of the frames: found as
+    often, and the median error within 1.5× circle_d's (the medians of those ratios, and without
+    noise)."""
+    series, good = circle_marker_series()
+    texts = {}
+    for marker in ("circle_e", "circle_f"):
+        kept, ratios = over_circle_d(series, good, marker)
+        within = sum(ratio <= 1.5 for ratio in ratios.values())
+        texts[marker] = [kept, within, f"{median(ratios.values()):.2f}",
+                         f"{ratios[('fig6_noise', 0.0)]:.2f}"]
+    e, f = texts["circle_e"], texts["circle_f"]
+
+    def rates(marker, scenario, values, column="success_rate"):
+        return [percent(number(series[marker][(scenario, v)][column])) for v in values]
+
+    def bound_ratios(marker, values):
+        return [number(series[marker][("fig8_distance", v)]["efficiency"]) for v in values]
+
+    far = [2.5, 2.75, 3.0, 3.25, 3.5]
+    found_far = [number(series["circle_d"][("fig8_distance", v)]["detection_rate"]) for v in far]
+    f_far = bound_ratios("circle_f", far)
+    noise_free = [number(series[m][("fig6_noise", 0.0)]["efficiency"])
+                  for m in ("circle_e", "circle_f", "circle_d")]
+    return [
+        ("Without noise e and f are {}× and {}× their bounds (d {}×;",
+         [f"{noise_free[0]:.1f}", f"{noise_free[1]:.1f}", f"{noise_free[2]:.2f}"]),
+        ("d's success there is {}/{}/{} % at σ 4/5/6 against the bound's {}/{}/{} %",
+         rates("circle_d", "fig7_blur", [4.0, 5.0, 6.0]) +
+         rates("circle_d", "fig7_blur", [4.0, 5.0, 6.0], "success_at_bound")),
+        ("at σ 7 and 8, {} % and {} %", rates("circle_d", "fig7_blur", [7.0, 8.0])),
+        ("d is now found on {}-{} % of the frames at 2.5-3.5 m",
+         [percent(min(found_far)), percent(max(found_far))]),
+        ("and succeeds on {}/{}/{}/{}/{} % where `success_at_bound` says {}/{}/{}/{}/{} %; e on "
+         "{}/{}/{}/{}/{} %",
+         rates("circle_d", "fig8_distance", far) +
+         rates("circle_d", "fig8_distance", far, "success_at_bound") +
+         rates("circle_e", "fig8_distance", far)),
+        ("(d at 3.25 and 3.5 m {}× and {}×, e at 3 and 3.5 m {}× and {}×, f from 2.5 m {}-{}×)",
+         [f"{x:.2f}" for x in bound_ratios("circle_d", [3.25, 3.5]) +
+          bound_ratios("circle_e", [3.0, 3.5]) + [min(f_far), max(f_far)]]),
+        ("`circles_a`'s two disks fix its tilt better, and it meets both ({} % and {} %)",
+         rates("circles_a", "fig8_distance", [2.5, 3.5])),
+        ("`circle_e` meets issue 22's success goal in {} of the {} cells",
+         [str(e[0]), str(len(good))]),
+        ("its error goal in {} (median error {}× `circle_d`'s, within 1.5× but without noise, {}×",
+         [str(e[1]), e[2], e[3]]),
+        ("`circle_f` meets the error goal in {} of the {} cells ({}×; without noise {}×) and the "
+         "success goal in {}", [str(f[1]), str(len(good)), f[2], f[3], str(f[0])]),
+    ]
+
+
+def sequence_phrases():
+    """What the videos show (results/sequences/sequence_summary.csv): the circle tracker's ATE
+    against AprilTag's and ARToolKitPlus's, its tracking mode's time, the rolling shutter, and
+    the frames ARToolKitPlus and ArUco lose."""
+    rows = {(r["scenario"], number(r["sweep_value"]), r["tracker"]): r
+            for r in read_summary("results/sequences/sequence_summary.csv")}
+
+    def figure(scenario, value, tracker, column):
+        return number(rows[(scenario, value, tracker)][column])
+
+    def lost(scenario, value, tracker):
+        return percent(figure(scenario, value, tracker, "lost") /
+                       figure(scenario, value, tracker, "visible"))
+
+    noisy = [("orbit", 0.02), ("orbit", 0.1), ("handheld", 0.02)]
+
+    def ate_over_circle(tracker, videos):
+        return [figure(s, v, tracker, "ate_median_m") / figure(s, v, "circle", "ate_median_m")
+                for s, v in videos]
+
+    apriltag, artkplus = ate_over_circle("apriltag", noisy), ate_over_circle("artkplus", noisy)
+    still = [ate_over_circle(t, [("orbit", 0.0)])[0] for t in ("apriltag", "artkplus")]
+    saved = [1.0 - figure(s, v, "circle", "tracking_median_ms") /
+             figure(s, v, "circle", "detection_median_ms")
+             for s, v in {(r[0], r[1]) for r in rows}]
+    shake = [1.0 - figure(s, 0.02, "circle", "tracking_median_ms") /
+             figure(s, 0.02, "circle", "detection_median_ms")
+             for s in ("handheld", "handheld_rolling_shutter")]
+
+    def ms(scenario, value, column):
+        return f"{figure(scenario, value, 'circle', column):.2f}"
+
+    def ate_mm(scenario, tracker):
+        return significant(1e3 * figure(scenario, 0.02, tracker, "ate_median_m"))
+
+    return [
+        ("({}-{}× below AprilTag's and {}-{}× below ARToolKitPlus's under noise; without noise, "
+         "on the orbit, {}× and {}×)",
+         [f"{min(apriltag):.1f}", f"{max(apriltag):.1f}", f"{min(artkplus):.1f}",
+          significant(max(artkplus), 2), rounded(still[0], 2), rounded(still[1], 2)]),
+        ("takes {}-{} % less time than full detection", [percent(min(saved)), percent(max(saved))]),
+        ("({} against {} ms on the orbit at σ² 0.02, {} against {} on the approach",
+         [ms("orbit", 0.02, "tracking_median_ms"), ms("orbit", 0.02, "detection_median_ms"),
+          ms("approach", 0.02, "tracking_median_ms"), ms("approach", 0.02, "detection_median_ms")]),
+        ("{}-{} % on the hand-held shake", [percent(min(shake)), percent(max(shake))]),
+        ("tracker (from {} to {} mm), AprilTag ({} to {}) and ARToolKitPlus ({} to {})",
+         [ate_mm(s, t) for t in ("circle", "apriltag", "artkplus")
+          for s in ("handheld", "handheld_rolling_shutter")]),
+        ("ARToolKitPlus loses {} % of the approach's frames", [lost("approach", 0.02, "artkplus")]),
+        ("loses none of the orbit's frames without noise but {} % at σ² 0.02 and {} % at 0.1",
+         [lost("orbit", 0.02, "aruco"), lost("orbit", 0.1, "aruco")]),
+    ]
+
+
+PHRASES = {"camera_response": camera_response_phrases, "paper": paper_phrases,
+           "sequences": sequence_phrases,
+           "circle_markers": circle_marker_phrases,
+           "circle_accuracy": circle_accuracy_phrases}
+# A number in a phrase: digits, with separators inside (1,350 and 0.125, not a sentence's end).
+PHRASE_NUMBER = r"([0-9]+(?:[.,][0-9]+)*)"
+
+
+def phrase_pattern(phrase):
+    """A phrase's regular expression: its numbers captured, any run of its spaces matching any
+    run of white space (a line break in the README)."""
+    return re.compile(PHRASE_NUMBER.join(
+        r"\s+".join(re.escape(word) for word in re.split(r"\s+", piece))
+        for piece in phrase.split("{}")))
+
+
+def phrase_count():
+    return sum(len(phrases()) for phrases in PHRASES.values())
+
+
+def check_phrases(text, problems, phrases=None):
+    """Each phrase of `phrases` (PHRASES') found once in `text` with its numbers from results/:
+    the text with the numbers rewritten, and what differed added to `problems`."""
+    for name, listed in (phrases or PHRASES).items():
+        for phrase, values in listed():
+            matches = list(phrase_pattern(phrase).finditer(text))
+            if len(matches) != 1:
+                problems.append(f"README.md: phrase '{phrase}' ({name}) found {len(matches)} "
+                                f"times, not once")
+                continue
+            match = matches[0]
+            shown = list(match.groups())
+            if shown != values:
+                problems.append(f"README.md: phrase '{phrase}' ({name}) shows {shown}, results/ "
+                                f"give {values}")
+                for k in reversed(range(len(values))):
+                    text = text[:match.start(k + 1)] + values[k] + text[match.end(k + 1):]
+    return text
 
 
 TABLES = {"circle_accuracy": circle_accuracy, "circle_markers": circle_markers, "efficiency": efficiency,
@@ -424,6 +697,8 @@ def main():
     for document, names in DOCUMENTS.items():
         path = ROOT / document
         text = path.read_text()
+        if document == "README.md":
+            text = check_phrases(text, problems)
         for name in names:
             count += 1
             pattern = re.compile(
@@ -439,11 +714,11 @@ def main():
         if sys.argv[1] == "--write":
             path.write_text(text)
     if sys.argv[1] == "--write":
-        print(f"readme_figures: wrote {count} tables")
+        print(f"readme_figures: wrote {count} tables and {phrase_count()} phrases")
         return
     if problems:
         sys.exit("\n".join(problems) + "\nRun scripts/readme_figures.py --write after new results.")
-    print(f"readme_figures: {count} tables match results/")
+    print(f"readme_figures: {count} tables and {phrase_count()} phrases match results/")
 
 
 if __name__ == "__main__":
