@@ -639,7 +639,39 @@ def sequence_phrases():
     ]
 
 
+# results/speed.md's latest ratios of the circle tracker to apriltag: the table after this line.
+SPEED_RATIOS_FROM = "The same 20 runs beside `apriltag`"
+
+
+def speed_phrases():
+    """The circle tracker's time over apriltag's in the same runs (the median and its interval,
+    the latest table of results/speed.md), and the fit's share of full detection's
+    instructions."""
+    text = (ROOT / "results/speed.md").read_text()
+    if text.count(SPEED_RATIOS_FROM) != 1:
+        raise SystemExit(f"readme_figures: results/speed.md: '{SPEED_RATIOS_FROM}' not once")
+    after = text[text.index(SPEED_RATIOS_FROM):]
+    figures = []
+    for benchmark in ("BM_CircleFullDetection", "BM_CircleTrackingMode",
+                      "BM_CircleTrackingModeHandheld", "BM_CircleTrackingModeSteady"):
+        found = re.search(rf"\| `{benchmark}` \| [0-9.]+ \| ([0-9.]+) \| ([0-9.]+)-([0-9.]+) \|",
+                          after)
+        if not found:
+            raise SystemExit(f"readme_figures: results/speed.md: no ratio of {benchmark}")
+        figures += [f"{float(x):.2f}" for x in found.groups()]
+    share = re.findall(r"\| the fit on the pixels \| [0-9.]+ \| ([0-9.]+) %", text)
+    if len(share) != 1:
+        raise SystemExit("readme_figures: results/speed.md: the fit's share not once")
+    return [
+        ("full detection {}× `apriltag`'s time ({}-{}), tracking mode {}× ({}-{}) after a frame "
+         "with no history and {}× ({}-{}) in a hand-held shake, and {}× ({}-{}) on a steady glide",
+         figures),
+        ("the fit on the pixels is {} % of full detection's", [f"{float(share[0]):.0f}"]),
+    ]
+
+
 PHRASES = {"camera_response": camera_response_phrases, "paper": paper_phrases,
+           "speed": speed_phrases,
            "sequences": sequence_phrases,
            "circle_markers": circle_marker_phrases,
            "circle_accuracy": circle_accuracy_phrases}
