@@ -6,6 +6,10 @@
 #include <utility>
 #include <vector>
 
+#if defined(__x86_64__)
+#include <immintrin.h>
+#endif
+
 namespace markerbench {
 namespace {
 
@@ -165,12 +169,9 @@ BlurredDiskProfile::Integral BlurredDiskProfile::SecondIntegralAt(double x) cons
   return out;
 }
 
-PixelProfileValue BlurredDiskProfile::OverPixel(double z, double a, double b) const {
-  a = std::max(a, 1e-3);
-  b = std::max(b, 1e-3);
-  // The four corners of the second difference: z ± A ± B, signs + - - +.
-  const Integral pp = SecondIntegralAt(z + a + b), pm = SecondIntegralAt(z + a - b),
-                 mp = SecondIntegralAt(z - a + b), mm = SecondIntegralAt(z - a - b);
+// V and its derivatives from H at the four corners z ± A ± B (signs + - - +).
+PixelProfileValue BlurredDiskProfile::FromCorners(const Integral (&corner)[4], double a, double b) {
+  const Integral &pp = corner[0], &pm = corner[1], &mp = corner[2], &mm = corner[3];
   const double per_area = 1.0 / (4.0 * a * b);
   PixelProfileValue out;
   out.value = (pp.value - pm.value - mp.value + mm.value) * per_area;
@@ -183,6 +184,149 @@ PixelProfileValue BlurredDiskProfile::OverPixel(double z, double a, double b) co
           per_area -
       2.0 * out.value;
   return out;
+}
+
+#if defined(__x86_64__)
+bool BlurredDiskProfile::HasAvx2() {
+  static const bool has_avx2 = __builtin_cpu_supports("avx2");
+  return has_avx2;
+}
+
+namespace {
+
+// Helpers of OverPixelAvx2, in its target (a lambda would not inherit it).
+#define MARKERBENCH_AVX2 __attribute__((target("avx2")))
+
+MARKERBENCH_AVX2 __m256d All(double value) { return _mm256_set1_pd(value); }
+
+MARKERBENCH_AVX2 __m256d Gather(const double* row, __m128i node) {
+  const __m256d every_lane = _mm256_castsi256_pd(_mm256_set1_epi64x(-1));
+  return _mm256_mask_i32gather_pd(_mm256_setzero_pd(), row, node, every_lane, 8);
+}
+
+// The cubic Hermite basis at four points, about the table nodes below them.
+struct HermiteLanes {
+  __m128i node;
+  __m256d value0, slope0, value1, slope1;
+  __m256d d_value0, d_slope0, d_value1, d_slope1;
+  __m256d beyond, half_beyond_squared;  // past kMaxZ, where G = 1
+};
+
+// One table row's H and its slope at the four points (SecondIntegralAt's row_integral).
+struct RowLanes {
+  __m256d value, slope;
+};
+MARKERBENCH_AVX2 RowLanes RowIntegralLanes(const HermiteLanes& at,
+                                           const double* first,
+                                           const double* second) {
+  const __m256d second0 = Gather(second, at.node), first0 = Gather(first, at.node);
+  const __m256d second1 = Gather(second + 1, at.node), first1 = Gather(first + 1, at.node);
+  __m256d value =
+      _mm256_add_pd(_mm256_mul_pd(at.value0, second0), _mm256_mul_pd(at.slope0, first0));
+  value = _mm256_add_pd(value, _mm256_mul_pd(at.value1, second1));
+  value = _mm256_add_pd(value, _mm256_mul_pd(at.slope1, first1));
+  value = _mm256_add_pd(value, _mm256_mul_pd(at.beyond, All(first[kZSteps])));
+  value = _mm256_add_pd(value, at.half_beyond_squared);
+  __m256d slope =
+      _mm256_add_pd(_mm256_mul_pd(at.d_value0, second0), _mm256_mul_pd(at.d_slope0, first0));
+  slope = _mm256_add_pd(slope, _mm256_mul_pd(at.d_value1, second1));
+  slope = _mm256_add_pd(slope, _mm256_mul_pd(at.d_slope1, first1));
+  return {value, _mm256_add_pd(slope, at.beyond)};
+}
+
+}  // namespace
+
+// SecondIntegralAt's operations on the four corners' lanes, in its order (no FMA: the target is
+// AVX2 alone, so no product is fused into a sum), the tables read by gathers at nodes kept
+// within the row; the lanes SecondIntegralAt returns early for are set as it sets them. The
+// lanes come back out through registers: through memory, the loads of the stored vector waited
+// on it, and the whole took as long as one corner at a time.
+MARKERBENCH_AVX2 PixelProfileValue BlurredDiskProfile::OverPixelAvx2(double z,
+                                                                     double a,
+                                                                     double b) const {
+  // The corners z ± A ± B as OverPixel adds them ((z + A) + B, ...), less the shift.
+  const __m256d corners = _mm256_add_pd(_mm256_add_pd(All(z), _mm256_set_pd(-a, -a, a, a)),
+                                        _mm256_set_pd(-b, b, -b, b));
+  const __m256d x = _mm256_sub_pd(corners, All(shift_));
+  const __m256d not_a_number = _mm256_cmp_pd(x, x, _CMP_UNORD_Q);
+  const __m256d below = _mm256_cmp_pd(x, All(-kMaxZ), _CMP_LE_OQ);
+  HermiteLanes at;
+  at.beyond = _mm256_max_pd(_mm256_sub_pd(x, All(kMaxZ)), _mm256_setzero_pd());
+  const __m256d xj =
+      _mm256_mul_pd(_mm256_add_pd(_mm256_min_pd(All(kMaxZ), x), All(kMaxZ)), All(kPerZStep));
+  const __m128i node = _mm_max_epi32(
+      _mm_min_epi32(_mm256_cvttpd_epi32(xj), _mm_set1_epi32(kZSteps - 1)), _mm_setzero_si128());
+  at.node = node;
+  const __m256d f = _mm256_sub_pd(xj, _mm256_cvtepi32_pd(node));
+  const __m256d f2 = _mm256_mul_pd(f, f), f3 = _mm256_mul_pd(f2, f);
+  at.value0 = _mm256_add_pd(_mm256_sub_pd(_mm256_mul_pd(All(2.0), f3), _mm256_mul_pd(All(3.0), f2)),
+                            All(1.0));
+  at.value1 = _mm256_sub_pd(All(1.0), at.value0);
+  at.slope0 =
+      _mm256_mul_pd(_mm256_add_pd(_mm256_sub_pd(f3, _mm256_mul_pd(All(2.0), f2)), f), All(kZStep));
+  at.slope1 = _mm256_mul_pd(_mm256_sub_pd(f3, f2), All(kZStep));
+  at.d_value0 = _mm256_mul_pd(
+      _mm256_sub_pd(_mm256_mul_pd(All(6.0), f2), _mm256_mul_pd(All(6.0), f)), All(kPerZStep));
+  at.d_value1 = _mm256_xor_pd(at.d_value0, All(-0.0));
+  at.d_slope0 = _mm256_add_pd(
+      _mm256_sub_pd(_mm256_mul_pd(All(3.0), f2), _mm256_mul_pd(All(4.0), f)), All(1.0));
+  at.d_slope1 = _mm256_sub_pd(_mm256_mul_pd(All(3.0), f2), _mm256_mul_pd(All(2.0), f));
+  at.half_beyond_squared = _mm256_mul_pd(_mm256_mul_pd(All(0.5), at.beyond), at.beyond);
+  const RowLanes row0 = RowIntegralLanes(at, first_, second_);
+  __m256d lanes[3];  // value, d_dx, d_ds
+  if (weight_ == 0.0 && d_weight_ds_ == 0.0) {
+    lanes[0] = row0.value;
+    lanes[1] = row0.slope;
+    lanes[2] = _mm256_mul_pd(_mm256_xor_pd(row0.slope, All(-0.0)), All(d_shift_ds_));
+  } else {
+    const RowLanes row1 = RowIntegralLanes(at, first_ + kRowSize, second_ + kRowSize);
+    const __m256d keep = All(1.0 - weight_), take = All(weight_);
+    lanes[0] = _mm256_add_pd(_mm256_mul_pd(keep, row0.value), _mm256_mul_pd(take, row1.value));
+    lanes[1] = _mm256_add_pd(_mm256_mul_pd(keep, row0.slope), _mm256_mul_pd(take, row1.slope));
+    lanes[2] = _mm256_mul_pd(_mm256_sub_pd(row1.value, row0.value), All(d_weight_ds_));
+  }
+  // Below the table zero, then at a NaN point NaN; each lane out of its register.
+  double returned[3][4];
+  for (int i = 0; i < 3; ++i) {
+    const __m256d v =
+        _mm256_blendv_pd(_mm256_andnot_pd(below, lanes[i]), All(kNotANumber), not_a_number);
+    const __m128d low = _mm256_castpd256_pd128(v), high = _mm256_extractf128_pd(v, 1);
+    returned[i][0] = _mm_cvtsd_f64(low);
+    returned[i][1] = _mm_cvtsd_f64(_mm_unpackhi_pd(low, low));
+    returned[i][2] = _mm_cvtsd_f64(high);
+    returned[i][3] = _mm_cvtsd_f64(_mm_unpackhi_pd(high, high));
+  }
+  Integral corner[4];
+  for (int k = 0; k < 4; ++k) corner[k] = {returned[0][k], returned[1][k], returned[2][k]};
+  return FromCorners(corner, a, b);
+}
+#undef MARKERBENCH_AVX2
+#else
+bool BlurredDiskProfile::HasAvx2() { return false; }
+
+PixelProfileValue BlurredDiskProfile::OverPixelAvx2(double z, double a, double b) const {
+  return OverPixel(z, a, b, Corners::kOneByOne);
+}
+#endif
+
+PixelProfileValue BlurredDiskProfile::OverPixel(double z, double a, double b) const {
+  static const Corners corners = HasAvx2() ? Corners::kAvx2 : Corners::kOneByOne;
+  return OverPixel(z, a, b, corners);
+}
+
+PixelProfileValue BlurredDiskProfile::OverPixel(double z,
+                                                double a,
+                                                double b,
+                                                Corners corners) const {
+  a = std::max(a, 1e-3);
+  b = std::max(b, 1e-3);
+  if (corners == Corners::kAvx2 && HasAvx2()) return OverPixelAvx2(z, a, b);
+  // The four corners of the second difference: z ± A ± B, signs + - - +.
+  const Integral corner[4] = {SecondIntegralAt(z + a + b),
+                              SecondIntegralAt(z + a - b),
+                              SecondIntegralAt(z - a + b),
+                              SecondIntegralAt(z - a - b)};
+  return FromCorners(corner, a, b);
 }
 
 }  // namespace markerbench

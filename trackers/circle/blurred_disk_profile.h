@@ -61,6 +61,14 @@ class BlurredDiskProfile {
   // taken as at least 1e-3).
   PixelProfileValue OverPixel(double z, double a, double b) const;
 
+  // How OverPixel reads the tables at its four corners: one corner at a time, or all four in
+  // the lanes of one AVX2 vector, with the same operations lane by lane in the same order, so
+  // the same bits (tested). OverPixel takes the vector where the CPU has AVX2: about 40 % less
+  // time a call, the fit on the pixels 7 % less, full detection 4 % (results/speed.md).
+  enum class Corners { kOneByOne, kAvx2 };
+  static bool HasAvx2();
+  PixelProfileValue OverPixel(double z, double a, double b, Corners corners) const;
+
  private:
   // H, G's second integral in z, at x, with its derivatives in x (the interpolant's, about
   // G's first integral) and in s.
@@ -68,6 +76,9 @@ class BlurredDiskProfile {
     double value = 0.0, d_dx = 0.0, d_ds = 0.0;
   };
   Integral SecondIntegralAt(double x) const;
+  // OverPixel with its corners in AVX2 lanes (HasAvx2() only; A and B at their floor).
+  PixelProfileValue OverPixelAvx2(double z, double a, double b) const;
+  static PixelProfileValue FromCorners(const Integral (&corner)[4], double a, double b);
 
   // The first of the two table rows around s, of G and of its two integrals in z (the second
   // follows it).

@@ -7,8 +7,10 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstring>
 #include <string>
 #include <tuple>
+#include <vector>
 
 namespace markerbench {
 namespace {
@@ -133,6 +135,37 @@ TEST(BlurredDiskProfile, ANanPointGivesNan) {
                   std::isnan(over.d_dlog_width));
     }
   }
+}
+
+// The four corners read in one AVX2 vector give the bits of reading them one by one: across
+// the table's rows (one row beyond s = 80, two below, s on a row and clamped below 0.5), inside
+// and past both ends of z, at NaN and infinite points, and at half-widths from the floor up.
+TEST(BlurredDiskProfile, CornersInAVectorGiveTheSameBitsAsOneByOne) {
+  if (!BlurredDiskProfile::HasAvx2()) GTEST_SKIP() << "no AVX2 on this CPU";
+  const double nan = std::nan(""), infinity = HUGE_VAL;
+  const std::vector<double> radii = {0.1, 0.5, 0.8, 1.0, 2.0, 3.7, 12.0, 80.0, 81.0, 1e3, 1e6, nan};
+  std::vector<double> points = {
+      -infinity, -30.0, -7.0, -6.999, 6.999, 7.0, 7.3, 30.0, infinity, nan};
+  for (int k = 0; k <= 400; ++k) points.push_back(-10.0 + 0.05 * k + 1e-3 * std::sin(k));
+  int compared = 0;
+  for (const double s : radii) {
+    const BlurredDiskProfile profile(s);
+    for (const double z : points) {
+      for (const double a : {0.0, 1e-3, 0.02, 0.35, 0.5, 1.7, 6.0, nan}) {
+        for (const double b : {0.0, 0.01, 0.354, 2.2}) {
+          const PixelProfileValue one_by_one =
+              profile.OverPixel(z, a, b, BlurredDiskProfile::Corners::kOneByOne);
+          const PixelProfileValue vector =
+              profile.OverPixel(z, a, b, BlurredDiskProfile::Corners::kAvx2);
+          ASSERT_EQ(std::memcmp(&one_by_one, &vector, sizeof(PixelProfileValue)), 0)
+              << "s " << s << " z " << z << " a " << a << " b " << b << ": " << one_by_one.value
+              << " against " << vector.value;
+          ++compared;
+        }
+      }
+    }
+  }
+  EXPECT_EQ(compared, 12 * 411 * 8 * 4);
 }
 
 // The blur of a model over pixels and the σ of its image's edges convert both ways: the edges
