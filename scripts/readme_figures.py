@@ -670,11 +670,9 @@ def speed_phrases():
     ]
 
 
-PHRASES = {"camera_response": camera_response_phrases, "paper": paper_phrases,
-           "speed": speed_phrases,
-           "sequences": sequence_phrases,
-           "circle_markers": circle_marker_phrases,
-           "circle_accuracy": circle_accuracy_phrases}
+PHRASES = {"speed": speed_phrases, "circle_accuracy": circle_accuracy_phrases,
+           "camera_response": camera_response_phrases, "paper": paper_phrases,
+           "circle_markers": circle_marker_phrases, "sequences": sequence_phrases}
 # A number in a phrase: digits, with separators inside (1,350 and 0.125, not a sentence's end).
 PHRASE_NUMBER = r"([0-9]+(?:[.,][0-9]+)*)"
 
