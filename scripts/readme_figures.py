@@ -16,6 +16,7 @@ the tables (its words and line breaks kept, only its numbers replaced).
     readme_figures.py --write   rewrite the tables and phrases in the documents (DOCUMENTS)
 """
 import csv
+import functools
 import math
 import pathlib
 import re
@@ -25,9 +26,11 @@ ROOT = pathlib.Path(__file__).resolve().parent.parent
 README = ROOT / "README.md"
 
 
+@functools.lru_cache(maxsize=None)
 def read_summary(path):
+    """A summary's rows, read once (the figures look many rows up in the same files)."""
     with open(ROOT / path, newline="") as f:
-        return list(csv.DictReader(f))
+        return tuple(csv.DictReader(f))
 
 
 def number(text):
@@ -54,9 +57,16 @@ def read_paper_summary():
             if r["marker"] in COMPARISON_MARKERS]
 
 
-def cell(rows, scenario, value, tracker=None):
+def cell(rows, scenario, value, tracker=None, marker=None):
     return [r for r in rows if r["scenario"] == scenario and number(r["sweep_value"]) == value
-            and r.get("grid", "") == "" and (tracker is None or r["tracker"] == tracker)]
+            and r.get("grid", "") == "" and (tracker is None or r["tracker"] == tracker)
+            and (marker is None or r["marker"] == marker)]
+
+
+def summary_row(path, scenario, value, tracker, marker):
+    """The one row of a summary for a sweep value, tracker and marker."""
+    [row] = cell(read_summary(path), scenario, value, tracker, marker)
+    return row
 
 
 # (scenario, sweep value, condition, target as text, minimum success, maximum median error
@@ -408,10 +418,7 @@ def independent_render():
 
 
 def camera_response_row(scenario, gamma, tracker, marker):
-    [row] = [r for r in read_summary("results/camera_response/summary.csv")
-             if r["scenario"] == scenario and number(r["sweep_value"]) == gamma
-             and r["tracker"] == tracker and r["marker"] == marker]
-    return row
+    return summary_row("results/camera_response/summary.csv", scenario, gamma, tracker, marker)
 
 
 def camera_response():
@@ -443,10 +450,7 @@ def rounded(value, digits):
 
 
 def paper_row(scenario, value, tracker, marker):
-    [row] = [r for r in read_summary("results/paper/summary.csv")
-             if r["scenario"] == scenario and number(r["sweep_value"]) == value
-             and r["tracker"] == tracker and r["marker"] == marker and r.get("grid", "") == ""]
-    return row
+    return summary_row("results/paper/summary.csv", scenario, value, tracker, marker)
 
 
 def camera_response_phrases():
