@@ -644,7 +644,7 @@ def sequence_phrases():
 
 
 # results/speed.md's latest ratios of the circle tracker to apriltag: the table after this line.
-SPEED_RATIOS_FROM = "The same 20 runs beside `apriltag`"
+SPEED_RATIOS_FROM = "The latest paired times beside `apriltag`"
 
 
 def speed_phrases():
