@@ -34,17 +34,22 @@ struct MarkerImage {
   std::vector<Eigen::Matrix3d> conics_px;
   Eigen::Vector2d m1_px;
 };
+// Its circles alone, through H = K [r1 r2 t].
+std::vector<Eigen::Matrix3d> ConicsImagedThrough(const CircleGeometry& geometry,
+                                                 const Eigen::Matrix3d& H) {
+  std::vector<Eigen::Matrix3d> conics_px;
+  for (size_t i = 0; i < geometry.centers.size(); ++i) {
+    conics_px.push_back(
+        CanonicalConic(ImageOfCircle<double>(H, geometry.centers[i], geometry.radii_m[i])));
+  }
+  return conics_px;
+}
 MarkerImage MarkerImagedAt(const CircleGeometry& geometry,
                            const Camera& camera,
                            const Rigid3& cam_from_paper) {
   const Eigen::Matrix3d H = camera.K() * RayFromPlane(cam_from_paper);
-  MarkerImage image;
-  for (size_t i = 0; i < geometry.centers.size(); ++i) {
-    image.conics_px.push_back(
-        CanonicalConic(ImageOfCircle<double>(H, geometry.centers[i], geometry.radii_m[i])));
-  }
-  image.m1_px = (H * Eigen::Vector3d(geometry.Lx, 0.0, 1.0)).hnormalized();
-  return image;
+  return {ConicsImagedThrough(geometry, H),
+          (H * Eigen::Vector3d(geometry.Lx, 0.0, 1.0)).hnormalized()};
 }
 
 // The marker's image at a predicted pose, and the region around it (the ellipses' and m1's box
@@ -134,7 +139,7 @@ double PredictionErrorPx(const CircleGeometry& geometry,
                          const Rigid3& cam_from_paper,
                          const PredictedImage& predicted) {
   const std::vector<Eigen::Matrix3d> conics_px =
-      MarkerImagedAt(geometry, camera, cam_from_paper).conics_px;
+      ConicsImagedThrough(geometry, camera.K() * RayFromPlane(cam_from_paper));
   double error = 0.0;
   for (size_t i = 0; i < conics_px.size(); ++i) {
     const Ellipse at = EllipseFromConic(conics_px[i]);

@@ -462,8 +462,8 @@ TEST(CircleTracker, TrackingOnThePixelsGivesWayWhereItsChecksFail) {
   const Camera camera = FrameRequest().scene.camera;  // RenderAndTrack's
   const Rigid3 truth = TiltedView(0.6, 25.0, 40.0);
   CircleTracker tracker, detection;
-  // Found by full detection, then by the search around its pose, then (its motion predicted)
-  // tracked on the pixels.
+  // Found by full detection, then by the search around its pose, then, that frame having lain
+  // where it was predicted (kMaxLastPredictionErrorPx), tracked on the pixels.
   const auto found_and_tracked = [&](uint64_t seed) {
     for (int frame = 0; frame < 3; ++frame) {
       ASSERT_EQ(RenderAndTrack(&tracker, marker, truth, 0.02, seed + frame).result.status,
