@@ -10,6 +10,7 @@
 #include <limits>
 #include <vector>
 
+#include "core/camera_yaml.h"
 #include "core/gamma_curve.h"
 #include "core/marker_yaml.h"
 #include "core/pose_error.h"
@@ -860,6 +861,50 @@ TEST(CircleTracker, OptionsFromYamlNameTheBadKey) {
     }
   }
   EXPECT_TRUE(MakeTracker("circle", nullptr)->CanTrack(Load("circle_d")));
+}
+
+// The marker through a wide lens (scenarios/cameras/wide_distorted.yaml, barrel distortion)
+// near the frame's side, where its pinhole image lies tens of pixels beyond the one the lens
+// forms: the fit on the pixels takes those the lens forms (it had taken those within reach of
+// the pinhole image, and so missed part of each edge: on these frames a median error of 2.16 mm,
+// up to 10.6, better than the edge points alone on 8 of 18).
+TEST(CircleTracker, FitsThePixelsOfAMarkerNearAWideLensSide) {
+  const MarkerSpec marker = Load("circles_a");
+  const Camera camera = LoadCameraYaml("scenarios/cameras/wide_distorted.yaml");
+  CircleTrackerOptions edges_only;
+  edges_only.photometric = false;
+  std::vector<double> errors_mm;
+  int better = 0;
+  for (const double x_per_z : {0.7, 0.75, 0.8}) {  // the image's centre at u = 581-608 of 640
+    for (int seed = 0; seed < 8; ++seed) {
+      Rigid3 truth = TiltedView(0.45, 25.0, 45.0 * seed);
+      truth.translation.x() = x_per_z * truth.translation.z();
+      FrameRequest request = SeededFrameRequest(marker, truth, 0.02, 0.0, 100 + seed, 3);
+      request.scene.camera = camera;
+      const RenderedFrame frame = RenderFrame(request);
+      const Observation observation{&frame.image, &camera, &marker};
+      CircleTracker tracker, edge_tracker(edges_only);
+      const TrackResult found = tracker.Track(observation);
+      const TrackResult from_edges = edge_tracker.Track(observation);
+      // Rolled so that a disk leaves the frame: neither finds the marker.
+      EXPECT_EQ(found.status, from_edges.status) << x_per_z << " " << seed;
+      if (found.status != TrackStatus::kOk || from_edges.status != TrackStatus::kOk) continue;
+      errors_mm.push_back(1000.0 * PositionError(found.hypotheses[0], truth));
+      better += errors_mm.back() < 1000.0 * PositionError(from_edges.hypotheses[0], truth);
+    }
+  }
+  ASSERT_GE(errors_mm.size(), 15u);
+  // Measured: 18 frames, median 0.90 mm (at the image's centre 0.53), largest 2.44 mm, better
+  // than the edge points alone on 17.
+  EXPECT_LT(UpperMedian(errors_mm), 1.2);
+  EXPECT_LT(*std::max_element(errors_mm.begin(), errors_mm.end()), 3.0);
+  EXPECT_GE(better, static_cast<int>(errors_mm.size()) - 4);
+  std::printf("near a wide lens's side: %zu frames, median %.2f mm, largest %.2f mm, better "
+              "than the edge points on %d\n",
+              errors_mm.size(),
+              UpperMedian(errors_mm),
+              *std::max_element(errors_mm.begin(), errors_mm.end()),
+              better);
 }
 
 }  // namespace

@@ -455,6 +455,41 @@ int NearestBin(const EdgeLayer& layer,
   return bin;
 }
 
+// The pixels that see the ideal (pinhole) image's square `center` ± `reach`, in pixel
+// coordinates: the square itself without distortion; through the lens, the box of its sides'
+// images (a point about every pixel of them, a pixel to spare), which holds the image of all of
+// it where the lens maps it one to one (its Jacobian positive along the sides); else the
+// whole image. Its sides' images may bow: near a wide lens's edge the pinhole image lies tens of
+// pixels beyond the one the lens forms.
+Eigen::AlignedBox2d PixelsSeeingIdealSquare(const Image8& image,
+                                            const Camera& camera,
+                                            const Eigen::Vector2d& center,
+                                            double reach) {
+  const Eigen::Vector2d half = Eigen::Vector2d::Constant(reach);
+  if (!camera.HasDistortion()) return {center - half, center + half};
+  const Eigen::AlignedBox2d whole(Eigen::Vector2d(0.0, 0.0),
+                                  Eigen::Vector2d(image.width - 1.0, image.height - 1.0));
+  const Eigen::Matrix3d ray_from_ideal = camera.K().inverse();
+  constexpr int kMaxSteps = 4096;  // a side's points; beyond, the box is clamped to the image
+  const int steps = static_cast<int>(std::clamp(std::ceil(2.0 * reach), 1.0, 1.0 * kMaxSteps));
+  Eigen::AlignedBox2d box;
+  for (int k = 0; k <= steps; ++k) {
+    const double along = reach * (2.0 * k / steps - 1.0);
+    for (const Eigen::Vector2d& offset : {Eigen::Vector2d(along, -reach),
+                                          Eigen::Vector2d(along, reach),
+                                          Eigen::Vector2d(-reach, along),
+                                          Eigen::Vector2d(reach, along)}) {
+      const Eigen::Vector3d ray = ray_from_ideal * (center + offset).homogeneous();
+      const Eigen::Vector2d px = camera.ImgFromCam(ray);
+      if (!(camera.DistortJacobian(ray.head<2>()).determinant() > 0.0 && px.allFinite())) {
+        return whole;
+      }
+      box.extend(px);
+    }
+  }
+  return {box.min() - Eigen::Vector2d::Ones(), box.max() + Eigen::Vector2d::Ones()};
+}
+
 // The pixels within `band` of an edge through H, each with every edge within `band` of it,
 // but none deeper inside a disk than `max_depth_per_curvature` of its edge's radius of
 // curvature there (PhotometricOptions).
@@ -494,11 +529,12 @@ PixelSet PixelsNearEdges(const Image8& image,
     const Ellipse& e = layer.start_ellipse;
     const double inner = std::max(0.0, e.semi_minor - band - 1.0);
     annuli.push_back({e.center, std::pow(e.semi_major + band + 1.0, 2), inner * inner});
-    const double reach = e.semi_major + band + 2.0;
-    boxes.push_back({column(e.center.x() - reach),
-                     row(e.center.y() - reach),
-                     column(e.center.x() + reach),
-                     row(e.center.y() + reach)});
+    const Eigen::AlignedBox2d reach =
+        PixelsSeeingIdealSquare(image, camera, e.center, e.semi_major + band + 2.0);
+    boxes.push_back({column(reach.min().x()),
+                     row(reach.min().y()),
+                     column(reach.max().x()),
+                     row(reach.max().y())});
     all = {std::min(all.u0, boxes.back().u0),
            std::min(all.v0, boxes.back().v0),
            std::max(all.u1, boxes.back().u1),
