@@ -8,6 +8,7 @@
 #include "core/yaml_reader.h"
 #include "trackers/circle/blurred_disk_profile.h"
 #include "trackers/circle/conic.h"
+#include "trackers/circle/conic_fit.h"
 #include "trackers/circle/photometric_refinement.h"
 #include "trackers/circle/roll_feature.h"
 #include "trackers/printed_appearance.h"
@@ -52,9 +53,40 @@ MarkerImage MarkerImagedAt(const CircleGeometry& geometry,
           (H * Eigen::Vector3d(geometry.Lx, 0.0, 1.0)).hnormalized()};
 }
 
-// The marker's image at a predicted pose, and the region around it (the ellipses' and m1's box
-// grown by `roi_margin` of its size and 10 px, within the image).
+// The same as the image shows it through the lens: the pinhole's without distortion; with it,
+// each circle the ellipse through 64 points of its image (the lens bends it off an ellipse by
+// far less than the edge search's reach). nullopt where a circle gives no ellipse.
+constexpr int kLensImagePoints = 64;
+std::optional<MarkerImage> MarkerImageThroughLens(const CircleGeometry& geometry,
+                                                  const Camera& camera,
+                                                  const Rigid3& cam_from_paper,
+                                                  const MarkerImage& pinhole) {
+  if (!camera.HasDistortion()) return pinhole;
+  MarkerImage image;
+  for (size_t i = 0; i < geometry.centers.size(); ++i) {
+    std::vector<Eigen::Vector2d> points_px;
+    for (int k = 0; k < kLensImagePoints; ++k) {
+      const double angle = 2.0 * M_PI * k / kLensImagePoints;
+      const Eigen::Vector2d on_circle =
+          geometry.centers[i] +
+          geometry.radii_m[i] * Eigen::Vector2d(std::cos(angle), std::sin(angle));
+      points_px.push_back(
+          camera.ImgFromCam(cam_from_paper * Eigen::Vector3d(on_circle.x(), on_circle.y(), 0.0)));
+    }
+    const std::optional<ConicFit> fit = FitEllipse(points_px);
+    if (!fit) return std::nullopt;
+    image.conics_px.push_back(fit->conic);
+  }
+  image.m1_px = camera.ImgFromCam(cam_from_paper * Eigen::Vector3d(geometry.Lx, 0.0, 0.0));
+  return image;
+}
+
+// The marker's image at a predicted pose (the pinhole's, as the detector's undistorted
+// ellipses are compared with it), through the lens (where the detector looks), and the region
+// around the latter (the ellipses' and m1's box grown by `roi_margin` of its size and 10 px,
+// within the image).
 struct PredictedImage : MarkerImage {
+  MarkerImage through_lens;
   cv::Rect region;
 };
 
@@ -71,13 +103,17 @@ std::optional<PredictedImage> PredictImage(const CircleGeometry& geometry,
       return std::nullopt;
     }
   }
-  PredictedImage predicted{MarkerImagedAt(geometry, camera, cam_from_paper), cv::Rect()};
+  const MarkerImage pinhole = MarkerImagedAt(geometry, camera, cam_from_paper);
+  const std::optional<MarkerImage> through_lens =
+      MarkerImageThroughLens(geometry, camera, cam_from_paper, pinhole);
+  if (!through_lens) return std::nullopt;
+  PredictedImage predicted{pinhole, *through_lens, cv::Rect()};
   cv::Rect2d box;
-  for (size_t i = 0; i < predicted.conics_px.size(); ++i) {
-    const cv::Rect2d b = EllipseBox(predicted.conics_px[i]);
+  for (size_t i = 0; i < through_lens->conics_px.size(); ++i) {
+    const cv::Rect2d b = EllipseBox(through_lens->conics_px[i]);
     box = i == 0 ? b : (box | b);
   }
-  box |= cv::Rect2d(predicted.m1_px.x(), predicted.m1_px.y(), 1.0, 1.0);
+  box |= cv::Rect2d(through_lens->m1_px.x(), through_lens->m1_px.y(), 1.0, 1.0);
   const double grow = roi_margin * std::max(box.width, box.height) + 10.0;
   // Far off the image (or not finite): nothing to search, and no int holds its corners.
   constexpr double kFar = 1e6;
@@ -380,7 +416,8 @@ TrackResult CircleTracker::FindInFrame(const Observation& observation) {
         diagnostics_.used_tracking_region = true;
         if (found_as_predicted(result)) return result;
       }
-      const std::vector<Eigen::Matrix3d>* const starts[] = {&prediction->conics_px, nullptr};
+      const std::vector<Eigen::Matrix3d>* const starts[] = {&prediction->through_lens.conics_px,
+                                                            nullptr};
       for (const std::vector<Eigen::Matrix3d>* start : starts) {
         TrackResult result = TrackIn(observation,
                                      *geometry,
@@ -664,15 +701,19 @@ TrackResult CircleTracker::TrackOnPixels(const Observation& observation,
   diagnostics_.noise_sigma = found.noise_sigma;
   diagnostics_.photometric_used = true;
   diagnostics_.refined_cam_from_marker = cam_from_marker;
-  // The fitted pose's ellipses (for the check against the prediction), each whole in the frame:
-  // a marker leaving it has edges the fit does not see.
+  // The fitted pose's ellipses (for the check against the prediction), each whole in the frame
+  // as the lens forms it: a marker leaving it has edges the fit does not see.
   const MarkerImage fitted_image = MarkerImagedAt(geometry, camera, cam_from_paper);
   diagnostics_.conics_px = fitted_image.conics_px;
+  const std::optional<MarkerImage> seen =
+      MarkerImageThroughLens(geometry, camera, cam_from_paper, fitted_image);
   const cv::Rect2d frame(0.0, 0.0, observation.image->width, observation.image->height);
-  bool within_frame = true;
-  for (const Eigen::Matrix3d& conic_px : diagnostics_.conics_px) {
-    const cv::Rect2d box = EllipseBox(conic_px);
-    within_frame = within_frame && (box & frame) == box;
+  bool within_frame = seen.has_value();
+  if (seen) {
+    for (const Eigen::Matrix3d& conic_px : seen->conics_px) {
+      const cv::Rect2d box = EllipseBox(conic_px);
+      within_frame = within_frame && (box & frame) == box;
+    }
   }
   diagnostics_.m1_px = fitted_image.m1_px;
   if (!within_frame) {
