@@ -72,9 +72,9 @@ def main():
     parser = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     parser.add_argument("--reference", default="results/reference")
     parser.add_argument("--trials", type=int, default=200)
-    parser.add_argument("--cells", type=int, default=76,
+    parser.add_argument("--cells", type=int, default=77,
                         help="3 sweeps x 2 values x 11 series, e and f under noise (2 values), "
-                        "the low-noise cell and 5 gamma cells")
+                        "the low-noise cell, 5 gamma cells and the wide lens's")
     parser.add_argument("--alpha", type=float, default=0.01)
     parser.add_argument("--success-drop", type=float, default=0.10)
     parser.add_argument("--error-ratio", type=float, default=1.25)
