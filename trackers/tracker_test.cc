@@ -5,10 +5,14 @@
 
 #include <map>
 #include <set>
+#include <string>
+#include <vector>
 
 #include "core/camera_yaml.h"
 #include "core/marker_yaml.h"
 #include "core/yaml_reader.h"
+#include "renderer/render_frame.h"
+#include "renderer/test_scenes.h"
 #include "trackers/tracker_factory.h"
 
 namespace markerbench {
@@ -122,6 +126,45 @@ TEST(TrackerFactory, EveryTrackerSurvivesDegenerateImages) {
     const TrackResult result = tracker->Track({&short_buffer, &camera, &markers.front()});
     EXPECT_EQ(result.status, TrackStatus::kError) << name;
     EXPECT_EQ(result.message, "malformed image 64x64x1 with 100 bytes") << name;
+  }
+}
+
+// A tracker reads the frame and writes nothing into it: a sweep hands the same frame to each of
+// its trackers in turn, and the frame goes into the example video after them. On noisy frames
+// of every marker it can track, grey and RGB, detected and then tracked. (`runetag-improved`
+// blurred grey frames in place against their noise, so that a tracker after it read them
+// blurred.)
+TEST(TrackerFactory, NoTrackerWritesIntoTheFrame) {
+  const Camera camera = LoadCameraYaml("scenarios/cameras/default.yaml");
+  std::vector<MarkerSpec> markers;
+  for (const char* kind : {"apriltag",
+                           "aruco",
+                           "artkplus",
+                           "runetag",
+                           "circles_a",
+                           "circle_d",
+                           "circle_e",
+                           "circle_f"}) {
+    markers.push_back(LoadMarkerYaml(std::string("scenarios/markers/") + kind + ".yaml"));
+  }
+  for (const std::string& name : TrackerNames()) {
+    const auto tracker = MakeTracker(name, nullptr);
+    for (const MarkerSpec& marker : markers) {
+      if (!tracker->CanTrack(marker)) continue;
+      for (const int channels : {1, 3}) {
+        tracker->Reset();
+        for (uint64_t seed = 0; seed < 2; ++seed) {
+          FrameRequest request =
+              MarkerFrameRequest(marker, TiltedView(0.5, 20.0, 30.0), 0.05, 1.0, channels);
+          request.noise_seed = seed;
+          const RenderedFrame frame = RenderFrame(request);
+          const std::vector<uint8_t> before = frame.image.pixels;
+          tracker->Track({&frame.image, &camera, &marker});
+          EXPECT_TRUE(frame.image.pixels == before)
+              << name << " on " << marker.name << ", " << channels << " channels, frame " << seed;
+        }
+      }
+    }
   }
 }
 

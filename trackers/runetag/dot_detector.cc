@@ -172,7 +172,11 @@ DotImage SmoothForDots(const cv::Mat& grey, const DotDetectorOptions& options) {
       std::min(options.max_smoothing_px, options.smoothing_per_noise * noise_sigma);
   DotImage result{grey, 255.0 * noise_sigma};
   if (smoothing_px > 0.3) {
-    cv::GaussianBlur(grey, result.smoothed, cv::Size(), smoothing_px);
+    // Into a buffer of its own: `grey` is the caller's frame, which other trackers read after
+    // this one (blurred into result.smoothed, which shared it, it was blurred in place).
+    cv::Mat smoothed;
+    cv::GaussianBlur(grey, smoothed, cv::Size(), smoothing_px);
+    result.smoothed = smoothed;
     result.noise /= 2.0 * std::sqrt(M_PI) * smoothing_px;  // white noise under a Gaussian of σ_s
   }
   return result;
