@@ -400,14 +400,23 @@ std::optional<RingMatch> MatchRings(const std::vector<ImagedDot>& dots,
                                     int expected_id,
                                     const RingDecoderOptions& options) {
   const Eigen::Matrix3d K = camera.K();
+  // The dots' rays, and where the pinhole would image them, as K^T C K below takes a ring's
+  // ellipse (without distortion, their pixels).
+  Camera reading = camera;
+  if (!options.undistort_dots) reading.distortion = {};
   std::vector<Eigen::Vector3d> rays;
-  for (const ImagedDot& d : dots) rays.push_back(camera.CamFromImg(d.center_px));
+  std::vector<Eigen::Vector2d> pinhole_px;
+  for (const ImagedDot& d : dots) {
+    rays.push_back(reading.CamFromImg(d.center_px));
+    pinhole_px.push_back(reading.HasDistortion() ? Eigen::Vector2d((K * rays.back()).hnormalized())
+                                                 : d.center_px);
+  }
   ConicFitOptions fit_options;
   fit_options.refine_pnd = false;
   std::optional<RingMatch> best;
   for (const std::vector<int>& ring : RingCandidates(dots, seed, options)) {
     std::vector<Eigen::Vector2d> ring_px;
-    for (int i : ring) ring_px.push_back(dots[i].center_px);
+    for (int i : ring) ring_px.push_back(pinhole_px[i]);
     const std::optional<ConicFit> fit = FitEllipse(ring_px, fit_options);
     if (!fit) continue;
     const Eigen::Matrix3d C_n = CanonicalConic(K.transpose() * fit->conic * K);

@@ -56,6 +56,11 @@ struct RingDecoderOptions {
   // The original's findPose drops a dot whose neighbour on its ring, one sector either side,
   // was read otherwise than the codeword (a merged blob there is likely off-centre).
   bool exclude_next_to_errors = true;
+  // Ours (runetag-improved) reads the dots through the lens: each dot's ray undistorted, and
+  // each ring's ellipse fitted where the pinhole would image its dots. The original's detector
+  // knows the intrinsics alone and takes the image's pixels as a pinhole's (only its findPose
+  // knows the lens), so under distortion its rings are no conics of the plane it assumes.
+  bool undistort_dots = false;
 };
 
 struct RingMatch {

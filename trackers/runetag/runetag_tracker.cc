@@ -115,6 +115,7 @@ std::vector<std::pair<std::string, std::string>> RuneTagTracker::Parameters() co
           {"exclude_next_to_errors", BoolText(o.rings.exclude_next_to_errors)},
           {"read_slot_levels", BoolText(o.rings.read_slot_levels)},
           {"decode_missing_dots", BoolText(o.rings.decode_missing_dots)},
+          {"undistort_dots", BoolText(o.rings.undistort_dots)},
           {"max_ransac_iterations", NumberText(o.rings.max_ransac_iterations)},
           {"ransac", BoolText(o.pose.ransac)},
           {"ransac_reprojection_px", NumberText(o.pose.ransac_reprojection_px)},
@@ -186,6 +187,7 @@ RuneTagOptions RuneTagOptions::Improved() {
   o.rings.angle_tolerance = 0.3;
   o.rings.max_dot_growth = 1.5;
   o.rings.exclude_next_to_errors = false;
+  o.rings.undistort_dots = true;
   o.pose.ransac = true;
   o.pose.refinement_passes = 5;
   return o;
@@ -234,6 +236,7 @@ RuneTagOptions RuneTagOptions::FromYaml(const YamlMap& map, const RuneTagOptions
       map.GetOr<bool>("exclude_next_to_errors", o.rings.exclude_next_to_errors);
   o.rings.read_slot_levels = map.GetOr<bool>("read_slot_levels", o.rings.read_slot_levels);
   o.rings.decode_missing_dots = map.GetOr<bool>("decode_missing_dots", o.rings.decode_missing_dots);
+  o.rings.undistort_dots = map.GetOr<bool>("undistort_dots", o.rings.undistort_dots);
   o.rings.max_ransac_iterations =
       map.GetOr<int>("max_ransac_iterations", o.rings.max_ransac_iterations);
   o.pose.ransac = map.GetOr<bool>("ransac", o.pose.ransac);
