@@ -140,8 +140,8 @@ TEST_F(RuneTagTrackerTest, AHalfOccludedMarkerStillDecodes) {
 
 // Through a wide lens (scenarios/cameras/wide_distorted.yaml, barrel distortion), the marker at
 // 0.6 m out to the frame's sides: each ring's ellipse is fitted where the pinhole would image
-// its dots, as the rays it is read along are (undistort_dots). Fitted to the dots' pixels, as
-// the original's detector takes them, it read few of these markers.
+// its dots, as the rays it is read along are (undistort_dots). Taking the dots' pixels as a
+// pinhole's, as the original's detector does, it reads fewer of these markers.
 TEST_F(RuneTagTrackerTest, ReadsTheDotsThroughAWideLens) {
   const Camera camera = LoadCameraYaml("scenarios/cameras/wide_distorted.yaml");
   RuneTagOptions as_original_reads = RuneTagOptions::Improved();
