@@ -64,6 +64,15 @@ Eigen::Vector3d Camera::CamFromImg(const Eigen::Vector2d& px) const {
   return {n.x(), n.y(), 1.0};
 }
 
+Eigen::Vector2d Camera::IdealFromImg(const Eigen::Vector2d& px) const {
+  const Eigen::Vector3d ray = CamFromImg(px);
+  return {fx * ray.x() + cx, fy * ray.y() + cy};
+}
+
+Eigen::Vector2d Camera::ImgFromIdeal(const Eigen::Vector2d& ideal_px) const {
+  return ImgFromCam({(ideal_px.x() - cx) / fx, (ideal_px.y() - cy) / fy, 1.0});
+}
+
 bool Camera::IsValid(std::string* error) const {
   std::ostringstream msg;
   if (width <= 0 || height <= 0) {

@@ -27,6 +27,12 @@ struct Camera {
   Eigen::Vector2d ImgFromCam(const Eigen::Vector3d& x_cam) const;
   // Undistorted normalized ray (x, y, 1) through a pixel; inverse of ImgFromCam up to scale.
   Eigen::Vector3d CamFromImg(const Eigen::Vector2d& px) const;
+  // The ideal pixel of a pixel: where the pinhole K alone images the ray through it (the lens's
+  // distortion removed), K · CamFromImg(px). Computed the same way without distortion, where it
+  // is px up to rounding.
+  Eigen::Vector2d IdealFromImg(const Eigen::Vector2d& px) const;
+  // The pixel through the lens of an ideal pixel; inverse of IdealFromImg.
+  Eigen::Vector2d ImgFromIdeal(const Eigen::Vector2d& ideal_px) const;
 
   // Distortion on normalized coordinates, its 2x2 Jacobian, and its inverse (Newton).
   Eigen::Vector2d Distort(const Eigen::Vector2d& undistorted) const;

@@ -2,6 +2,7 @@
 
 #include <gtest/gtest.h>
 
+#include <Eigen/Geometry>
 #include <random>
 
 namespace markerbench {
@@ -26,6 +27,34 @@ TEST(Camera, ProjectUnprojectRoundTripWithDistortion) {
     EXPECT_DOUBLE_EQ(ray.z(), 1.0);
     const Eigen::Vector2d back = camera.ImgFromCam(2.7 * ray);
     EXPECT_LE((back - px).norm(), kPixelRoundTripTol) << "pixel " << px.transpose();
+  }
+}
+
+// Ideal pixels: the pinhole K's image of the ray through a pixel, and back through the lens.
+TEST(Camera, IdealPixelsRoundTripWithDistortion) {
+  const Camera camera = DistortedCamera();
+  const Eigen::Matrix3d K = camera.K();
+  std::mt19937 rng(12);
+  std::uniform_real_distribution<double> u(0.0, camera.width - 1.0), v(0.0, camera.height - 1.0);
+  for (int i = 0; i < 500; ++i) {
+    const double y = v(rng);
+    const Eigen::Vector2d px(u(rng), y);
+    const Eigen::Vector2d ideal = camera.IdealFromImg(px);
+    const Eigen::Vector3d ray = camera.CamFromImg(px);
+    EXPECT_LE((ideal - (K * ray).hnormalized()).norm(), 1e-12) << "pixel " << px.transpose();
+    EXPECT_LE((camera.ImgFromIdeal(ideal) - px).norm(), kPixelRoundTripTol)
+        << "pixel " << px.transpose();
+  }
+  // Barrel distortion: a pixel near the corner is an ideal pixel farther from the centre.
+  const Eigen::Vector2d corner(5.0, 5.0), centre(camera.cx, camera.cy);
+  EXPECT_GT((camera.IdealFromImg(corner) - centre).norm(), (corner - centre).norm() + 10.0);
+}
+
+TEST(Camera, IdealPixelsAreThePixelsWithoutDistortion) {
+  const Camera camera;
+  for (const Eigen::Vector2d& px : {Eigen::Vector2d(0.0, 0.0), Eigen::Vector2d(123.25, 407.5)}) {
+    EXPECT_LE((camera.IdealFromImg(px) - px).norm(), 1e-12);
+    EXPECT_LE((camera.ImgFromIdeal(px) - px).norm(), 1e-12);
   }
 }
 

@@ -33,18 +33,16 @@ std::optional<PatternRead> ReadPattern(const uint8_t* grey,
                                        const Camera& camera,
                                        const PatternReadOptions& options) {
   const bool distorted = camera.HasDistortion() && !options.truncated_samples;
-  const Eigen::Matrix3d K = camera.K();
   std::array<Eigen::Vector2d, 4> ideal;
   for (size_t i = 0; i < 4; ++i) {
-    ideal[i] = distorted ? (K * camera.CamFromImg(quad_px[i])).hnormalized() : quad_px[i];
+    ideal[i] = distorted ? camera.IdealFromImg(quad_px[i]) : quad_px[i];
   }
   const Eigen::Matrix3d H =
       HomographyDlt({{0, 0}, {1, 0}, {1, 1}, {0, 1}}, {ideal.begin(), ideal.end()});
-  const Eigen::Matrix3d K_inv = K.inverse();
   const double cells = 6 + 2 * border_cells;
   const auto to_px = [&](const Eigen::Vector2d& unit) -> Eigen::Vector2d {
     const Eigen::Vector2d p = (H * unit.homogeneous()).hnormalized();
-    return distorted ? camera.ImgFromCam(K_inv * p.homogeneous()) : p;
+    return distorted ? camera.ImgFromIdeal(p) : p;
   };
   const int n = options.truncated_samples ? 1 : options.samples_per_side;
   std::array<double, kArtkPlusWordBits> level{};

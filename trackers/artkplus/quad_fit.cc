@@ -106,9 +106,8 @@ std::optional<std::array<Eigen::Vector2d, 4>> FitQuadCorners(
     const QuadFitOptions& options) {
   const size_t n = contour.size();
   const bool distorted = camera.HasDistortion();
-  const Eigen::Matrix3d K = camera.K();
   const auto ideal = [&](const Eigen::Vector2d& px) -> Eigen::Vector2d {
-    return distorted ? (K * camera.CamFromImg(px)).hnormalized() : px;
+    return distorted ? camera.IdealFromImg(px) : px;
   };
   const auto inside_image = [&](const Eigen::Vector2i& p) {
     return p.x() >= 0 && p.y() >= 0 && p.x() < regions.width && p.y() < regions.height;
@@ -172,7 +171,7 @@ std::optional<std::array<Eigen::Vector2d, 4>> FitQuadCorners(
     const Eigen::Vector3d x = l0.cross(l1);
     if (!(std::abs(x.z()) > 1e-12)) return std::nullopt;
     const Eigen::Vector2d corner = x.hnormalized();
-    corners[s] = distorted ? camera.ImgFromCam(K.inverse() * corner.homogeneous()) : corner;
+    corners[s] = distorted ? camera.ImgFromIdeal(corner) : corner;
   }
   return corners;
 }

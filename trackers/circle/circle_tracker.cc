@@ -16,11 +16,6 @@
 namespace markerbench {
 namespace {
 
-Eigen::Vector2d Undistorted(const Camera& camera, const Eigen::Vector2d& px) {
-  const Eigen::Vector3d ray = camera.CamFromImg(px);
-  return {camera.fx * ray.x() + camera.cx, camera.fy * ray.y() + camera.cy};
-}
-
 // Bounding box of an ellipse conic.
 cv::Rect2d EllipseBox(const Eigen::Matrix3d& C) {
   const Ellipse e = EllipseFromConic(C);
@@ -472,7 +467,7 @@ TrackResult CircleTracker::TrackIn(const Observation& observation,
   for (size_t i = 0; i < detection->circles.size(); ++i) {
     DetectedCircle& circle = detection->circles[i];
     if (camera.HasDistortion()) {
-      for (Eigen::Vector2d& p : circle.edges.points_px) p = Undistorted(camera, p);
+      for (Eigen::Vector2d& p : circle.edges.points_px) p = camera.IdealFromImg(p);
       const std::optional<ConicFit> fit = FitEllipse(circle.edges.points_px, options_.detector.fit);
       if (!fit) {
         result.status = TrackStatus::kPoseFailed;
@@ -498,10 +493,10 @@ TrackResult CircleTracker::TrackIn(const Observation& observation,
       0.1, std::pow(diagnostics_.blur_sigma_px, 2) - std::pow(detection->smoothing_sigma_px, 2)));
   if (detection->m0_px)
     measurements.m0_px =
-        camera.HasDistortion() ? Undistorted(camera, *detection->m0_px) : *detection->m0_px;
+        camera.HasDistortion() ? camera.IdealFromImg(*detection->m0_px) : *detection->m0_px;
   if (detection->m1_px)
     measurements.m1_px =
-        camera.HasDistortion() ? Undistorted(camera, *detection->m1_px) : *detection->m1_px;
+        camera.HasDistortion() ? camera.IdealFromImg(*detection->m1_px) : *detection->m1_px;
   diagnostics_.m1_px = measurements.m1_px;
 
   // Point terms (erratum 7): m0 where it is a detected dot, m1 where no circle gives it.

@@ -500,7 +500,6 @@ PixelSet PixelsNearEdges(const Image8& image,
                          const Eigen::Matrix3d& H,
                          double band,
                          double max_depth_per_curvature) {
-  const Eigen::Matrix3d K = camera.K();
   const Eigen::Matrix3d plane_from_px = H.inverse();
   const Eigen::Vector3d background = InChannels(marker.background, image.channels);
   PixelSet set;
@@ -593,8 +592,7 @@ PixelSet PixelsNearEdges(const Image8& image,
     uint8_t& seen = taken[static_cast<size_t>(v - all.v0) * all_width + (u - all.u0)];
     if (seen) return;
     seen = 1;
-    const Eigen::Vector3d ray = camera.CamFromImg(Eigen::Vector2d(u, v));
-    const Eigen::Vector2d ideal(K(0, 0) * ray.x() + K(0, 2), K(1, 1) * ray.y() + K(1, 2));
+    const Eigen::Vector2d ideal = camera.IdealFromImg(Eigen::Vector2d(u, v));
     // Signed distance to each edge, negative inside.
     bool near_any = false;
     for (size_t m = 0; m < layers.size(); ++m) {

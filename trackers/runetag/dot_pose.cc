@@ -149,7 +149,7 @@ std::optional<DotPose> EstimateDotPose(const std::vector<Eigen::Vector2d>& cente
   std::vector<cv::Point2d> measured;
   for (size_t i = 0; i < centers_px.size(); ++i) {
     object.emplace_back(dots_xy[i].x(), dots_xy[i].y(), 0.0);
-    const Eigen::Vector2d ideal = (K * camera.CamFromImg(centers_px[i])).hnormalized();
+    const Eigen::Vector2d ideal = camera.IdealFromImg(centers_px[i]);
     measured.emplace_back(ideal.x(), ideal.y());
   }
   std::optional<PnpFit> fit;
