@@ -73,6 +73,11 @@ Eigen::Vector2d Camera::ImgFromIdeal(const Eigen::Vector2d& ideal_px) const {
   return ImgFromCam({(ideal_px.x() - cx) / fx, (ideal_px.y() - cy) / fy, 1.0});
 }
 
+Eigen::Matrix2d Camera::IdealFromImgJacobian(const Eigen::Vector3d& ray) const {
+  const Eigen::Vector2d f(fx, fy);
+  return f.asDiagonal() * DistortJacobian(ray.head<2>()).inverse() * f.cwiseInverse().asDiagonal();
+}
+
 bool Camera::IsValid(std::string* error) const {
   std::ostringstream msg;
   if (width <= 0 || height <= 0) {

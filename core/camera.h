@@ -33,6 +33,10 @@ struct Camera {
   Eigen::Vector2d IdealFromImg(const Eigen::Vector2d& px) const;
   // The pixel through the lens of an ideal pixel; inverse of IdealFromImg.
   Eigen::Vector2d ImgFromIdeal(const Eigen::Vector2d& ideal_px) const;
+  // IdealFromImg's Jacobian at the pixel whose ray is `ray` (CamFromImg's, z = 1): the lens's
+  // local map, diag(f) J⁻¹ diag(1/f) with J = DistortJacobian: near a barrel lens's sides a
+  // pixel spans more than one ideal pixel.
+  Eigen::Matrix2d IdealFromImgJacobian(const Eigen::Vector3d& ray) const;
 
   // Distortion on normalized coordinates, its 2x2 Jacobian, and its inverse (Newton).
   Eigen::Vector2d Distort(const Eigen::Vector2d& undistorted) const;

@@ -50,6 +50,24 @@ TEST(Camera, IdealPixelsRoundTripWithDistortion) {
   EXPECT_GT((camera.IdealFromImg(corner) - centre).norm(), (corner - centre).norm() + 10.0);
 }
 
+TEST(Camera, IdealFromImgJacobianMatchesFiniteDifferences) {
+  const Camera camera = DistortedCamera();
+  constexpr double kStep = 1e-4;  // px
+  for (const Eigen::Vector2d& px : {Eigen::Vector2d(320.0, 240.0),
+                                    Eigen::Vector2d(20.0, 30.0),
+                                    Eigen::Vector2d(610.5, 250.25)}) {
+    const Eigen::Matrix2d analytic = camera.IdealFromImgJacobian(camera.CamFromImg(px));
+    for (int c = 0; c < 2; ++c) {
+      const Eigen::Vector2d step = Eigen::Vector2d::Unit(c) * kStep;
+      const Eigen::Vector2d numeric =
+          (camera.IdealFromImg(px + step) - camera.IdealFromImg(px - step)) / (2.0 * kStep);
+      EXPECT_LE((analytic.col(c) - numeric).norm(), 1e-6) << "pixel " << px.transpose();
+    }
+  }
+  // Near the corner the lens squeezes the image: a pixel there spans more than one ideal pixel.
+  EXPECT_GT(camera.IdealFromImgJacobian(camera.CamFromImg({20.0, 30.0})).determinant(), 1.5);
+}
+
 TEST(Camera, IdealPixelsAreThePixelsWithoutDistortion) {
   const Camera camera;
   for (const Eigen::Vector2d& px : {Eigen::Vector2d(0.0, 0.0), Eigen::Vector2d(123.25, 407.5)}) {

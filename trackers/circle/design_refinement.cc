@@ -21,6 +21,8 @@ struct DesignPixel {
   int x = 0, y = 0;
   Eigen::Vector3d ray = Eigen::Vector3d::Zero();  // camera frame, z = 1
   double value = 0.0;                             // luma, 0-1
+  // Through a lens with distortion, the ideal pixels it spans (Camera::IdealFromImgJacobian).
+  Eigen::Matrix2d ideal_from_px = Eigen::Matrix2d::Identity();
 };
 
 // Row-major order, in which the pixels are chosen (so selections merge).
@@ -82,7 +84,9 @@ std::vector<DesignPixel> PixelsNearDesignEdges(const Image8& image,
       if (std::any_of(marker.layers.begin(), marker.layers.end(), [&](const PaintedShape& layer) {
             return IsNearOutline(layer.shape, look.point, reach_m);
           })) {
-        pixels.push_back({u, v, ray, LumaAt(image, u, v) / 255.0});
+        DesignPixel pixel{u, v, ray, LumaAt(image, u, v) / 255.0};
+        if (camera.HasDistortion()) pixel.ideal_from_px = camera.IdealFromImgJacobian(ray);
+        pixels.push_back(pixel);
       }
     }
   }
@@ -105,6 +109,7 @@ class DesignModel {
               double noise_sigma,
               bool fits_levels)
       : px_from_ray_inverse_(camera.K().inverse()),
+        through_lens_(camera.HasDistortion()),
         design_(marker),
         pixels_(pixels),
         noise_sigma_(noise_sigma),
@@ -150,7 +155,7 @@ class DesignModel {
     Eigen::Matrix<Jet, 3, 3> ray_from_plane;
     ray_from_plane << R.col(0), R.col(1), t;
     const Eigen::Matrix<Jet, 3, 3> plane_from_ray = ray_from_plane.inverse();
-    Eigen::Matrix3d plane_from_px;  // through the pinhole, for the local map
+    Eigen::Matrix3d plane_from_px;  // from ideal pixels, for the local map
     for (int i = 0; i < 9; ++i) plane_from_px(i) = plane_from_ray(i).a;
     plane_from_px = plane_from_px * px_from_ray_inverse_;
     const double sigma = theta[6], offset = theta[7], gain = theta[8];
@@ -176,6 +181,7 @@ class DesignModel {
         marker_from_px.col(j) =
             (plane_from_px.block<2, 1>(0, j) - point * plane_from_px(2, j)) / q.z().a;
       }
+      if (through_lens_) marker_from_px *= pixel.ideal_from_px;
       const BlurredLuma printed = design_.At(point, marker_from_px, sigma, level_shifts);
       // The pixel's term at μ, the pixel clipped and rounded (clipped_noise.h).
       const double mu = offset + gain * printed.luma;
@@ -202,6 +208,7 @@ class DesignModel {
 
  private:
   Eigen::Matrix3d px_from_ray_inverse_;  // K⁻¹
+  bool through_lens_;                    // each pixel's local map through its ideal_from_px
   BlurredDesign design_;
   const std::vector<DesignPixel>& pixels_;
   double noise_sigma_;

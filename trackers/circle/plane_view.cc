@@ -1,6 +1,7 @@
 #include "trackers/circle/plane_view.h"
 
 #include <Eigen/LU>
+#include <cmath>
 
 #include "core/shapes.h"
 
@@ -23,6 +24,11 @@ PlaneLook PlaneView::LookAlong(const Eigen::Vector3d& ray) const {
   for (int j = 0; j < 2; ++j) {
     look.plane_from_px.col(j) =
         (plane_from_px_.block<2, 1>(0, j) - look.point * plane_from_px_(2, j)) / q.z();
+  }
+  if (camera_.HasDistortion()) {
+    const Eigen::Matrix2d ideal_from_px = camera_.IdealFromImgJacobian(ray);
+    look.plane_from_px = look.plane_from_px * ideal_from_px;
+    look.ideal_area_per_px = std::abs(ideal_from_px.determinant());
   }
   return look;
 }

@@ -104,8 +104,9 @@ std::optional<WindowPixels> ReadWindow(const Image8& image,
   out.y_begin = static_cast<int>(std::floor(y0));
   out.columns = static_cast<int>(std::ceil(x1)) - out.x_begin + 1;
   out.rows = static_cast<int>(std::ceil(y1)) - out.y_begin + 1;
-  // Each pixel, at its plane point q, covers |det H⁻¹| / q̃_z³ of the normalized image's area
-  // per unit of it (H = [r1 r2 t], q̃ = H⁻¹ ray).
+  // Each pixel, at its plane point q, covers |det H⁻¹| / q̃_z³ of the plane per unit of the
+  // normalized image's area (H = [r1 r2 t], q̃ = H⁻¹ ray): 1/(fx fy) of that per ideal pixel,
+  // times the ideal pixels it spans through the lens.
   const PlaneView view(camera, cam_from_paper);
   const double pixel_area = std::abs(view.plane_from_ray().determinant()) / (camera.fx * camera.fy);
   for (int y = out.y_begin; y < out.y_begin + out.rows; ++y) {
@@ -114,7 +115,7 @@ std::optional<WindowPixels> ReadWindow(const Image8& image,
       const double weight = window.At(look.point.norm());
       if (!(weight > 0.0)) continue;
       const double h = look.homogeneous;
-      const double area = weight * pixel_area / std::abs(h * h * h);
+      const double area = weight * pixel_area * look.ideal_area_per_px / std::abs(h * h * h);
       out.pixels.push_back({x, y, LumaAt(image, x, y), look.point, area, look.plane_from_px});
     }
   }
