@@ -21,8 +21,6 @@ struct DesignPixel {
   int x = 0, y = 0;
   Eigen::Vector3d ray = Eigen::Vector3d::Zero();  // camera frame, z = 1
   double value = 0.0;                             // luma, 0-1
-  // Through a lens with distortion, the ideal pixels it spans (Camera::IdealFromImgJacobian).
-  Eigen::Matrix2d ideal_from_px = Eigen::Matrix2d::Identity();
 };
 
 // Row-major order, in which the pixels are chosen (so selections merge).
@@ -84,9 +82,7 @@ std::vector<DesignPixel> PixelsNearDesignEdges(const Image8& image,
       if (std::any_of(marker.layers.begin(), marker.layers.end(), [&](const PaintedShape& layer) {
             return IsNearOutline(layer.shape, look.point, reach_m);
           })) {
-        DesignPixel pixel{u, v, ray, LumaAt(image, u, v) / 255.0};
-        if (camera.HasDistortion()) pixel.ideal_from_px = camera.IdealFromImgJacobian(ray);
-        pixels.push_back(pixel);
+        pixels.push_back({u, v, ray, LumaAt(image, u, v) / 255.0});
       }
     }
   }
@@ -108,7 +104,8 @@ class DesignModel {
               const std::vector<DesignPixel>& pixels,
               double noise_sigma,
               bool fits_levels)
-      : px_from_ray_inverse_(camera.K().inverse()),
+      : camera_(camera),
+        px_from_ray_inverse_(camera.K().inverse()),
         through_lens_(camera.HasDistortion()),
         design_(marker),
         pixels_(pixels),
@@ -181,7 +178,7 @@ class DesignModel {
         marker_from_px.col(j) =
             (plane_from_px.block<2, 1>(0, j) - point * plane_from_px(2, j)) / q.z().a;
       }
-      if (through_lens_) marker_from_px *= pixel.ideal_from_px;
+      if (through_lens_) marker_from_px *= camera_.IdealFromImgJacobian(pixel.ray);
       const BlurredLuma printed = design_.At(point, marker_from_px, sigma, level_shifts);
       // The pixel's term at μ, the pixel clipped and rounded (clipped_noise.h).
       const double mu = offset + gain * printed.luma;
@@ -207,8 +204,9 @@ class DesignModel {
   }
 
  private:
+  const Camera& camera_;
   Eigen::Matrix3d px_from_ray_inverse_;  // K⁻¹
-  bool through_lens_;                    // each pixel's local map through its ideal_from_px
+  bool through_lens_;                    // the local map through the lens (IdealFromImgJacobian)
   BlurredDesign design_;
   const std::vector<DesignPixel>& pixels_;
   double noise_sigma_;
