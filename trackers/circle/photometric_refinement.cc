@@ -33,6 +33,14 @@ struct EdgeLayer {
   std::vector<double> start_curvature_radius_px;
   std::vector<double> start_curvature_per_px;  // 1/ρ of the same (0 where ρ is infinite)
   double start_depth_m = 0.0;                  // of the disk's centre
+  // Through a lens with distortion (empty without), per bin at its edge point's pixel: Aᵀ, the
+  // lens's local map A transposed (Camera::IdealFromImgJacobian); the ideal pixels a pixel
+  // spans across the edge, k = |Aᵀ n|; and the edge's curvature in pixels per its curvature in
+  // ideal pixels, det(A)² / k³ (a curve's under the linear map A⁻¹). The pixel's area and the
+  // blur, a pixel's and σ px wide in the image, are modelled in the pixel's own units.
+  std::vector<Eigen::Matrix2d> ideal_from_px_t;
+  std::vector<double> ideal_per_px_across;
+  std::vector<double> px_curvature_per_ideal;
   // Under blur of a good part of its size: modelled whole, its exact blurred ellipse
   // (blurred_ellipse.h), on every pixel of its image and within reach of it, with the
   // quadrature nodes its size in σ needs at the start pose.
@@ -226,8 +234,15 @@ class PixelModel {
           Jet(layer.disk.center.x()), Jet(layer.disk.center.y()), Jet(0.0));
       size_per_sigma[l] = layer.start_depth_m / ((R * center + t).z() * sigma);
       profiles[l].reserve(layer.bins);
-      for (const double rho : layer.start_curvature_radius_px) {
-        profiles[l].emplace_back(rho * size_per_sigma[l].a);
+      if (layer.ideal_per_px_across.empty()) {
+        for (const double rho : layer.start_curvature_radius_px) {
+          profiles[l].emplace_back(rho * size_per_sigma[l].a);
+        }
+      } else {
+        for (int bin = 0; bin < layer.bins; ++bin) {
+          profiles[l].emplace_back(layer.start_curvature_radius_px[bin] /
+                                   layer.px_curvature_per_ideal[bin] * size_per_sigma[l].a);
+        }
       }
     }
     // Per pixel in doubles, for each near edge: d = n·(x - e) + a²/2ρ (px, positive outside; a =
@@ -250,20 +265,29 @@ class PixelModel {
         return g.value;
       }
       const EdgeLayer& layer = layers_[near.layer];
-      const double rho = layer.start_curvature_radius_px[near.bin];
-      const double per_rho = layer.start_curvature_per_px[near.bin];
+      double rho = layer.start_curvature_radius_px[near.bin];
+      double per_rho = layer.start_curvature_per_px[near.bin];
       const Eigen::Vector2d& normal = layer.start_normal[near.bin];
       const EdgeOffset offset =
           OffsetFromCurvedEdge(p.ideal_px, edges_px[near.layer][near.bin], normal, per_rho);
+      const double along_tangent = offset.along * per_rho;
+      Eigen::Vector2d pixel_normal =
+          (normal + along_tangent * Eigen::Vector2d(-normal.y(), normal.x())).normalized();
+      // Through a lens, the edge in the pixel's own units (EdgeLayer::ideal_from_px_t).
+      double offset_distance = offset.distance, per_k = 1.0;
+      if (!layer.ideal_per_px_across.empty()) {
+        per_k = 1.0 / layer.ideal_per_px_across[near.bin];
+        offset_distance *= per_k;
+        rho /= layer.px_curvature_per_ideal[near.bin];
+        per_rho *= layer.px_curvature_per_ideal[near.bin];
+        pixel_normal = (layer.ideal_from_px_t[near.bin] * pixel_normal).normalized();
+      }
       // Over the pixel's area (blurred_disk_profile.h): its offsets along the edge (variance
       // 1/12) put it a²/2ρ further out on average, 1/24ρ; and across it, along the normal at
       // the pixel's own foot on the edge, turned from the edge point's by a/ρ (with the edge
       // point's, 2 px apart on a sharp disk of 40 px, the model sat 0.23 grey levels RMS from
       // the exact cover of the pixels it crosses; with the pixel's, 0.10).
-      const double distance = offset.distance + per_rho / 24.0;
-      const double along_tangent = offset.along * per_rho;
-      const Eigen::Vector2d pixel_normal =
-          (normal + along_tangent * Eigen::Vector2d(-normal.y(), normal.x())).normalized();
+      const double distance = offset_distance + per_rho / 24.0;
       const PixelProfileValue g =
           profiles[near.layer][near.bin].OverPixel(-distance * per_sigma,
                                                    half_per_sigma * std::abs(pixel_normal.x()),
@@ -278,7 +302,7 @@ class PixelModel {
         // ∂G/∂θ = G_z ∂z/∂θ + G_s ρ ∂(s/ρ)/∂θ, z = -d/σ, ∂d/∂θ = -(n + (a/ρ) t)·∂e/∂θ (and
         // ∂σ/∂θ = e₇).
         const double along_edge = g.d_dz * per_sigma;
-        const double across_edge = along_edge - chord.d_distance;  // -∂V/∂d
+        const double across_edge = (along_edge - chord.d_distance) * per_k;  // -∂V/∂d, d ideal
         const double along_size = g.d_ds * rho;
         const Jet& size = size_per_sigma[near.layer];
         for (int i = 0; i < 7; ++i) {
@@ -666,6 +690,21 @@ std::optional<ModelledPixels> PixelsAt(const Image8& image,
   const Eigen::Matrix3d H = camera.K() * RayFromPlane(cam_from_marker);
   std::optional<std::vector<EdgeLayer>> layers = EdgeLayers(marker, H, image.channels);
   if (!layers) return std::nullopt;
+  if (camera.HasDistortion()) {
+    for (EdgeLayer& layer : *layers) {
+      for (int bin = 0; bin < layer.bins; ++bin) {
+        const Eigen::Vector2d& px = layer.start_px[bin];
+        const Eigen::Vector3d ray(
+            (px.x() - camera.cx) / camera.fx, (px.y() - camera.cy) / camera.fy, 1.0);
+        const Eigen::Matrix2d& a_t =
+            layer.ideal_from_px_t.emplace_back(camera.IdealFromImgJacobian(ray).transpose());
+        const double k = (a_t * layer.start_normal[bin]).norm();
+        const double det = a_t.determinant();
+        layer.ideal_per_px_across.push_back(k);
+        layer.px_curvature_per_ideal.push_back(det * det / (k * k * k));
+      }
+    }
+  }
   const double sigma = std::max(sigma_px, 0.3);
   double largest_radius_px = 0.0;
   for (EdgeLayer& layer : *layers) {
