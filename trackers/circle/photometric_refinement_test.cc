@@ -226,7 +226,7 @@ TEST(PhotometricRefinement, FitsANoiseFreeFrameToItsRounding) {
 // the blur are modelled in the pixel's own units through the lens's local map (the edge's
 // distance, normal and curvature there), so the fit ends at the rounding's noise and the truth.
 // Measured: 0.003-0.031 mm, σ within 0.001 px, 0.29-0.33 levels; with the pixel's area and blur
-// taken in the pinhole's units, near the side 0.10-1.08 mm, σ 0.28-0.41 px too large, 3.7-5.5
+// taken in the pinhole's units, near the side 0.10-1.08 mm, σ 0.28-0.44 px too large, 3.7-5.5
 // levels (and with the curvature scaled as the distance, 1.29 mm at blur 1).
 TEST(PhotometricRefinement, FitsANoiseFreeFrameThroughAWideLens) {
   const Camera camera = LoadCameraYaml("scenarios/cameras/wide_distorted.yaml");
