@@ -59,18 +59,26 @@ Eigen::Vector2d Camera::ImgFromCam(const Eigen::Vector3d& x_cam) const {
   return {fx * d.x() + cx, fy * d.y() + cy};
 }
 
+Eigen::Vector2d Camera::IdealFromCam(const Eigen::Vector3d& x_cam) const {
+  return {fx * (x_cam.x() / x_cam.z()) + cx, fy * (x_cam.y() / x_cam.z()) + cy};
+}
+
+Eigen::Vector3d Camera::CamFromIdeal(const Eigen::Vector2d& ideal_px) const {
+  return {(ideal_px.x() - cx) / fx, (ideal_px.y() - cy) / fy, 1.0};
+}
+
+// The pinhole's ray through the pixel is the distorted point Undistort takes.
 Eigen::Vector3d Camera::CamFromImg(const Eigen::Vector2d& px) const {
-  const Eigen::Vector2d n = Undistort({(px.x() - cx) / fx, (px.y() - cy) / fy});
+  const Eigen::Vector2d n = Undistort(CamFromIdeal(px).head<2>());
   return {n.x(), n.y(), 1.0};
 }
 
 Eigen::Vector2d Camera::IdealFromImg(const Eigen::Vector2d& px) const {
-  const Eigen::Vector3d ray = CamFromImg(px);
-  return {fx * ray.x() + cx, fy * ray.y() + cy};
+  return IdealFromCam(CamFromImg(px));
 }
 
 Eigen::Vector2d Camera::ImgFromIdeal(const Eigen::Vector2d& ideal_px) const {
-  return ImgFromCam({(ideal_px.x() - cx) / fx, (ideal_px.y() - cy) / fy, 1.0});
+  return ImgFromCam(CamFromIdeal(ideal_px));
 }
 
 Eigen::Matrix2d Camera::IdealFromImgJacobian(const Eigen::Vector3d& ray) const {

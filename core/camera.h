@@ -27,11 +27,16 @@ struct Camera {
   Eigen::Vector2d ImgFromCam(const Eigen::Vector3d& x_cam) const;
   // Undistorted normalized ray (x, y, 1) through a pixel; inverse of ImgFromCam up to scale.
   Eigen::Vector3d CamFromImg(const Eigen::Vector2d& px) const;
+  // The pinhole K alone, without the lens: the ideal pixel of a camera-frame point (z > 0), and
+  // the ray (x, y, 1) K⁻¹ gives an ideal pixel.
+  Eigen::Vector2d IdealFromCam(const Eigen::Vector3d& x_cam) const;
+  Eigen::Vector3d CamFromIdeal(const Eigen::Vector2d& ideal_px) const;
   // The ideal pixel of a pixel: where the pinhole K alone images the ray through it (the lens's
-  // distortion removed), K · CamFromImg(px). Computed the same way without distortion, where it
-  // is px up to rounding.
+  // distortion removed), IdealFromCam(CamFromImg(px)). Computed the same way without distortion,
+  // where it is px up to rounding.
   Eigen::Vector2d IdealFromImg(const Eigen::Vector2d& px) const;
-  // The pixel through the lens of an ideal pixel; inverse of IdealFromImg.
+  // The pixel through the lens of an ideal pixel, ImgFromCam(CamFromIdeal(ideal_px)); inverse of
+  // IdealFromImg.
   Eigen::Vector2d ImgFromIdeal(const Eigen::Vector2d& ideal_px) const;
   // IdealFromImg's Jacobian at the pixel whose ray is `ray` (CamFromImg's, z = 1): the lens's
   // local map, diag(f) J⁻¹ diag(1/f) with J = DistortJacobian: near a barrel lens's sides a

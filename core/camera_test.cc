@@ -68,6 +68,23 @@ TEST(Camera, IdealFromImgJacobianMatchesFiniteDifferences) {
   EXPECT_GT(camera.IdealFromImgJacobian(camera.CamFromImg({20.0, 30.0})).determinant(), 1.5);
 }
 
+TEST(Camera, PinholeAloneIgnoresTheLensAndRoundTrips) {
+  const Camera camera = DistortedCamera();
+  const Eigen::Matrix3d K = camera.K();
+  for (const Eigen::Vector3d& x_cam : {Eigen::Vector3d(0.0, 0.0, 0.5),
+                                       Eigen::Vector3d(-0.21, 0.13, 0.6),
+                                       Eigen::Vector3d(0.9, -0.4, 2.5)}) {
+    const Eigen::Vector2d ideal = camera.IdealFromCam(x_cam);
+    EXPECT_LE((ideal - (K * x_cam).hnormalized()).norm(), 1e-12) << x_cam.transpose();
+    const Eigen::Vector3d ray = camera.CamFromIdeal(ideal);
+    EXPECT_EQ(ray.z(), 1.0);
+    EXPECT_LE((ray - x_cam / x_cam.z()).norm(), 1e-15) << x_cam.transpose();
+  }
+  // Off the axis the lens moves the pixel; the pinhole does not.
+  const Eigen::Vector3d off_axis(0.9, -0.4, 2.5);
+  EXPECT_GT((camera.IdealFromCam(off_axis) - camera.ImgFromCam(off_axis)).norm(), 1.0);
+}
+
 TEST(Camera, IdealPixelsAreThePixelsWithoutDistortion) {
   const Camera camera;
   for (const Eigen::Vector2d& px : {Eigen::Vector2d(0.0, 0.0), Eigen::Vector2d(123.25, 407.5)}) {

@@ -493,7 +493,6 @@ Eigen::AlignedBox2d PixelsSeeingIdealSquare(const Image8& image,
   if (!camera.HasDistortion()) return {center - half, center + half};
   const Eigen::AlignedBox2d whole(Eigen::Vector2d(0.0, 0.0),
                                   Eigen::Vector2d(image.width - 1.0, image.height - 1.0));
-  const Eigen::Matrix3d ray_from_ideal = camera.K().inverse();
   constexpr int kMaxSteps = 4096;  // a side's points; beyond, the box is clamped to the image
   const int steps = static_cast<int>(std::clamp(std::ceil(2.0 * reach), 1.0, 1.0 * kMaxSteps));
   Eigen::AlignedBox2d box;
@@ -503,7 +502,7 @@ Eigen::AlignedBox2d PixelsSeeingIdealSquare(const Image8& image,
                                           Eigen::Vector2d(along, reach),
                                           Eigen::Vector2d(-reach, along),
                                           Eigen::Vector2d(reach, along)}) {
-      const Eigen::Vector3d ray = ray_from_ideal * (center + offset).homogeneous();
+      const Eigen::Vector3d ray = camera.CamFromIdeal(center + offset);
       const Eigen::Vector2d px = camera.ImgFromCam(ray);
       if (!(camera.DistortJacobian(ray.head<2>()).determinant() > 0.0 && px.allFinite())) {
         return whole;
@@ -693,9 +692,7 @@ std::optional<ModelledPixels> PixelsAt(const Image8& image,
   if (camera.HasDistortion()) {
     for (EdgeLayer& layer : *layers) {
       for (int bin = 0; bin < layer.bins; ++bin) {
-        const Eigen::Vector2d& px = layer.start_px[bin];
-        const Eigen::Vector3d ray(
-            (px.x() - camera.cx) / camera.fx, (px.y() - camera.cy) / camera.fy, 1.0);
+        const Eigen::Vector3d ray = camera.CamFromIdeal(layer.start_px[bin]);
         const Eigen::Matrix2d& a_t =
             layer.ideal_from_px_t.emplace_back(camera.IdealFromImgJacobian(ray).transpose());
         const double k = (a_t * layer.start_normal[bin]).norm();

@@ -9,6 +9,7 @@ namespace markerbench {
 
 PlaneView::PlaneView(const Camera& camera, const Rigid3& cam_from_plane)
     : camera_(camera),
+      has_distortion_(camera.HasDistortion()),
       plane_from_ray_(RayFromPlane(cam_from_plane).inverse()),
       plane_from_px_(plane_from_ray_ * camera.K().inverse()) {}
 
@@ -25,7 +26,7 @@ PlaneLook PlaneView::LookAlong(const Eigen::Vector3d& ray) const {
     look.plane_from_px.col(j) =
         (plane_from_px_.block<2, 1>(0, j) - look.point * plane_from_px_(2, j)) / q.z();
   }
-  if (camera_.HasDistortion()) {
+  if (has_distortion_) {
     const Eigen::Matrix2d ideal_from_px = camera_.IdealFromImgJacobian(ray);
     look.plane_from_px = look.plane_from_px * ideal_from_px;
     look.ideal_area_per_px = std::abs(ideal_from_px.determinant());

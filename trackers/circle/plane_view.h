@@ -35,6 +35,7 @@ class PlaneView {
 
  private:
   const Camera& camera_;
+  bool has_distortion_;  // cached: LookAlong runs per pixel
   Eigen::Matrix3d plane_from_ray_;
   Eigen::Matrix3d plane_from_px_;  // from ideal pixels: plane_from_ray K⁻¹
 };

@@ -408,7 +408,7 @@ std::optional<RingMatch> MatchRings(const std::vector<ImagedDot>& dots,
   std::vector<Eigen::Vector2d> pinhole_px;
   for (const ImagedDot& d : dots) {
     rays.push_back(reading.CamFromImg(d.center_px));
-    pinhole_px.push_back(reading.HasDistortion() ? reading.IdealFromImg(d.center_px) : d.center_px);
+    pinhole_px.push_back(reading.HasDistortion() ? reading.IdealFromCam(rays.back()) : d.center_px);
   }
   ConicFitOptions fit_options;
   fit_options.refine_pnd = false;
