@@ -33,7 +33,8 @@ bool DistortionIsMonotonic(const Camera& camera) {
     for (int j = 0; j <= kSteps; ++j) {
       const double u = -0.5 + camera.width * i / static_cast<double>(kSteps);
       const double v = -0.5 + camera.height * j / static_cast<double>(kSteps);
-      const Eigen::Vector2d distorted((u - camera.cx) / camera.fx, (v - camera.cy) / camera.fy);
+      // The pixel's distorted normalized point: K⁻¹ of it, as if it were an ideal pixel.
+      const Eigen::Vector2d distorted = camera.CamFromIdeal({u, v}).head<2>();
       const Eigen::Vector2d ray = camera.Undistort(distorted);
       const Eigen::Vector2d error = camera.Distort(ray) - distorted;
       if (!(std::abs(error.x()) * camera.fx < kRoundTripTolPx &&
