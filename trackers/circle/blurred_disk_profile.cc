@@ -187,10 +187,16 @@ PixelProfileValue BlurredDiskProfile::FromCorners(const Integral (&corner)[4], d
 }
 
 #if defined(__x86_64__)
-bool BlurredDiskProfile::HasAvx2() {
-  static const bool has_avx2 = __builtin_cpu_supports("avx2");
-  return has_avx2;
-}
+namespace {
+// Read once at load, so that OverPixel, called per pixel and edge, tests a plain bool (a
+// function's static tests its guard at every call).
+const bool kCpuHasAvx2 = [] {
+  __builtin_cpu_init();  // before the constructors that set it up may have run
+  return __builtin_cpu_supports("avx2") != 0;
+}();
+}  // namespace
+
+bool BlurredDiskProfile::HasAvx2() { return kCpuHasAvx2; }
 
 namespace {
 
@@ -310,8 +316,7 @@ PixelProfileValue BlurredDiskProfile::OverPixelAvx2(double z, double a, double b
 #endif
 
 PixelProfileValue BlurredDiskProfile::OverPixel(double z, double a, double b) const {
-  static const Corners corners = HasAvx2() ? Corners::kAvx2 : Corners::kOneByOne;
-  return OverPixel(z, a, b, corners);
+  return OverPixel(z, a, b, HasAvx2() ? Corners::kAvx2 : Corners::kOneByOne);
 }
 
 PixelProfileValue BlurredDiskProfile::OverPixel(double z,
