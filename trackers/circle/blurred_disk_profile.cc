@@ -191,7 +191,7 @@ namespace {
 // Read once at load, so that OverPixel, called per pixel and edge, tests a plain bool (a
 // function's static tests its guard at every call).
 const bool kCpuHasAvx2 = [] {
-  __builtin_cpu_init();  // before the constructors that set it up may have run
+  __builtin_cpu_init();  // a static initializer may run before the one that reads the CPU
   return __builtin_cpu_supports("avx2") != 0;
 }();
 }  // namespace
