@@ -22,11 +22,6 @@ DiskShape ArcCircle(const Eigen::Vector2d& mid,
   return {mid + normal * (sagitta - radius), radius};
 }
 
-// Signed distance to a circle's edge, negative inside.
-double CircleDistance(const DiskShape& disk, const Eigen::Vector2d& p) {
-  return (p - disk.center).norm() - disk.radius;
-}
-
 // The part of a grid's box or cell under p: whether p is inside, and its distance to the box's
 // or cell's edges (cells of one colour side by side still count their shared edge).
 PaintSample GridPaint(const GridShape& grid, const Rgb& ink, const Eigen::Vector2d& p) {
@@ -54,7 +49,8 @@ BoundaryDistances DistancesTo(const Shape& shape, const Eigen::Vector2d& p) {
     const Eigen::Vector2d d = p - disk.center;
     const double r = d.norm();
     const Eigen::Vector2d gradient = r > 0.0 ? Eigen::Vector2d(d / r) : Eigen::Vector2d::UnitX();
-    b.terms[b.count++] = {sign * CircleDistance(disk, p), sign * gradient, sign / disk.radius};
+    // The signed distance to the circle's edge, negative inside.
+    b.terms[b.count++] = {sign * (r - disk.radius), sign * gradient, sign / disk.radius};
   };
   if (const auto* disk = std::get_if<DiskShape>(&shape)) {
     circle(*disk, 1.0);
