@@ -55,6 +55,9 @@ void WriteImageFloat(const std::string& path, const ImageF& image) {
     }
   }
   OIIO::ImageSpec spec(image.width, image.height, image.channels, OIIO::TypeDesc::FLOAT);
+  // No time in the header: OpenImageIO's EXR writer stamps the time of writing (capDate) where
+  // none is given, and the same frame rendered twice gave two files.
+  spec.attribute("DateTime", "");
   Write(path, spec, OIIO::TypeDesc::FLOAT, interleaved.data());
 }
 

@@ -1,10 +1,14 @@
-// Image files are replaced atomically: no temporary is left, on success or on failure.
+// Image files are replaced atomically: no temporary is left, on success or on failure; a float
+// image is written the same way each time.
 #include "renderer/image_io.h"
 
+#include <OpenImageIO/imageio.h>
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
 #include <filesystem>
+#include <memory>
+#include <vector>
 
 #include "core/test_files.h"
 
@@ -43,6 +47,26 @@ TEST(ImageIo, AFailedWriteNamesThePathAndLeavesNothing) {
     EXPECT_THAT(e.what(), HasSubstr(path + ": cannot write"));
   }
   EXPECT_FALSE(std::filesystem::exists(path + ".tmp.png"));
+}
+
+// The same frame gives the same bytes: no time of writing in an EXR's header.
+TEST(ImageIo, AFloatImageCarriesNoTimeOfWriting) {
+  ImageF image(4, 3, 3);
+  for (size_t i = 0; i < image.data.size(); ++i) image.data[i] = 0.01f * static_cast<float>(i);
+  const std::string path = WriteTestFile("linear.exr", "");
+  WriteImageFloat(path, image);
+  const std::unique_ptr<OIIO::ImageInput> in = OIIO::ImageInput::open(path);
+  ASSERT_TRUE(in) << OIIO::geterror();
+  EXPECT_EQ(in->spec().find_attribute("DateTime"), nullptr)
+      << in->spec().get_string_attribute("DateTime");
+  // And the pixels as written (interleaved in the file, planar in ImageF).
+  std::vector<float> read(image.data.size());
+  ASSERT_TRUE(in->read_image(0, 0, 0, 3, OIIO::TypeDesc::FLOAT, read.data()));
+  for (int c = 0; c < 3; ++c) {
+    for (size_t i = 0; i < image.plane_size(); ++i) {
+      EXPECT_EQ(read[i * 3 + c], image.plane(c)[i]) << c << " " << i;
+    }
+  }
 }
 
 }  // namespace
