@@ -281,6 +281,10 @@ void WriteVector(const MarkerSpec& marker,
       cairo_surface_destroy);
   if (format == SheetFormat::kSvg)
     cairo_svg_surface_set_document_unit(surface.get(), CAIRO_SVG_UNIT_PT);
+  // No creation date (cairo writes the clock's where it is not set): the same marker and paper
+  // give the same file.
+  if (format == SheetFormat::kPdf)
+    cairo_pdf_surface_set_metadata(surface.get(), CAIRO_PDF_METADATA_CREATE_DATE, "");
   {
     Context cr(cairo_create(surface.get()), cairo_destroy);
     cairo_scale(cr.get(), kPointsPerInch / kMmPerInch, kPointsPerInch / kMmPerInch);

@@ -129,7 +129,7 @@ std::vector<std::pair<double, double>> PdfPages(const std::string& pdf) {
   return pages;
 }
 
-TEST(MarkerSheets, PdfPagesHaveThePapersSize) {
+TEST(MarkerSheets, PdfPagesHaveThePapersSizeAndNoCreationDate) {
   for (const auto& [paper, width_pt, height_pt] :
        std::vector<std::tuple<std::string, double, double>>{
            {"a4", 595.276, 841.89}, {"letter", 612.0, 792.0}, {"a3", 841.89, 1190.551}}) {
@@ -139,6 +139,7 @@ TEST(MarkerSheets, PdfPagesHaveThePapersSize) {
     const std::string pdf =
         ReadFileBytes(WriteMarkerSheets({"scenarios/markers/runetag.yaml"}, out, options).at(0));
     EXPECT_EQ(pdf.rfind("%PDF-", 0), 0u);
+    EXPECT_EQ(pdf.find("CreationDate"), std::string::npos) << paper;  // the same bytes each time
     const auto pages = PdfPages(pdf);
     ASSERT_EQ(pages.size(), 1u) << paper;
     EXPECT_NEAR(pages[0].first, width_pt, 0.01) << paper;
