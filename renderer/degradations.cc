@@ -11,10 +11,10 @@
 #include "core/gamma_curve.h"
 #include "core/random.h"
 
-// The blurs' loops (a weight times a row, added to a row) compiled twice, for AVX2 and for the
-// baseline, the one the CPU runs chosen at load: twice the floats an instruction. AVX2 alone
-// brings no FMA, so each element's product and sum are rounded as before: the same bits. The tag's
-// frame 3.6 % less time, circles_a's 5.1 % (results/speed.md).
+// The blurs' loops (a weight times a row, added to a row) are compiled twice, for AVX2 and for
+// the baseline, and the loader picks the copy the CPU can run: AVX2 takes twice the floats an
+// instruction. AVX2 alone brings no FMA, so each element's product and sum are rounded as before:
+// the same bits. The tag's frame 3.6 % less time, circles_a's 5.1 % (results/speed.md).
 #if defined(__x86_64__)
 #define MARKERBENCH_AVX2_CLONE __attribute__((target_clones("avx2", "default")))
 #else
