@@ -225,18 +225,26 @@ nlohmann::json MergedEntry(const std::vector<ShardFolder>& shards,
   nlohmann::json list = nlohmann::json::array();
   double frames = 0.0, core_s = 0.0, wall_s = 0.0;
   int threads = 0;
-  std::string commit;
+  std::string first_builds;
   for (const ShardFolder& s : shards) {
     const nlohmann::json manifest = ReadManifest(s.dir + "/manifest.json");
     const nlohmann::json e = manifest.value("/scenarios"_json_pointer, nlohmann::json::object())
                                  .value(name, nlohmann::json::object());
     if (entry.is_null()) entry = e;
-    const std::string shard_commit =
-        manifest.value("/environment/git_commit"_json_pointer, std::string("?"));
-    if (commit.empty()) commit = shard_commit;
-    if (shard_commit != commit) {
+    const nlohmann::json environment = manifest.value("environment", nlohmann::json::object());
+    const std::string shard_commit = environment.value("git_commit", std::string("?"));
+    // The builds that wrote the shard's rows (one but for a resumed run; a manifest written
+    // before they were kept names the environment's).
+    nlohmann::json builds = e.value("builds", nlohmann::json::array());
+    if (!builds.is_array() || builds.empty()) builds = nlohmann::json::array({environment});
+    std::string builds_text;
+    for (const nlohmann::json& build : builds) {
+      builds_text += (builds_text.empty() ? "" : ", then ") + BuildText(build);
+    }
+    if (first_builds.empty()) first_builds = builds_text;
+    if (builds_text != first_builds) {
       log << "merge: warning: " << name << " shard " << ShardText(s.shard) << " was built from "
-          << shard_commit << ", shard 0 from " << commit
+          << builds_text << ", shard 0 from " << first_builds
           << "; rows agree only if the trackers did not change between them\n";
     }
     const double shard_wall_s = e.value("wall_s", 0.0);
@@ -249,12 +257,14 @@ nlohmann::json MergedEntry(const std::vector<ShardFolder>& shards,
         {{"index", s.shard.index},
          {"folder", s.folder},
          {"git_commit", shard_commit},
+         {"builds", builds},
          {"cpu_model", manifest.value("/environment/cpu_model"_json_pointer, std::string("?"))},
          {"frames", e.value("frames", 0)},
          {"wall_s", shard_wall_s},
          {"threads", shard_threads}});
   }
   entry.erase("resumed_at_frame");
+  entry.erase("builds");  // each shard's are in "shards"
   entry["frames"] = frames;
   entry["shard"] = {{"index", 0}, {"count", 1}};
   entry["shards"] = list;

@@ -1,6 +1,7 @@
 // sweep --shard I/N and merge, as a cluster runs them: shards of every scenario shape merge to
 // the bytes of a single-machine sweep, a killed shard resumes, merge refuses shards that do
-// not make one plan, and zstd-compressed runs read like plain ones.
+// not make one plan or warns of shards built apart, and zstd-compressed runs read like plain
+// ones.
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 #include <signal.h>
@@ -15,12 +16,14 @@
 #include "bench/cli/cli_test.h"
 #include "bench/io/line_reader.h"
 #include "bench/run/frames_csv.h"
+#include "bench/run/manifest.h"
 #include "core/test_files.h"
 
 namespace markerbench {
 namespace {
 
 using ::testing::HasSubstr;
+using ::testing::Not;
 namespace fs = std::filesystem;
 
 std::string Marker(const std::string& name) {
@@ -223,6 +226,40 @@ TEST_F(ShardMergeTest, MergeRefusesShardsThatAreNotOnePlan) {
   EXPECT_EQ(Run({"sweep", scenario, "--out", out, "--shard", "3/3"}).status, 2);
   EXPECT_THAT(Read(work_ / "stderr.txt"), HasSubstr("--shard: expected I/N with 0 <= I < N"));
   EXPECT_EQ(Merge({dirs[0]}, dirs[0]).status, 2);
+}
+
+// Shards built from the same commit with other local changes merge, with a warning naming both
+// builds by their changes' hashes; the merged manifest keeps each shard's builds and the report
+// says that another build wrote rows.
+TEST_F(ShardMergeTest, MergeWarnsOfShardsBuiltApart) {
+  const std::string scenario = ScenarioFile(
+      "apart", {"aruco"}, "  - {name: aruco}\n", "{parameter: noise_var, values: [0.0, 0.05]}", 2);
+  const std::vector<std::string> dirs = Shards({scenario}, 2, "s");
+  const std::string out = (work_ / "out").string();
+  const Finished alike = Merge(dirs, out);
+  ASSERT_EQ(alike.status, 0) << alike.error;
+  EXPECT_THAT(alike.error, Not(HasSubstr("warning")));
+
+  nlohmann::json other = BuildIdentity();
+  other["git_diff_sha256"] = std::string(64, 'f');
+  const std::string manifest_path = dirs[1] + "/manifest.json";
+  nlohmann::json manifest = ReadManifest(manifest_path);
+  manifest["environment"].update(other);
+  other["from_frame"] = 0;
+  manifest["scenarios"]["apart"]["builds"] = nlohmann::json::array({other});
+  WriteManifest(manifest_path, manifest);
+  const Finished apart = Merge(dirs, (work_ / "merged").string());
+  ASSERT_EQ(apart.status, 0) << apart.error;
+  EXPECT_THAT(apart.error,
+              HasSubstr("merge: warning: apart shard 1/2 was built from " + BuildText(other) +
+                        ", shard 0 from " + BuildText(BuildIdentity())));
+  EXPECT_THAT(BuildText(other), HasSubstr("with local changes (SHA-256 ffffffffffff"));
+  const nlohmann::json merged = ReadManifest((work_ / "merged/manifest.json").string());
+  EXPECT_EQ(merged["scenarios"]["apart"]["shards"][1]["builds"], nlohmann::json::array({other}));
+  Ok({"report", (work_ / "merged").string(), "--no-plots"});
+  EXPECT_THAT(
+      Read(work_ / "merged/report.md"),
+      HasSubstr("Rows of `apart` were also written by another build:** " + BuildText(other)));
 }
 
 TEST_F(ShardMergeTest, CompressedRunsReadLikePlainOnes) {

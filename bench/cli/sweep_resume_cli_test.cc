@@ -1,6 +1,7 @@
 // Nothing of a sweep is lost: a run killed with kill -9, torn mid-row or out of disk resumes to
 // the bytes of an uninterrupted one; a folder another run is writing or another scenario wrote
-// is refused; --overwrite leaves nothing of the run before.
+// is refused; a run resumed by another build says so; --overwrite leaves nothing of the run
+// before.
 
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
@@ -12,11 +13,13 @@
 #include <thread>
 
 #include "bench/cli/sweep_cli_test.h"
+#include "bench/run/manifest.h"
 
 namespace markerbench {
 namespace {
 
 using ::testing::HasSubstr;
+using ::testing::Not;
 namespace fs = std::filesystem;
 
 TEST_F(SweepCliTest, KilledRunResumesToTheSameFile) {
@@ -89,6 +92,70 @@ TEST_F(SweepCliTest, TornTailIsCutOnResume) {
   fs::resize_file(out + "/torn/frames.csv", cut);
   ASSERT_EQ(Run({"sweep", scenario, "--out", out, "--resume"}).status, 0);
   EXPECT_EQ(Read(out + "/torn/frames.csv"), full);
+}
+
+// The rows of a run resumed by another build (here: run.json says commit 0123abc wrote them)
+// keep both builds: a warning, run.json's and the manifest's `builds` (each with the frame it
+// started at), and a line of the report. A resume that keeps no row names this build alone.
+TEST_F(SweepCliTest, AResumeByAnotherBuildIsRecorded) {
+  const std::string scenario = Scenario("rebuilt", 2);
+  const std::string out = (work_ / "out").string(), run_json = out + "/rebuilt/run.json";
+  ASSERT_EQ(Run({"sweep", scenario, "--out", out}).status, 0);
+  const std::string full = Read(out + "/rebuilt/frames.csv");
+  const auto from_frame = [](nlohmann::json build, int frame) {
+    build["from_frame"] = frame;
+    return build;
+  };
+  nlohmann::json run = ReadManifest(run_json);
+  ASSERT_EQ(run["builds"], nlohmann::json::array({from_frame(BuildIdentity(), 0)}));
+  const nlohmann::json earlier_from_0 =
+      from_frame({{"git_commit", "0123abc"}, {"git_diff_sha256", ""}}, 0);
+  run["builds"] = nlohmann::json::array({earlier_from_0});
+  WriteManifest(run_json, run);
+  // The header and nine rows: six frames, each of one marker (the tag's two trackers' rows, or
+  // ArUco's one).
+  size_t cut = 0;
+  for (int line = 0; line < 10; ++line) cut = full.find('\n', cut) + 1;
+  fs::resize_file(out + "/rebuilt/frames.csv", cut);
+
+  const Finished resumed = Run({"sweep", scenario, "--out", out, "--resume"});
+  ASSERT_EQ(resumed.status, 0) << resumed.error;
+  EXPECT_EQ(Read(out + "/rebuilt/frames.csv"), full);
+  EXPECT_THAT(resumed.error,
+              HasSubstr("rebuilt: warning: resuming at frame 6 with " + BuildText(BuildIdentity()) +
+                        "; the frames before were written by commit 0123abc"));
+  const nlohmann::json both =
+      nlohmann::json::array({earlier_from_0, from_frame(BuildIdentity(), 6)});
+  EXPECT_EQ(ReadManifest(run_json)["builds"], both);
+  const nlohmann::json entry = ReadManifest(out + "/manifest.json")["scenarios"]["rebuilt"];
+  EXPECT_EQ(entry["builds"], both);
+  EXPECT_EQ(entry["resumed_at_frame"], 6);
+  ASSERT_EQ(Run({"report", out, "--no-plots"}).status, 0);
+  EXPECT_THAT(Read(out + "/report.md"),
+              HasSubstr("Rows of `rebuilt` were also written by another build:** commit 0123abc "));
+
+  // Resumed again by this build from the torn header: no row of 0123abc's is kept.
+  fs::resize_file(out + "/rebuilt/frames.csv", full.find('\n') + 5);
+  const Finished again = Run({"sweep", scenario, "--out", out, "--resume"});
+  ASSERT_EQ(again.status, 0) << again.error;
+  EXPECT_THAT(again.error, Not(HasSubstr("warning")));
+  EXPECT_EQ(ReadManifest(run_json)["builds"],
+            nlohmann::json::array({from_frame(BuildIdentity(), 0)}));
+}
+
+// A run.json whose builds are not a list of them is bad input: exit 2 naming the file and key.
+TEST_F(SweepCliTest, ResumeRefusesBuildsItCannotRead) {
+  const std::string scenario = Scenario("unread", 1);
+  const std::string out = (work_ / "out").string(), run_json = out + "/unread/run.json";
+  ASSERT_EQ(Run({"sweep", scenario, "--out", out}).status, 0);
+  nlohmann::json run = ReadManifest(run_json);
+  run["builds"] = nlohmann::json::array({{{"git_commit", "0123abc"}, {"from_frame", "zero"}}});
+  WriteManifest(run_json, run);
+  const std::string full = Read(out + "/unread/frames.csv");
+  fs::resize_file(out + "/unread/frames.csv", full.size() - 1);
+  const Finished f = Run({"sweep", scenario, "--out", out, "--resume"});
+  EXPECT_EQ(f.status, 2);
+  EXPECT_THAT(f.error, HasSubstr(run_json + ": key 'builds': expected a list of builds"));
 }
 
 TEST_F(SweepCliTest, ResumeRefusesAnotherScenariosFolder) {

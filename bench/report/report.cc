@@ -3,6 +3,7 @@
 #include <spawn.h>
 #include <sys/wait.h>
 
+#include <algorithm>
 #include <cerrno>
 #include <cmath>
 #include <cstdlib>
@@ -10,6 +11,8 @@
 #include <filesystem>
 #include <map>
 #include <optional>
+#include <string>
+#include <vector>
 
 #include "bench/io/atomic_file.h"
 #include "bench/io/data_dir.h"
@@ -123,26 +126,52 @@ std::string ScenarioSection(const std::string& scenario,
   return md + "\n";
 }
 
+// The builds of a scenario's manifest entry other than `built` (BuildIdentity()'s keys): a run
+// resumed by another build, a shard built apart, or a scenario run into the folder by another.
+std::vector<std::string> OtherBuilds(const nlohmann::json& entry, const nlohmann::json& built) {
+  std::vector<nlohmann::json> builds;
+  const auto add = [&](const nlohmann::json& list) {
+    if (list.is_array()) builds.insert(builds.end(), list.begin(), list.end());
+  };
+  add(entry.value("builds", nlohmann::json()));
+  for (const nlohmann::json& shard : entry.value("shards", nlohmann::json::array())) {
+    if (shard.is_object()) add(shard.value("builds", nlohmann::json()));
+  }
+  std::vector<std::string> others;
+  for (const nlohmann::json& build : builds) {
+    if (!build.is_object()) continue;
+    const std::string text = BuildText(build);
+    if (!SameBuild(build, built) && std::find(others.begin(), others.end(), text) == others.end()) {
+      others.push_back(text);
+    }
+  }
+  return others;
+}
+
 std::string EnvironmentSection(const nlohmann::json& manifest) {
   if (!manifest.contains("environment")) return "";
   const nlohmann::json& env = manifest["environment"];
-  std::string md = "Built from commit `" + env.value("git_commit", std::string("?")) + "`" +
-                   (env.value("git_dirty", false) ? " (with local changes)" : "") + ", " +
-                   env.value("compiler", std::string("?")) + ", " +
-                   env.value("build_type", std::string("?")) + "; run on " +
+  std::string md = "Built from " + BuildText(env) + ", " + env.value("compiler", std::string("?")) +
+                   ", " + env.value("build_type", std::string("?")) + "; run on " +
                    env.value("cpu_model", std::string("?")) + " with " +
                    std::to_string(env.value("threads", 0)) + " threads";
   double wall_s = 0.0, frames = 0.0;
+  std::string mixed;
   const nlohmann::json scenarios = manifest.value("scenarios", nlohmann::json::object());
   for (const auto& [name, entry] : scenarios.items()) {
     wall_s += entry.value("wall_s", 0.0);
     frames += entry.value("frames", 0.0);
+    const std::vector<std::string> others = OtherBuilds(entry, env);
+    if (others.empty()) continue;
+    mixed += "**Rows of `" + name + "` were also written by another build:** ";
+    for (size_t i = 0; i < others.size(); ++i) mixed += (i ? "; " : "") + others[i];
+    mixed += " (its manifest entry's `builds` says which frames).\n\n";
   }
   if (wall_s > 0.0) {
     md += ": " + FormattedOrDash(frames, "%.0f") + " frames in " + DurationText(wall_s) + " (" +
           FormattedOrDash(frames / wall_s, "%.1f") + " frames/s)";
   }
-  return md + ". Details: `manifest.json`.\n\n";
+  return md + ". Details: `manifest.json`.\n\n" + mixed;
 }
 
 // A sequence scenario's figures over its videos (bench/report/sequence_report.h).

@@ -25,10 +25,29 @@ std::string CpuModel() {
 
 }  // namespace
 
+nlohmann::json BuildIdentity() {
+  return {{"git_commit", git_info::kCommit}, {"git_diff_sha256", git_info::kDiffSha256}};
+}
+
+bool SameBuild(const nlohmann::json& a, const nlohmann::json& b) {
+  for (const char* key : {"git_commit", "git_diff_sha256"}) {
+    if (a.value(key, std::string()) != b.value(key, std::string())) return false;
+  }
+  return true;
+}
+
+std::string BuildText(const nlohmann::json& build) {
+  const std::string commit = "commit " + build.value("git_commit", std::string("?"));
+  const std::string diff = build.value("git_diff_sha256", std::string());
+  if (!diff.empty()) return commit + " with local changes (SHA-256 " + diff.substr(0, 12) + "…)";
+  // A manifest written before the hash was kept says only whether there were changes.
+  return build.value("git_dirty", false) ? commit + " with local changes" : commit;
+}
+
 nlohmann::json EnvironmentManifest(int threads) {
-  nlohmann::json env;
-  env["git_commit"] = git_info::kCommit;
-  // Changes to tracked files other than results/ (which a run itself rewrites) at build time.
+  nlohmann::json env = BuildIdentity();
+  // Changes to tracked files other than results/ (which a run itself rewrites) at build time;
+  // git_diff_sha256 tells two such builds apart.
   env["git_dirty"] = git_info::kDirty;
   env["compiler"] = build_info::kCompiler;
   env["build_type"] = build_info::kBuildType;

@@ -56,7 +56,10 @@ struct PreparedSweep {
   std::vector<Job> jobs;
   std::vector<std::string> idle_markers;  // markers no tracker can track: they only constrain poses
   Shard shard;
-  size_t done = 0;          // jobs already complete in frames.csv and timing.csv (resume)
+  size_t done = 0;  // jobs already complete in frames.csv and timing.csv (resume)
+  // The builds whose rows the files hold (BuildIdentity(), each with "from_frame", the frames
+  // written before it): this one alone, but for a run resumed by another build.
+  nlohmann::json builds = nlohmann::json::array();
   bool compressed = false;  // a complete run already compressed: nothing left to do
   uintmax_t frames_bytes = 0;
   uintmax_t timing_bytes = 0;
@@ -138,6 +141,9 @@ PreparedSweep Prepare(const std::string& path, const SweepOptions& options) {
     if (trackers_of_marker[m].empty()) p.idle_markers.push_back(s.markers[m].name);
   }
   p.shard = options.shard;
+  nlohmann::json build = BuildIdentity();
+  build["from_frame"] = 0;
+  p.builds.push_back(build);
   bool extending = false;  // the last job is a sequence to be tracked: it takes its frames
   for (PlannedFrame& f : PlanFrames(s)) {
     if (!InShard(f, s.trials, p.shard)) continue;
@@ -152,6 +158,44 @@ PreparedSweep Prepare(const std::string& path, const SweepOptions& options) {
   }
 
   return p;
+}
+
+// The frames before `job`.
+size_t FramesBefore(const std::vector<Job>& jobs, size_t job) {
+  return FrameCount(jobs) - FrameCount(jobs, job);
+}
+
+// A resumed run's builds (run.json's "builds" at `run_json`; one written before they were kept
+// names none, and its rows' build is unknown): those whose rows are kept, and this build after
+// them if it is another, with a warning: the rows agree only if the trackers did not change.
+void KeepEarlierBuilds(PreparedSweep& p, const nlohmann::json& run, const std::string& run_json) {
+  const size_t kept_frames = FramesBefore(p.jobs, p.done);
+  if (kept_frames == 0) return;  // nothing of the earlier run is kept
+  const nlohmann::json earlier = run.value("builds", nlohmann::json::array());
+  nlohmann::json builds = nlohmann::json::array();
+  for (const nlohmann::json& build : earlier) {
+    if (!earlier.is_array() || !build.is_object() ||
+        !build.value("from_frame", nlohmann::json()).is_number_unsigned()) {
+      throw ConfigError(run_json + ": key 'builds': expected a list of builds, each with a " +
+                        "'from_frame' count, got " + earlier.dump());
+    }
+    if (build["from_frame"].get<size_t>() < kept_frames) builds.push_back(build);
+  }
+  if (builds.empty()) builds.push_back({{"git_commit", "unknown"}, {"from_frame", 0}});
+  nlohmann::json here = BuildIdentity();
+  const nlohmann::json& last = builds.back();
+  if (!SameBuild(last, here)) {
+    std::fprintf(stderr,
+                 "%s: warning: resuming at frame %zu with %s; the frames before were written by "
+                 "%s, and rows agree only if the trackers did not change between them\n",
+                 p.scenario.name.c_str(),
+                 kept_frames,
+                 BuildText(here).c_str(),
+                 BuildText(last).c_str());
+    here["from_frame"] = kept_frames;
+    builds.push_back(here);
+  }
+  p.builds = builds;
 }
 
 // What an earlier run left in the scenario's folder: refused, started again (--overwrite:
@@ -209,6 +253,7 @@ void TakeOverEarlierRun(PreparedSweep& p, const SweepOptions& options) {
   p.done = std::min(in_frames.complete, in_timing.complete);
   p.frames_bytes = in_frames.offsets[p.done];
   p.timing_bytes = in_timing.offsets[p.done];
+  KeepEarlierBuilds(p, run, run_json);
 }
 
 void WriteAll(int fd, const std::string& text, const std::string& path) {
@@ -404,7 +449,8 @@ nlohmann::json ScenarioManifest(const PreparedSweep& p, int threads) {
   }
   entry["frames"] = FrameCount(p.jobs);
   entry["shard"] = {{"index", p.shard.index}, {"count", p.shard.count}};
-  entry["resumed_at_frame"] = p.done;
+  entry["resumed_at_frame"] = FramesBefore(p.jobs, p.done);
+  entry["builds"] = p.builds;
   entry["threads"] = threads;
   return entry;
 }
@@ -417,7 +463,8 @@ nlohmann::json RunJson(const PreparedSweep& p, bool complete) {
           {"fingerprint", p.fingerprint},
           {"shard", {{"index", p.shard.index}, {"count", p.shard.count}}},
           {"complete", complete},
-          {"rows", rows}};
+          {"rows", rows},
+          {"builds", p.builds}};
 }
 
 // Replaces a complete CSV file by its .zst (after run.json says complete): the compressed file
