@@ -6,6 +6,7 @@
 #include "bench/io/atomic_file.h"
 #include "bench/io/output_folder.h"
 #include "bench/report/check_output.h"
+#include "bench/run/manifest.h"
 #include "core/file_bytes.h"
 #include "core/yaml_reader.h"
 
@@ -73,6 +74,15 @@ int RunCheckCommand(const CheckCommandOptions& options, std::ostream& out) {
     Bless(options.run_dir, options.reference_dir, out);
     return 0;
   }
+  const auto built_from = [](const std::string& dir) {
+    const nlohmann::json manifest = ReadManifest((fs::path(dir) / "manifest.json").string());
+    const auto environment = manifest.find("environment");
+    const bool known =
+        manifest.is_object() && environment != manifest.end() && environment->is_object();
+    return BuildText(known ? *environment : nlohmann::json::object());
+  };
+  report.run_build = built_from(options.run_dir);
+  report.reference_build = built_from(options.reference_dir);
   out << CheckTable(report);
   if (!options.markdown_path.empty()) {
     WriteFileAtomically(options.markdown_path, CheckMarkdown(report, options.check));

@@ -229,8 +229,8 @@ TEST_F(ShardMergeTest, MergeRefusesShardsThatAreNotOnePlan) {
 }
 
 // Shards built from the same commit with other local changes merge, with a warning naming both
-// builds by their changes' hashes; the merged manifest keeps each shard's builds and the report
-// says that another build wrote rows.
+// builds by their changes' hashes; the merged manifest keeps each shard's builds, the report
+// says that another build wrote rows, and `check` names the builds it compares.
 TEST_F(ShardMergeTest, MergeWarnsOfShardsBuiltApart) {
   const std::string scenario = ScenarioFile(
       "apart", {"aruco"}, "  - {name: aruco}\n", "{parameter: noise_var, values: [0.0, 0.05]}", 2);
@@ -260,6 +260,19 @@ TEST_F(ShardMergeTest, MergeWarnsOfShardsBuiltApart) {
   EXPECT_THAT(
       Read(work_ / "merged/report.md"),
       HasSubstr("Rows of `apart` were also written by another build:** " + BuildText(other)));
+
+  // The gate's markdown names the builds it compared: here the merged run against a single
+  // run whose manifest says the other build made it.
+  const std::string single = (work_ / "single").string();
+  Ok({"sweep", scenario, "--out", single});
+  nlohmann::json single_manifest = ReadManifest(single + "/manifest.json");
+  single_manifest["environment"].update(other);
+  WriteManifest(single + "/manifest.json", single_manifest);
+  const std::string markdown = (work_ / "check.md").string();
+  Ok({"check", (work_ / "merged").string(), "--reference", single, "--markdown", markdown});
+  EXPECT_THAT(Read(markdown),
+              HasSubstr("The run was built from " + BuildText(BuildIdentity()) +
+                        "; the reference, from " + BuildText(other) + ".\n"));
 }
 
 TEST_F(ShardMergeTest, CompressedRunsReadLikePlainOnes) {

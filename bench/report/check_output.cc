@@ -202,6 +202,10 @@ std::string CheckMarkdown(const CheckReport& report, const CheckOptions& options
       NumberText(options.alpha) + "; a regression also needs a median error ratio above " +
       NumberText(1.0 + options.min_error_change) + " or a success drop of at least " +
       NumberText(100.0 * options.min_success_change) + " points.\n\n";
+  if (!report.run_build.empty()) {
+    md += "The run was built from " + report.run_build + "; the reference, from " +
+          report.reference_build + ".\n\n";
+  }
   const std::vector<Row> rows = ChangedRows(report);
   if (!rows.empty()) {
     const auto line = [](const Row& row) {

@@ -66,6 +66,8 @@ struct CheckReport {
   // Rows present on one side only, as "scenario value trial marker tracker".
   std::vector<std::string> reference_only;
   std::vector<std::string> run_only;
+  // What built each side (BuildText of its manifest's environment), where the caller read it.
+  std::string run_build, reference_build;
 
   bool Regressed() const;
 };
