@@ -17,7 +17,7 @@ Shape Scaled(const Shape& shape, double f) {
         } else if constexpr (std::is_same_v<S, CrescentShape>) {
           return CrescentShape{Scaled(s.outer, f), Scaled(s.inner, f)};
         } else if constexpr (std::is_same_v<S, SectorShape>) {
-          return SectorShape{f * s.center, f * s.radius, s.start_rad, s.end_rad};
+          return SectorShape(f * s.center(), f * s.radius(), s.start_rad(), s.end_rad());
         } else {
           GridShape grid = s;
           grid.top_left *= f;

@@ -162,7 +162,7 @@ void LoadCircleMarker(const YamlMap& root, MarkerSpec* spec) {
       const Rgb color = wedge.GetColor("color");
       wedge.RejectUnknownKeys();
       if (color == c0.color) wedge.Fail("color", "a colour that contrasts with the disk");
-      spec->layers.push_back({SectorShape{{0.0, 0.0}, c0.radius_m, 0.0, angle_rad}, color});
+      spec->layers.push_back({SectorShape({0.0, 0.0}, c0.radius_m, 0.0, angle_rad), color});
       spec->keypoints.push_back({c0.radius_m, 0.0});
       spec->keypoints.push_back(c0.radius_m *
                                 Eigen::Vector2d(std::cos(angle_rad), std::sin(angle_rad)));

@@ -59,14 +59,14 @@ BoundaryDistances DistancesTo(const Shape& shape, const Eigen::Vector2d& p) {
     circle(crescent->inner, -1.0);
   } else if (const auto* sector = std::get_if<SectorShape>(&shape)) {
     // Left of the start ray's line and right of the end ray's (span <= π).
-    const Eigen::Vector2d d = p - sector->center;
-    auto line = [&](double angle, double sign) {
-      const Eigen::Vector2d normal(-std::sin(angle), std::cos(angle));  // left of the ray
+    const Eigen::Vector2d d = p - sector->center();
+    auto line = [&](const Eigen::Vector2d& direction, double sign) {
+      const Eigen::Vector2d normal(-direction.y(), direction.x());  // left of the ray
       b.terms[b.count++] = {sign * normal.dot(d), sign * normal, 0.0};
     };
-    circle({sector->center, sector->radius}, 1.0);
-    line(sector->start_rad, -1.0);
-    line(sector->end_rad, 1.0);
+    circle({sector->center(), sector->radius()}, 1.0);
+    line(sector->start_direction(), -1.0);
+    line(sector->end_direction(), 1.0);
   }
   return b;
 }
@@ -90,11 +90,10 @@ std::vector<Eigen::Vector2d> OutlineCorners(const Shape& shape) {
     return {a.center + along * u + across * normal, a.center + along * u - across * normal};
   }
   if (const auto* sector = std::get_if<SectorShape>(&shape)) {
-    const auto rim = [&](double angle) {
-      return Eigen::Vector2d(sector->center +
-                             sector->radius * Eigen::Vector2d(std::cos(angle), std::sin(angle)));
+    const auto rim = [&](const Eigen::Vector2d& direction) {
+      return Eigen::Vector2d(sector->center() + sector->radius() * direction);
     };
-    return {sector->center, rim(sector->start_rad), rim(sector->end_rad)};
+    return {sector->center(), rim(sector->start_direction()), rim(sector->end_direction())};
   }
   return {};
 }
@@ -167,11 +166,11 @@ Eigen::AlignedBox2d ShapeBounds(const Shape& shape) {
       return DiskBounds(s.outer);
     }
     Eigen::AlignedBox2d operator()(const SectorShape& s) const {
-      Eigen::AlignedBox2d box(s.center);
+      Eigen::AlignedBox2d box(s.center());
       constexpr int kSteps = 64;
       for (int i = 0; i <= kSteps; ++i) {
-        const double a = s.start_rad + (s.end_rad - s.start_rad) * i / kSteps;
-        box.extend(s.center + s.radius * Eigen::Vector2d(std::cos(a), std::sin(a)));
+        const double a = s.start_rad() + (s.end_rad() - s.start_rad()) * i / kSteps;
+        box.extend(s.center() + s.radius() * Eigen::Vector2d(std::cos(a), std::sin(a)));
       }
       return box;
     }

@@ -6,6 +6,7 @@
 #include <Eigen/Core>
 #include <Eigen/Geometry>
 #include <array>
+#include <cmath>
 #include <cstdint>
 #include <optional>
 #include <variant>
@@ -28,12 +29,34 @@ struct CrescentShape {
 };
 
 // Pie sector of `radius` about `center`, counter-clockwise from start_rad to end_rad, with a
-// span in (0, π] (paper Fig. 3(f)).
-struct SectorShape {
-  Eigen::Vector2d center = Eigen::Vector2d::Zero();
-  double radius = 0.0;
-  double start_rad = 0.0;
-  double end_rad = 0.0;
+// span in (0, π] (paper Fig. 3(f)). Its rays' unit directions (cos, sin) are computed once, at
+// construction: queries at many points (DistancesTo, the renderer's) took a sine and a cosine
+// of each angle per point, a tenth of circle_f's full detection.
+class SectorShape {
+ public:
+  SectorShape() = default;
+  SectorShape(const Eigen::Vector2d& center, double radius, double start_rad, double end_rad)
+      : center_(center),
+        radius_(radius),
+        start_rad_(start_rad),
+        end_rad_(end_rad),
+        start_direction_(std::cos(start_rad), std::sin(start_rad)),
+        end_direction_(std::cos(end_rad), std::sin(end_rad)) {}
+
+  const Eigen::Vector2d& center() const { return center_; }
+  double radius() const { return radius_; }
+  double start_rad() const { return start_rad_; }
+  double end_rad() const { return end_rad_; }
+  const Eigen::Vector2d& start_direction() const { return start_direction_; }
+  const Eigen::Vector2d& end_direction() const { return end_direction_; }
+
+ private:
+  Eigen::Vector2d center_ = Eigen::Vector2d::Zero();
+  double radius_ = 0.0;
+  double start_rad_ = 0.0;
+  double end_rad_ = 0.0;
+  Eigen::Vector2d start_direction_ = Eigen::Vector2d::UnitX();
+  Eigen::Vector2d end_direction_ = Eigen::Vector2d::UnitX();
 };
 
 // A rows x cols grid of square cells. Row 0 is the top row (largest y). Ink cells take the

@@ -63,11 +63,11 @@ std::optional<Rgb> LayerColor(const PaintedShape& layer, const Eigen::Vector2d& 
     return std::nullopt;
   }
   if (const auto* sector = std::get_if<SectorShape>(&layer.shape)) {
-    const Eigen::Vector2d d = x - sector->center;
-    const Eigen::Vector2d start(std::cos(sector->start_rad), std::sin(sector->start_rad));
-    const Eigen::Vector2d end(std::cos(sector->end_rad), std::sin(sector->end_rad));
+    const Eigen::Vector2d d = x - sector->center();
+    const Eigen::Vector2d& start = sector->start_direction();
+    const Eigen::Vector2d& end = sector->end_direction();
     // Inside the circle, left of the start ray and right of the end ray (span <= π).
-    if (d.squaredNorm() <= sector->radius * sector->radius &&
+    if (d.squaredNorm() <= sector->radius() * sector->radius() &&
         start.y() * d.x() - start.x() * d.y() <= 0.0 && -end.y() * d.x() + end.x() * d.y() <= 0.0) {
       return layer.color;
     }
@@ -92,10 +92,10 @@ std::vector<Curve> CurvesOf(const PaintedShape& layer, size_t index) {
     return {circle(crescent->outer, false), circle(crescent->inner, false)};
   }
   if (const auto* sector = std::get_if<SectorShape>(&layer.shape)) {
-    const Eigen::Vector2d& c = sector->center;
-    const double r = sector->radius;
-    const Eigen::Vector2d start(std::cos(sector->start_rad), std::sin(sector->start_rad));
-    const Eigen::Vector2d end(std::cos(sector->end_rad), std::sin(sector->end_rad));
+    const Eigen::Vector2d& c = sector->center();
+    const double r = sector->radius();
+    const Eigen::Vector2d& start = sector->start_direction();
+    const Eigen::Vector2d& end = sector->end_direction();
     return {
         circle({c, r}, false), segment(c, c + r * start, false), segment(c, c + r * end, false)};
   }

@@ -417,12 +417,12 @@ std::vector<Constraint> ConstraintsOf(const Shape& shape) {
     return {Circle(crescent->outer, 1.0), Circle(crescent->inner, -1.0)};
   }
   const auto& sector = std::get<SectorShape>(shape);
-  const Eigen::Vector2d start(std::cos(sector.start_rad), std::sin(sector.start_rad));
-  const Eigen::Vector2d end(std::cos(sector.end_rad), std::sin(sector.end_rad));
+  const Eigen::Vector2d& start = sector.start_direction();
+  const Eigen::Vector2d& end = sector.end_direction();
   // Left of the start ray and right of the end ray (span <= π).
-  return {Circle({sector.center, sector.radius}, 1.0),
-          HalfPlane(Eigen::Vector2d(start.y(), -start.x()), sector.center),
-          HalfPlane(Eigen::Vector2d(-end.y(), end.x()), sector.center)};
+  return {Circle({sector.center(), sector.radius()}, 1.0),
+          HalfPlane(Eigen::Vector2d(start.y(), -start.x()), sector.center()),
+          HalfPlane(Eigen::Vector2d(-end.y(), end.x()), sector.center())};
 }
 
 // Image bounds of a marker-plane box; unbounded when part of it is behind the camera.

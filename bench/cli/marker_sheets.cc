@@ -131,13 +131,13 @@ void DrawShape(cairo_t* cr, const PaintedShape& painted) {
     cairo_fill(cr);
     cairo_restore(cr);
   } else if (const auto* sector = std::get_if<SectorShape>(&painted.shape)) {
-    cairo_move_to(cr, sector->center.x(), sector->center.y());
+    cairo_move_to(cr, sector->center().x(), sector->center().y());
     cairo_arc(cr,
-              sector->center.x(),
-              sector->center.y(),
-              sector->radius,
-              sector->start_rad,
-              sector->end_rad);
+              sector->center().x(),
+              sector->center().y(),
+              sector->radius(),
+              sector->start_rad(),
+              sector->end_rad());
     cairo_close_path(cr);
     SetColor(cr, painted.color);
     cairo_fill(cr);

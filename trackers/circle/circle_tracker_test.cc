@@ -72,9 +72,10 @@ MarkerSpec InAnotherFrame(const MarkerSpec& marker,
       crescent->outer.center = move(crescent->outer.center);
       crescent->inner.center = move(crescent->inner.center);
     } else if (auto* sector = std::get_if<SectorShape>(&layer.shape)) {
-      sector->center = move(sector->center);
-      sector->start_rad += angle_rad;
-      sector->end_rad += angle_rad;
+      *sector = SectorShape(move(sector->center()),
+                            sector->radius(),
+                            sector->start_rad() + angle_rad,
+                            sector->end_rad() + angle_rad);
     } else {
       ADD_FAILURE() << "circle markers are drawn with disks, crescents and sectors";
     }
@@ -255,11 +256,11 @@ TEST_P(CircleTrackerTest, AMirroredPrintIsTheSamePrintTurned) {
       crescent->outer.center.x() = -crescent->outer.center.x();
       crescent->inner.center.x() = -crescent->inner.center.x();
     } else {
-      SectorShape& sector = std::get<SectorShape>(layer.shape);
-      sector.center.x() = -sector.center.x();
-      const double start = M_PI - sector.end_rad;
-      sector.end_rad = M_PI - sector.start_rad;
-      sector.start_rad = start;
+      const SectorShape& sector = std::get<SectorShape>(layer.shape);
+      layer.shape = SectorShape(Eigen::Vector2d(-sector.center().x(), sector.center().y()),
+                                sector.radius(),
+                                M_PI - sector.end_rad(),
+                                M_PI - sector.start_rad());
     }
   }
   const Rigid3 pose = TiltedView(0.6, 35.0, 20.0);
