@@ -162,10 +162,10 @@ void LoadCircleMarker(const YamlMap& root, MarkerSpec* spec) {
       const Rgb color = wedge.GetColor("color");
       wedge.RejectUnknownKeys();
       if (color == c0.color) wedge.Fail("color", "a colour that contrasts with the disk");
-      spec->layers.push_back({SectorShape({0.0, 0.0}, c0.radius_m, 0.0, angle_rad), color});
+      const SectorShape wedge_shape({0.0, 0.0}, c0.radius_m, 0.0, angle_rad);
+      spec->layers.push_back({wedge_shape, color});
       spec->keypoints.push_back({c0.radius_m, 0.0});
-      spec->keypoints.push_back(c0.radius_m *
-                                Eigen::Vector2d(std::cos(angle_rad), std::sin(angle_rad)));
+      spec->keypoints.push_back(c0.radius_m * wedge_shape.end_direction());
       break;
     }
     default:
