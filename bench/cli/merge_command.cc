@@ -2,6 +2,7 @@
 
 #include <sys/resource.h>
 
+#include <algorithm>
 #include <filesystem>
 #include <limits>
 #include <map>
@@ -316,6 +317,15 @@ void MergeShards(const MergeOptions& options, std::ostream& log) {
     const size_t rows = MergeRows(shards, folder, options.compress);
     CopyExamples(shards, folder);
     nlohmann::json run = shards.front().run;
+    // One build wrote the merged rows where one wrote every shard's whole; otherwise none is
+    // named here (a shard's "from_frame" counts its own frames), and the manifest's "shards"
+    // list each shard's builds.
+    const nlohmann::json first_builds = run.value("builds", nlohmann::json());
+    const auto one_build = [&](const ShardFolder& s) {
+      const nlohmann::json builds = s.run.value("builds", nlohmann::json());
+      return builds.is_array() && builds.size() == 1 && builds == first_builds;
+    };
+    if (!std::all_of(shards.begin(), shards.end(), one_build)) run.erase("builds");
     run["shard"] = {{"index", 0}, {"count", 1}};
     run["rows"] = rows;
     run["complete"] = true;

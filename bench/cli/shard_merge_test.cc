@@ -239,6 +239,9 @@ TEST_F(ShardMergeTest, MergeWarnsOfShardsBuiltApart) {
   const Finished alike = Merge(dirs, out);
   ASSERT_EQ(alike.status, 0) << alike.error;
   EXPECT_THAT(alike.error, Not(HasSubstr("warning")));
+  nlohmann::json this_build = BuildIdentity();
+  this_build["from_frame"] = 0;
+  EXPECT_EQ(ReadManifest(out + "/apart/run.json")["builds"], nlohmann::json::array({this_build}));
 
   nlohmann::json other = BuildIdentity();
   other["git_diff_sha256"] = std::string(64, 'f');
@@ -248,8 +251,14 @@ TEST_F(ShardMergeTest, MergeWarnsOfShardsBuiltApart) {
   other["from_frame"] = 0;
   manifest["scenarios"]["apart"]["builds"] = nlohmann::json::array({other});
   WriteManifest(manifest_path, manifest);
+  const std::string run_path = dirs[1] + "/apart/run.json";
+  nlohmann::json run = ReadManifest(run_path);
+  run["builds"] = nlohmann::json::array({other});
+  WriteManifest(run_path, run);
   const Finished apart = Merge(dirs, (work_ / "merged").string());
   ASSERT_EQ(apart.status, 0) << apart.error;
+  // The merged rows' builds differ by shard: the manifest lists them, run.json names none.
+  EXPECT_FALSE(ReadManifest((work_ / "merged/apart/run.json").string()).contains("builds"));
   EXPECT_THAT(apart.error,
               HasSubstr("merge: warning: apart shard 1/2 was built from " + BuildText(other) +
                         ", shard 0 from " + BuildText(BuildIdentity())));

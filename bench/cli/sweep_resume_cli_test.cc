@@ -141,6 +141,19 @@ TEST_F(SweepCliTest, AResumeByAnotherBuildIsRecorded) {
   EXPECT_THAT(again.error, Not(HasSubstr("warning")));
   EXPECT_EQ(ReadManifest(run_json)["builds"],
             nlohmann::json::array({from_frame(BuildIdentity(), 0)}));
+
+  // A run.json written before builds were kept: its rows' build is unknown.
+  run = ReadManifest(run_json);
+  run.erase("builds");
+  WriteManifest(run_json, run);
+  fs::resize_file(out + "/rebuilt/frames.csv", cut);
+  const Finished unknown = Run({"sweep", scenario, "--out", out, "--resume"});
+  ASSERT_EQ(unknown.status, 0) << unknown.error;
+  const nlohmann::json unknown_from_0 = from_frame({{"git_commit", "unknown"}}, 0);
+  EXPECT_THAT(unknown.error,
+              HasSubstr("the frames before were written by " + BuildText(unknown_from_0)));
+  EXPECT_EQ(ReadManifest(run_json)["builds"],
+            nlohmann::json::array({unknown_from_0, from_frame(BuildIdentity(), 6)}));
 }
 
 // A run.json whose builds are not a list of them is bad input: exit 2 naming the file and key.
@@ -148,14 +161,27 @@ TEST_F(SweepCliTest, ResumeRefusesBuildsItCannotRead) {
   const std::string scenario = Scenario("unread", 1);
   const std::string out = (work_ / "out").string(), run_json = out + "/unread/run.json";
   ASSERT_EQ(Run({"sweep", scenario, "--out", out}).status, 0);
-  nlohmann::json run = ReadManifest(run_json);
-  run["builds"] = nlohmann::json::array({{{"git_commit", "0123abc"}, {"from_frame", "zero"}}});
-  WriteManifest(run_json, run);
+  const nlohmann::json written = ReadManifest(run_json);
   const std::string full = Read(out + "/unread/frames.csv");
-  fs::resize_file(out + "/unread/frames.csv", full.size() - 1);
-  const Finished f = Run({"sweep", scenario, "--out", out, "--resume"});
-  EXPECT_EQ(f.status, 2);
-  EXPECT_THAT(f.error, HasSubstr(run_json + ": key 'builds': expected a list of builds"));
+  // A count that is not one, a map, an empty list, a list not from frame 0, and not a list.
+  for (const nlohmann::json& builds :
+       {nlohmann::json::array({{{"git_commit", "0123abc"}, {"from_frame", "zero"}}}),
+        nlohmann::json::object(),
+        nlohmann::json::array(),
+        nlohmann::json::array({{{"git_commit", "0123abc"}, {"from_frame", 1}}}),
+        nlohmann::json("0123abc")}) {
+    SCOPED_TRACE(builds.dump());
+    nlohmann::json run = written;
+    run["builds"] = builds;
+    WriteManifest(run_json, run);
+    fs::resize_file(out + "/unread/frames.csv", full.size() - 1);
+    const Finished f = Run({"sweep", scenario, "--out", out, "--resume"});
+    EXPECT_EQ(f.status, 2);
+    EXPECT_THAT(f.error,
+                HasSubstr(run_json + ": key 'builds': expected a list of the builds that wrote " +
+                          "its rows, the first from frame 0, each with a 'from_frame' count, " +
+                          "got " + builds.dump()));
+  }
 }
 
 TEST_F(SweepCliTest, ResumeRefusesAnotherScenariosFolder) {

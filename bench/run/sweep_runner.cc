@@ -171,17 +171,25 @@ size_t FramesBefore(const std::vector<Job>& jobs, size_t job) {
 void KeepEarlierBuilds(PreparedSweep& p, const nlohmann::json& run, const std::string& run_json) {
   const size_t kept_frames = FramesBefore(p.jobs, p.done);
   if (kept_frames == 0) return;  // nothing of the earlier run is kept
-  const nlohmann::json earlier = run.value("builds", nlohmann::json::array());
   nlohmann::json builds = nlohmann::json::array();
-  for (const nlohmann::json& build : earlier) {
-    if (!earlier.is_array() || !build.is_object() ||
-        !build.value("from_frame", nlohmann::json()).is_number_unsigned()) {
-      throw ConfigError(run_json + ": key 'builds': expected a list of builds, each with a " +
-                        "'from_frame' count, got " + earlier.dump());
+  if (!run.contains("builds")) {
+    builds.push_back({{"git_commit", "unknown"}, {"from_frame", 0}});
+  } else {
+    const nlohmann::json& earlier = run["builds"];
+    const auto unreadable = [&] {
+      return ConfigError(run_json + ": key 'builds': expected a list of the builds that wrote " +
+                         "its rows, the first from frame 0, each with a 'from_frame' count, got " +
+                         earlier.dump());
+    };
+    if (!earlier.is_array() || earlier.empty()) throw unreadable();
+    for (const nlohmann::json& build : earlier) {
+      if (!build.is_object() || !build.value("from_frame", nlohmann::json()).is_number_unsigned()) {
+        throw unreadable();
+      }
+      if (build["from_frame"].get<size_t>() < kept_frames) builds.push_back(build);
     }
-    if (build["from_frame"].get<size_t>() < kept_frames) builds.push_back(build);
+    if (earlier.front()["from_frame"].get<size_t>() != 0) throw unreadable();
   }
-  if (builds.empty()) builds.push_back({{"git_commit", "unknown"}, {"from_frame", 0}});
   nlohmann::json here = BuildIdentity();
   const nlohmann::json& last = builds.back();
   if (!SameBuild(last, here)) {
