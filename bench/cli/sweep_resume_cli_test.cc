@@ -154,6 +154,16 @@ TEST_F(SweepCliTest, AResumeByAnotherBuildIsRecorded) {
               HasSubstr("the frames before were written by " + BuildText(unknown_from_0)));
   EXPECT_EQ(ReadManifest(run_json)["builds"],
             nlohmann::json::array({unknown_from_0, from_frame(BuildIdentity(), 6)}));
+
+  // A complete run resumed by another build gains no row, so neither a warning nor a build.
+  run = ReadManifest(run_json);
+  run["builds"] = nlohmann::json::array({earlier_from_0});
+  WriteManifest(run_json, run);
+  const Finished complete = Run({"sweep", scenario, "--out", out, "--resume"});
+  ASSERT_EQ(complete.status, 0) << complete.error;
+  EXPECT_THAT(complete.error, Not(HasSubstr("warning")));
+  EXPECT_EQ(ReadManifest(run_json)["builds"], nlohmann::json::array({earlier_from_0}));
+  EXPECT_EQ(Read(out + "/rebuilt/frames.csv"), full);
 }
 
 // A run.json whose builds are not a list of them is bad input: exit 2 naming the file and key.

@@ -167,7 +167,8 @@ size_t FramesBefore(const std::vector<Job>& jobs, size_t job) {
 
 // A resumed run's builds (run.json's "builds" at `run_json`; one written before they were kept
 // names none, and its rows' build is unknown): those whose rows are kept, and this build after
-// them if it is another, with a warning: the rows agree only if the trackers did not change.
+// them if it is another and adds rows, with a warning: the rows agree only if the trackers did
+// not change.
 void KeepEarlierBuilds(PreparedSweep& p, const nlohmann::json& run, const std::string& run_json) {
   const size_t kept_frames = FramesBefore(p.jobs, p.done);
   if (kept_frames == 0) return;  // nothing of the earlier run is kept
@@ -192,7 +193,8 @@ void KeepEarlierBuilds(PreparedSweep& p, const nlohmann::json& run, const std::s
   }
   nlohmann::json here = BuildIdentity();
   const nlohmann::json& last = builds.back();
-  if (!SameBuild(last, here)) {
+  // A complete run gains no row, so no build.
+  if (p.done < p.jobs.size() && !SameBuild(last, here)) {
     std::fprintf(stderr,
                  "%s: warning: resuming at frame %zu with %s; the frames before were written by "
                  "%s, and rows agree only if the trackers did not change between them\n",
