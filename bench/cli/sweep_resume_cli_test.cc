@@ -166,6 +166,35 @@ TEST_F(SweepCliTest, AResumeByAnotherBuildIsRecorded) {
   EXPECT_EQ(Read(out + "/rebuilt/frames.csv"), full);
 }
 
+// A complete run has nothing to resume: its files, run.json and manifest stay as they were (run
+// again, its manifest entry took the cost of a run of nothing). One whose last row was written but
+// not its completion (killed in between) is completed: run.json says so, and the manifest has it.
+TEST_F(SweepCliTest, ACompleteRunIsLeftAsItWas) {
+  const std::string scenario = Scenario("done", 1);
+  const std::string out = (work_ / "out").string();
+  ASSERT_EQ(Run({"sweep", scenario, "--out", out}).status, 0);
+  const std::string frames = Read(out + "/done/frames.csv"), run = Read(out + "/done/run.json"),
+                    manifest = Read(out + "/manifest.json");
+  const Finished again = Run({"sweep", scenario, "--out", out, "--resume"});
+  ASSERT_EQ(again.status, 0) << again.error;
+  EXPECT_THAT(again.error, HasSubstr("done: complete (frames.csv); nothing to resume"));
+  EXPECT_EQ(Read(out + "/done/frames.csv"), frames);
+  EXPECT_EQ(Read(out + "/done/run.json"), run);
+  EXPECT_EQ(Read(out + "/manifest.json"), manifest);
+
+  nlohmann::json incomplete = ReadManifest(out + "/done/run.json");
+  incomplete["complete"] = false;
+  WriteManifest(out + "/done/run.json", incomplete);
+  fs::remove(out + "/manifest.json");
+  const Finished completed = Run({"sweep", scenario, "--out", out, "--resume"});
+  ASSERT_EQ(completed.status, 0) << completed.error;
+  EXPECT_THAT(completed.error, Not(HasSubstr("nothing to resume")));
+  EXPECT_EQ(Read(out + "/done/frames.csv"), frames);
+  EXPECT_TRUE(ReadManifest(out + "/done/run.json")["complete"].get<bool>());
+  const nlohmann::json entry = ReadManifest(out + "/manifest.json")["scenarios"]["done"];
+  EXPECT_EQ(entry["resumed_at_frame"], entry["frames"]);
+}
+
 // A run.json whose builds are not a list of them is bad input: exit 2 naming the file and key.
 TEST_F(SweepCliTest, ResumeRefusesBuildsItCannotRead) {
   const std::string scenario = Scenario("unread", 1);

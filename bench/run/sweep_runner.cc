@@ -60,7 +60,10 @@ struct PreparedSweep {
   // The builds whose rows the files hold (BuildIdentity(), each with "from_frame", the frames
   // written before it): this one alone, but for a run resumed by another build.
   nlohmann::json builds = nlohmann::json::array();
-  bool compressed = false;  // a complete run already compressed: nothing left to do
+  // A complete run (run.json says so, and the files hold every row): nothing left to do, and
+  // its run.json and manifest entry stay as they are. `compressed`: its files are .zst.
+  bool complete = false;
+  bool compressed = false;
   uintmax_t frames_bytes = 0;
   uintmax_t timing_bytes = 0;
   std::unique_ptr<SweepTrackerContext> trackers;  // made once the run's folder is taken
@@ -245,7 +248,7 @@ void TakeOverEarlierRun(PreparedSweep& p, const SweepOptions& options) {
   if (compressed) {
     // Compressed only once complete.
     p.done = p.jobs.size();
-    p.compressed = true;
+    p.complete = p.compressed = true;
     return;
   }
   fs::remove(p.dir + "/frames.csv.zst");
@@ -263,6 +266,7 @@ void TakeOverEarlierRun(PreparedSweep& p, const SweepOptions& options) {
   p.done = std::min(in_frames.complete, in_timing.complete);
   p.frames_bytes = in_frames.offsets[p.done];
   p.timing_bytes = in_timing.offsets[p.done];
+  p.complete = p.done == p.jobs.size() && run.value("complete", false);
   KeepEarlierBuilds(p, run, run_json);
 }
 
@@ -579,9 +583,18 @@ void RunSweeps(const std::vector<std::string>& scenario_paths, const SweepOption
   // make time_ms depend on what the other workers do.
   cv::setNumThreads(1);
   for (PreparedSweep& p : sweeps) {
-    if (p.compressed) {
-      std::fprintf(
-          stderr, "%s: complete (frames.csv.zst); nothing to resume\n", p.scenario.name.c_str());
+    if (p.complete) {
+      // Run again, it would replace the manifest entry's cost of the run (and a merged run's
+      // list of shards) by a run of nothing.
+      if (options.compress && !p.compressed) {
+        CompressCsv(p.dir + "/frames.csv");
+        CompressCsv(p.dir + "/timing.csv");
+        p.compressed = true;
+      }
+      std::fprintf(stderr,
+                   "%s: complete (%s); nothing to resume\n",
+                   p.scenario.name.c_str(),
+                   p.compressed ? "frames.csv.zst" : "frames.csv");
       continue;
     }
     // No more workers than frames left to run.
