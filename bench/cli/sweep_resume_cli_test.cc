@@ -193,6 +193,15 @@ TEST_F(SweepCliTest, ACompleteRunIsLeftAsItWas) {
   EXPECT_TRUE(ReadManifest(out + "/done/run.json")["complete"].get<bool>());
   const nlohmann::json entry = ReadManifest(out + "/manifest.json")["scenarios"]["done"];
   EXPECT_EQ(entry["resumed_at_frame"], entry["frames"]);
+
+  // With --zstd a complete run is compressed, and then it is complete as .zst.
+  ASSERT_EQ(Run({"sweep", scenario, "--out", out, "--resume", "--zstd"}).status, 0);
+  EXPECT_FALSE(fs::exists(out + "/done/frames.csv"));
+  EXPECT_TRUE(fs::exists(out + "/done/frames.csv.zst"));
+  EXPECT_TRUE(fs::exists(out + "/done/timing.csv.zst"));
+  const Finished packed = Run({"sweep", scenario, "--out", out, "--resume"});
+  ASSERT_EQ(packed.status, 0) << packed.error;
+  EXPECT_THAT(packed.error, HasSubstr("done: complete (frames.csv.zst); nothing to resume"));
 }
 
 // A run.json whose builds are not a list of them is bad input: exit 2 naming the file and key.
