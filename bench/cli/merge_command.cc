@@ -67,13 +67,16 @@ std::map<std::string, std::vector<ShardFolder>> CollectPlans(const std::vector<s
   }
   for (auto& [name, shards] : found) {
     const ShardFolder& first = shards.front();
-    const std::string fingerprint = first.run.value("fingerprint", "");
+    const auto fingerprint_of = [](const ShardFolder& s) {
+      return ManifestValue(s.run, s.folder + "/run.json", "fingerprint", std::string("?"));
+    };
+    const std::string fingerprint = fingerprint_of(first);
     std::vector<const ShardFolder*> by_index(static_cast<size_t>(first.shard.count), nullptr);
     for (const ShardFolder& s : shards) {
-      if (s.run.value("fingerprint", "") != fingerprint || s.shard.count != first.shard.count) {
+      if (fingerprint_of(s) != fingerprint || s.shard.count != first.shard.count) {
         throw ConfigError(s.folder + ": shard " + ShardText(s.shard) + " of fingerprint " +
-                          s.run.value("fingerprint", std::string("?")) + ", but " + first.folder +
-                          " is shard " + ShardText(first.shard) + " of fingerprint " + fingerprint +
+                          fingerprint_of(s) + ", but " + first.folder + " is shard " +
+                          ShardText(first.shard) + " of fingerprint " + fingerprint +
                           ": the shards come from different scenarios (or a scenario or its "
                           "files changed between them)");
       }
@@ -93,7 +96,7 @@ std::map<std::string, std::vector<ShardFolder>> CollectPlans(const std::vector<s
                         " are missing (found " + std::to_string(shards.size()) + ")");
     }
     for (const ShardFolder& s : shards) {
-      if (!s.run.value("complete", false)) {
+      if (!ManifestValue(s.run, s.folder + "/run.json", "complete", false)) {
         throw ConfigError(s.folder + "/run.json: shard " + ShardText(s.shard) +
                           " is incomplete; finish it with sweep --resume --shard " +
                           ShardText(s.shard));
@@ -191,7 +194,8 @@ size_t MergeRows(const std::vector<ShardFolder>& shards,
     if (c.frame >= 0) next.push({c.frame, i});
   }
   for (const ShardCursor& c : cursors) {
-    const size_t expected = c.source->run.value("rows", size_t{0});
+    const size_t expected =
+        ManifestValue(c.source->run, c.source->folder + "/run.json", "rows", size_t{0});
     if (c.rows != expected || c.timing->Next(&timing_line)) {
       throw ConfigError(c.frames->path() + ": holds " + std::to_string(c.rows) +
                         " rows, but run.json says the shard has " + std::to_string(expected) +

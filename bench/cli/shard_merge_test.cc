@@ -284,6 +284,24 @@ TEST_F(ShardMergeTest, MergeWarnsOfShardsBuiltApart) {
                         "; the reference, from " + BuildText(other) + ".\n"));
 }
 
+// A shard's run.json with a key of another type is bad input: exit 2 naming the file and the key.
+TEST_F(ShardMergeTest, MergeRefusesARunJsonItCannotRead) {
+  const std::string scenario = ScenarioFile(
+      "damaged", {"aruco"}, "  - {name: aruco}\n", "{parameter: noise_var, values: [0.0]}", 2);
+  const std::vector<std::string> dirs = Shards({scenario}, 2, "s");
+  const std::string run_json = dirs[1] + "/damaged/run.json";
+  const nlohmann::json written = ReadManifest(run_json);
+  for (const char* key : {"fingerprint", "complete", "rows"}) {
+    SCOPED_TRACE(key);
+    nlohmann::json run = written;
+    run[key] = nlohmann::json::array();
+    WriteManifest(run_json, run);
+    const Finished f = Merge(dirs, (work_ / "out").string());
+    EXPECT_EQ(f.status, 2);
+    EXPECT_THAT(f.error, HasSubstr(run_json + ": key '" + key + "': expected "));
+  }
+}
+
 TEST_F(ShardMergeTest, CompressedRunsReadLikePlainOnes) {
   const std::string scenario = ScenarioFile(
       "packed", {"aruco"}, "  - {name: aruco}\n", "{parameter: noise_var, values: [0.0, 0.05]}", 6);

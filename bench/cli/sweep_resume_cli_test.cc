@@ -166,6 +166,36 @@ TEST_F(SweepCliTest, AResumeByAnotherBuildIsRecorded) {
   EXPECT_EQ(Read(out + "/rebuilt/frames.csv"), full);
 }
 
+// A run.json that is not an object of the keys it should have is bad input: exit 2 naming the file
+// and the key, and the run's files are left alone.
+TEST_F(SweepCliTest, ResumeRefusesARunJsonItCannotRead) {
+  const std::string scenario = Scenario("damaged", 1);
+  const std::string out = (work_ / "out").string(), run_json = out + "/damaged/run.json";
+  ASSERT_EQ(Run({"sweep", scenario, "--out", out}).status, 0);
+  const nlohmann::json written = ReadManifest(run_json);
+  const std::string frames = Read(out + "/damaged/frames.csv");
+  const auto with = [&](const std::string& key, const nlohmann::json& value) {
+    nlohmann::json run = written;
+    run[key] = value;
+    return run;
+  };
+  const std::vector<std::pair<nlohmann::json, std::string>> cases = {
+      {nlohmann::json::array(), ": expected a JSON object, got array"},
+      {with("fingerprint", 5), ": key 'fingerprint': expected a string, got 5"},
+      {with("shard", 3), ": key 'shard': expected {index, count}, got 3"},
+      {with("shard", {{"index", "a"}, {"count", 1}}),
+       ": key 'shard': key 'index': expected an integer, got \"a\""},
+      {with("complete", "yes"), ": key 'complete': expected true or false, got \"yes\""}};
+  for (const auto& [run, message] : cases) {
+    SCOPED_TRACE(run.dump());
+    WriteManifest(run_json, run);
+    const Finished f = Run({"sweep", scenario, "--out", out, "--resume"});
+    EXPECT_EQ(f.status, 2);
+    EXPECT_THAT(f.error, HasSubstr(run_json + message));
+    EXPECT_EQ(Read(out + "/damaged/frames.csv"), frames);
+  }
+}
+
 // A complete run has nothing to resume: its files, run.json and manifest stay as they were (run
 // again, its manifest entry took the cost of a run of nothing). One whose last row was written but
 // not its completion (killed in between) is completed: run.json says so, and the manifest has it.

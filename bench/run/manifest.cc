@@ -72,11 +72,16 @@ nlohmann::json ReadManifest(const std::string& path) {
   if (!std::filesystem::exists(path)) return nlohmann::json::object();
   RequireRegularFile(path);
   std::ifstream in(path);
+  nlohmann::json manifest;
   try {
-    return nlohmann::json::parse(in);
+    manifest = nlohmann::json::parse(in);
   } catch (const nlohmann::json::exception& e) {
     throw ConfigError(path + ": expected a JSON manifest: " + e.what());
   }
+  if (!manifest.is_object()) {
+    throw ConfigError(path + ": expected a JSON object, got " + manifest.type_name());
+  }
+  return manifest;
 }
 
 void WriteManifest(const std::string& path, const nlohmann::json& manifest) {

@@ -5,6 +5,9 @@
 
 #include <nlohmann/json.hpp>
 #include <string>
+#include <type_traits>
+
+#include "core/config_error.h"
 
 namespace markerbench {
 
@@ -30,8 +33,35 @@ void UpdateManifest(const std::string& path,
                     const nlohmann::json& environment,
                     const nlohmann::json& entry);
 
-// Reads a manifest; an empty object when the file does not exist.
+// Reads a manifest (or run.json); an empty object when the file does not exist. One that is not
+// a JSON object is a ConfigError naming the file.
 nlohmann::json ReadManifest(const std::string& path);
+
+// Key `key` of `manifest`, read from `path`, as a bool, a string or an integer; `fallback` where
+// it is absent. A value of another type is a ConfigError naming the file and the key.
+template <class T>
+T ManifestValue(const nlohmann::json& manifest,
+                const std::string& path,
+                const std::string& key,
+                const T& fallback) {
+  const auto found = manifest.find(key);
+  if (found == manifest.end()) return fallback;
+  std::string expected;
+  if constexpr (std::is_same_v<T, bool>) {
+    if (found->is_boolean()) return found->template get<bool>();
+    expected = "true or false";
+  } else if constexpr (std::is_same_v<T, std::string>) {
+    if (found->is_string()) return found->template get<std::string>();
+    expected = "a string";
+  } else {
+    static_assert(std::is_integral_v<T>, "a bool, a string or an integer");
+    const bool fits =
+        std::is_unsigned_v<T> ? found->is_number_unsigned() : found->is_number_integer();
+    if (fits) return found->template get<T>();
+    expected = std::is_unsigned_v<T> ? "a count" : "an integer";
+  }
+  throw ConfigError(path + ": key '" + key + "': expected " + expected + ", got " + found->dump());
+}
 // Writes `manifest` atomically.
 void WriteManifest(const std::string& path, const nlohmann::json& manifest);
 

@@ -232,13 +232,21 @@ void TakeOverEarlierRun(PreparedSweep& p, const SweepOptions& options) {
   }
   const std::string run_json = p.dir + "/run.json";
   const nlohmann::json run = ReadManifest(run_json);
-  if (run.value("fingerprint", "") != p.fingerprint) {
+  const std::string fingerprint =
+      ManifestValue(run, run_json, "fingerprint", std::string("missing"));
+  if (fingerprint != p.fingerprint) {
     throw ConfigError(p.dir + ": was written by a different scenario or other overrides " +
-                      "(run.json fingerprint " + run.value("fingerprint", std::string("missing")) +
-                      ", " + path + " has " + p.fingerprint + "); refusing to --resume into it");
+                      "(run.json fingerprint " + fingerprint + ", " + path + " has " +
+                      p.fingerprint + "); refusing to --resume into it");
   }
-  const Shard shard{run.value("/shard/index"_json_pointer, 0),
-                    run.value("/shard/count"_json_pointer, 1)};
+  const nlohmann::json unsharded = {{"index", 0}, {"count", 1}};
+  const nlohmann::json& shard_json = run.contains("shard") ? run["shard"] : unsharded;
+  if (!shard_json.is_object()) {
+    throw ConfigError(run_json + ": key 'shard': expected {index, count}, got " +
+                      shard_json.dump());
+  }
+  const Shard shard{ManifestValue(shard_json, run_json + ": key 'shard'", "index", 0),
+                    ManifestValue(shard_json, run_json + ": key 'shard'", "count", 1)};
   if (shard.index != p.shard.index || shard.count != p.shard.count) {
     throw ConfigError(run_json + ": key 'shard': this folder holds shard " +
                       std::to_string(shard.index) + "/" + std::to_string(shard.count) +
@@ -266,7 +274,7 @@ void TakeOverEarlierRun(PreparedSweep& p, const SweepOptions& options) {
   p.done = std::min(in_frames.complete, in_timing.complete);
   p.frames_bytes = in_frames.offsets[p.done];
   p.timing_bytes = in_timing.offsets[p.done];
-  p.complete = p.done == p.jobs.size() && run.value("complete", false);
+  p.complete = p.done == p.jobs.size() && ManifestValue(run, run_json, "complete", false);
   KeepEarlierBuilds(p, run, run_json);
 }
 
