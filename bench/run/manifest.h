@@ -37,6 +37,9 @@ void UpdateManifest(const std::string& path,
 // a JSON object is a ConfigError naming the file.
 nlohmann::json ReadManifest(const std::string& path);
 
+// Writes `manifest` atomically.
+void WriteManifest(const std::string& path, const nlohmann::json& manifest);
+
 // Key `key` of `manifest`, read from `path`, as a bool, a string or an integer; `fallback` where
 // it is absent. A value of another type is a ConfigError naming the file and the key.
 template <class T>
@@ -62,7 +65,5 @@ T ManifestValue(const nlohmann::json& manifest,
   }
   throw ConfigError(path + ": key '" + key + "': expected " + expected + ", got " + found->dump());
 }
-// Writes `manifest` atomically.
-void WriteManifest(const std::string& path, const nlohmann::json& manifest);
 
 }  // namespace markerbench
