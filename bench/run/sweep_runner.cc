@@ -504,6 +504,12 @@ void CompressCsv(const std::string& path) {
   fs::remove(path);
 }
 
+// A complete run's frames.csv and timing.csv, each replaced by its .zst.
+void CompressRun(const PreparedSweep& p) {
+  CompressCsv(p.dir + "/frames.csv");
+  CompressCsv(p.dir + "/timing.csv");
+}
+
 void Run(PreparedSweep& p, int threads, bool compress, const std::string& manifest_path) {
   fs::create_directories(p.dir + "/examples");
   WriteManifest(p.dir + "/run.json", RunJson(p, false));
@@ -548,10 +554,7 @@ void Run(PreparedSweep& p, int threads, bool compress, const std::string& manife
   const double wall_s =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   WriteManifest(p.dir + "/run.json", RunJson(p, true));
-  if (compress) {
-    CompressCsv(p.dir + "/frames.csv");
-    CompressCsv(p.dir + "/timing.csv");
-  }
+  if (compress) CompressRun(p);
   nlohmann::json entry = ScenarioManifest(p, threads);
   const double frames_run = static_cast<double>(FrameCount(p.jobs, p.done));
   entry["wall_s"] = wall_s;
@@ -584,8 +587,12 @@ void RunSweeps(const std::vector<std::string>& scenario_paths, const SweepOption
                             : std::max(1, static_cast<int>(std::thread::hardware_concurrency()));
   LockOutputFolder(options.out_dir);
   for (PreparedSweep& p : sweeps) TakeOverEarlierRun(p, options);
+  // Only for runs that have frames left: a complete one runs no tracker (an external one's
+  // handshake and its scaled marker files would be work for nothing).
   for (PreparedSweep& p : sweeps) {
-    p.trackers = std::make_unique<SweepTrackerContext>(p.scenario, p.fingerprint, p.dir);
+    if (!p.complete) {
+      p.trackers = std::make_unique<SweepTrackerContext>(p.scenario, p.fingerprint, p.dir);
+    }
   }
   // Parallelism comes from the pool; OpenCV's own threads would oversubscribe the cores and
   // make time_ms depend on what the other workers do.
@@ -595,8 +602,7 @@ void RunSweeps(const std::vector<std::string>& scenario_paths, const SweepOption
       // Run again, it would replace the manifest entry's cost of the run (and a merged run's
       // list of shards) by a run of nothing.
       if (options.compress && !p.compressed) {
-        CompressCsv(p.dir + "/frames.csv");
-        CompressCsv(p.dir + "/timing.csv");
+        CompressRun(p);
         p.compressed = true;
       }
       std::fprintf(stderr,
