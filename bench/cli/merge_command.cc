@@ -222,6 +222,26 @@ void CopyExamples(const std::vector<ShardFolder>& shards, const std::string& out
   }
 }
 
+// The merged run.json: shard 0's, one whole complete run of `rows` rows merged from `shards`.
+nlohmann::json MergedRunJson(const std::vector<ShardFolder>& shards, size_t rows) {
+  nlohmann::json run = shards.front().run;
+  // One build wrote the merged rows where one wrote every shard's whole; otherwise none is
+  // named here (a shard's "from_frame" counts its own frames), and the manifest's "shards"
+  // list each shard's builds.
+  const nlohmann::json first_builds = run.value("builds", nlohmann::json());
+  const auto one_build = [&](const ShardFolder& s) {
+    const nlohmann::json builds = s.run.value("builds", nlohmann::json());
+    return builds.is_array() && builds.size() == 1 && builds == first_builds;
+  };
+  if (!std::all_of(shards.begin(), shards.end(), one_build)) run.erase("builds");
+  run["shard"] = {{"index", 0}, {"count", 1}};
+  run["rows"] = rows;
+  run["complete"] = true;
+  run["merged_from"] = nlohmann::json::array();
+  for (const ShardFolder& s : shards) run["merged_from"].push_back(s.folder);
+  return run;
+}
+
 // The manifest entry of a merged scenario: the first shard's, with the shards' costs.
 nlohmann::json MergedEntry(const std::vector<ShardFolder>& shards,
                            const std::string& name,
@@ -315,29 +335,27 @@ void MergeShards(const MergeOptions& options, std::ostream& log) {
       ReadManifest(plans.begin()->second.front().dir + "/manifest.json")
           .value("environment", nlohmann::json::object());
   for (const auto& [name, shards] : plans) {
+    // Merged beside the folder and moved in whole: a merge that fails (a shard's rows or
+    // manifest damaged) leaves no folder, or the one it was to replace as it was.
     const std::string folder = options.out_dir + "/" + name;
+    const std::string staging = folder + ".merging";
+    fs::remove_all(staging);
+    fs::create_directories(staging);
+    size_t rows = 0;
+    nlohmann::json entry;
+    try {
+      rows = MergeRows(shards, staging, options.compress);
+      CopyExamples(shards, staging);
+      WriteManifest(staging + "/run.json", MergedRunJson(shards, rows));
+      entry = MergedEntry(shards, name, log);
+    } catch (...) {
+      std::error_code ignored;
+      fs::remove_all(staging, ignored);
+      throw;
+    }
     fs::remove_all(folder);
-    fs::create_directories(folder);
-    const size_t rows = MergeRows(shards, folder, options.compress);
-    CopyExamples(shards, folder);
-    nlohmann::json run = shards.front().run;
-    // One build wrote the merged rows where one wrote every shard's whole; otherwise none is
-    // named here (a shard's "from_frame" counts its own frames), and the manifest's "shards"
-    // list each shard's builds.
-    const nlohmann::json first_builds = run.value("builds", nlohmann::json());
-    const auto one_build = [&](const ShardFolder& s) {
-      const nlohmann::json builds = s.run.value("builds", nlohmann::json());
-      return builds.is_array() && builds.size() == 1 && builds == first_builds;
-    };
-    if (!std::all_of(shards.begin(), shards.end(), one_build)) run.erase("builds");
-    run["shard"] = {{"index", 0}, {"count", 1}};
-    run["rows"] = rows;
-    run["complete"] = true;
-    run["merged_from"] = nlohmann::json::array();
-    for (const ShardFolder& s : shards) run["merged_from"].push_back(s.folder);
-    WriteManifest(folder + "/run.json", run);
-    UpdateManifest(
-        options.out_dir + "/manifest.json", name, environment, MergedEntry(shards, name, log));
+    fs::rename(staging, folder);
+    UpdateManifest(options.out_dir + "/manifest.json", name, environment, entry);
     log << "merge: " << name << ": " << shards.size() << " shards, " << rows << " rows\n";
   }
 }

@@ -302,6 +302,37 @@ TEST_F(ShardMergeTest, MergeRefusesARunJsonItCannotRead) {
   }
 }
 
+// A shard's manifest read only once its rows are merged (its wall time, here of another type):
+// the merge is exit 2 naming the file and the key, and leaves no folder behind, or the one it
+// was to replace as it was.
+TEST_F(ShardMergeTest, AMergeThatFailsLeavesNoFolder) {
+  const std::string scenario = ScenarioFile(
+      "halted", {"aruco"}, "  - {name: aruco}\n", "{parameter: noise_var, values: [0.0]}", 2);
+  const std::vector<std::string> dirs = Shards({scenario}, 2, "s");
+  const std::string out = (work_ / "out").string();
+  const std::string manifest_path = dirs[1] + "/manifest.json";
+  const nlohmann::json written = ReadManifest(manifest_path);
+  nlohmann::json damaged = written;
+  damaged["scenarios"]["halted"]["wall_s"] = "slow";
+  WriteManifest(manifest_path, damaged);
+  Finished f = Merge(dirs, out);
+  EXPECT_EQ(f.status, 2);
+  EXPECT_THAT(f.error, HasSubstr(manifest_path + ": key 'scenarios/halted/wall_s': expected"));
+  EXPECT_FALSE(fs::exists(out + "/halted"));
+  EXPECT_FALSE(fs::exists(out + "/halted.merging"));
+  // Merged whole, then again over it with the damage: the first merge stays.
+  WriteManifest(manifest_path, written);
+  ASSERT_EQ(Merge(dirs, out).status, 0);
+  const std::string merged = Read(fs::path(out) / "halted/frames.csv");
+  WriteManifest(manifest_path, damaged);
+  std::vector<std::string> again = dirs;
+  again.push_back("--overwrite");
+  f = Merge(again, out);
+  EXPECT_EQ(f.status, 2);
+  EXPECT_EQ(Read(fs::path(out) / "halted/frames.csv"), merged);
+  EXPECT_FALSE(fs::exists(out + "/halted.merging"));
+}
+
 TEST_F(ShardMergeTest, CompressedRunsReadLikePlainOnes) {
   const std::string scenario = ScenarioFile(
       "packed", {"aruco"}, "  - {name: aruco}\n", "{parameter: noise_var, values: [0.0, 0.05]}", 6);

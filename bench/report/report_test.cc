@@ -7,9 +7,11 @@
 #include <algorithm>
 #include <filesystem>
 #include <fstream>
+#include <nlohmann/json.hpp>
 #include <sstream>
 
 #include "bench/run/frames_csv.h"
+#include "core/config_error.h"
 #include "core/file_bytes.h"
 #include "core/yaml_reader.h"
 
@@ -314,6 +316,86 @@ TEST_F(ReportTest, MisalignedTimingIsAnError) {
   ReportOptions options;
   options.plots = false;
   EXPECT_THROW(WriteReport(dir_, options), ConfigError);
+}
+
+// A manifest.json whose keys have other types (edited by hand, or by another tool) is bad
+// input naming the file and the key, not the JSON library's message.
+TEST_F(ReportTest, ADamagedManifestNamesTheFileAndTheKey) {
+  const nlohmann::json valid = {{"environment",
+                                 {{"git_commit", "abc"},
+                                  {"compiler", "g++"},
+                                  {"build_type", "Release"},
+                                  {"cpu_model", "cpu"},
+                                  {"threads", 2}}},
+                                {"scenarios",
+                                 {{"fig6_noise",
+                                   {{"file", "fig6.yaml"},
+                                    {"trials", 5},
+                                    {"seed", 1},
+                                    {"frames", 15},
+                                    {"wall_s", 1.5},
+                                    {"frames_per_s", 10.0},
+                                    {"threads", 2},
+                                    {"builds", {{{"git_commit", "abc"}, {"from_frame", 0}}}},
+                                    {"shards", {{{"builds", {{{"git_commit", "abc"}}}}}}}}}}}};
+  const std::string manifest_path = dir_ + "/manifest.json";
+  ReportOptions options;
+  options.plots = false;
+  std::ofstream(manifest_path) << valid.dump();
+  WriteReport(dir_, options);
+  EXPECT_THAT(ReadFileBytes(dir_ + "/report.md"), HasSubstr("Ran 15 frames"));
+  const nlohmann::json trajectory = {{"fps", 30.0},
+                                     {"frames", 10},
+                                     {"static_s", 0.0},
+                                     {"exposure_s", 0.01},
+                                     {"readout_s", 0.0},
+                                     {"occlusions", {{1, 2}}}};
+  struct Damage {
+    std::string pointer;
+    nlohmann::json value;
+    std::string message;
+  };
+  const std::string entry = "/scenarios/fig6_noise";
+  const std::vector<Damage> damages = {
+      {"/environment", "x", "key 'environment': expected an object, got \"x\""},
+      {"/environment/threads", "two", "key 'environment/threads': expected a number"},
+      {"/environment/git_commit", 5, "key 'environment/git_commit': expected a string, got 5"},
+      {entry, 5, "key 'scenarios/fig6_noise': expected an object, got 5"},
+      {entry + "/wall_s", "1 s", "key 'scenarios/fig6_noise/wall_s': expected a number"},
+      {entry + "/file", 3, "key 'scenarios/fig6_noise/file': expected a string"},
+      {entry + "/builds",
+       nlohmann::json::object(),
+       "key 'scenarios/fig6_noise/builds': expected a list, got {}"},
+      {entry + "/builds/0", "abc", "key 'scenarios/fig6_noise/builds/0': expected an object"},
+      {entry + "/shards/0/builds/0/git_commit",
+       5,
+       "key 'scenarios/fig6_noise/shards/0/builds/0/git_commit': expected a string"},
+      {entry + "/trajectory", "orbit", "key 'scenarios/fig6_noise/trajectory': expected an object"},
+      {entry + "/trajectory/fps", nullptr, "key 'scenarios/fig6_noise/trajectory/fps': missing"},
+      {entry + "/trajectory/frames",
+       "10",
+       "key 'scenarios/fig6_noise/trajectory/frames': expected a number, got \"10\""},
+      {entry + "/trajectory/occlusions/0",
+       nlohmann::json::array({1}),
+       "key 'scenarios/fig6_noise/trajectory/occlusions/0': expected [first, last] frames"},
+  };
+  for (const Damage& damage : damages) {
+    SCOPED_TRACE(damage.pointer);
+    nlohmann::json damaged = valid;
+    if (damage.pointer.rfind(entry + "/trajectory/", 0) == 0) {
+      damaged[nlohmann::json::json_pointer(entry + "/trajectory")] = trajectory;
+    }
+    const nlohmann::json::json_pointer at(damage.pointer);
+    if (damage.value.is_null()) {
+      damaged[at.parent_pointer()].erase(at.back());
+    } else {
+      damaged[at] = damage.value;
+    }
+    std::ofstream(manifest_path) << damaged.dump();
+    EXPECT_THAT(
+        [&] { WriteReport(dir_, options); },
+        ::testing::ThrowsMessage<ConfigError>(HasSubstr(manifest_path + ": " + damage.message)));
+  }
 }
 
 TEST(Report, EmptyFolderIsAnError) {

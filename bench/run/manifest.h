@@ -34,7 +34,10 @@ void UpdateManifest(const std::string& path,
                     const nlohmann::json& entry);
 
 // Reads a manifest (or run.json); an empty object when the file does not exist. One that is not
-// a JSON object is a ConfigError naming the file.
+// a JSON object, or where a key that report, merge, check or sweep read has another type (the
+// environment's strings and threads; each scenario's file, trials, seed, frames, wall_s,
+// frames_per_s, threads, builds, shards and trajectory), is a ConfigError naming the file and
+// the key.
 nlohmann::json ReadManifest(const std::string& path);
 
 // Writes `manifest` atomically.
