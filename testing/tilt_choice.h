@@ -76,10 +76,10 @@ inline FitFromTruthAndMirror DesignFitFromTruthAndMirror(const Camera& camera,
   to_the_end.max_first_round_log_ratio = std::numeric_limits<double>::infinity();
   return [&camera, &marker, edge_sigma_px, noise_sigma, to_the_end](
              const Image8& image, const Rigid3& truth) -> std::optional<Rigid3> {
-    const std::optional<DesignRefinement> fit = RefineDesignFromStarts(
+    const std::vector<RankedDesignRefinement> fits = RefineDesignFromStarts(
         image, camera, marker, {truth, OtherTilt(truth)}, edge_sigma_px, noise_sigma, to_the_end);
-    if (!fit) return std::nullopt;
-    return fit->fit.cam_from_marker;
+    if (fits.empty()) return std::nullopt;
+    return fits[0].refinement.fit.cam_from_marker;
   };
 }
 

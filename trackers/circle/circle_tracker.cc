@@ -224,6 +224,8 @@ bool CircleTrackerOptions::IsValid(std::string* error) const {
     msg << "max_other_tilt_log_ratio=" << max_other_tilt_log_ratio << " must be >= 0";
   } else if (!(min_design_radius_per_blur >= 0.0)) {
     msg << "min_design_radius_per_blur=" << min_design_radius_per_blur << " must be >= 0";
+  } else if (!(max_second_hypothesis_log_ratio >= 0.0)) {
+    msg << "max_second_hypothesis_log_ratio=" << max_second_hypothesis_log_ratio << " must be >= 0";
   } else if (!(photometric_refinement.band_sigmas > 0.0)) {
     msg << "pixel_band_sigmas=" << photometric_refinement.band_sigmas << " must be > 0";
   } else if (!(photometric_refinement.band_px >= 0.0)) {
@@ -297,6 +299,8 @@ CircleTrackerOptions CircleTrackerOptions::FromYaml(const YamlMap& map) {
       map.GetOr<double>("max_other_tilt_log_ratio", o.max_other_tilt_log_ratio);
   o.min_design_radius_per_blur =
       map.GetOr<double>("min_design_radius_per_blur", o.min_design_radius_per_blur);
+  o.max_second_hypothesis_log_ratio =
+      map.GetOr<double>("max_second_hypothesis_log_ratio", o.max_second_hypothesis_log_ratio);
   o.photometric_refinement.band_sigmas =
       map.GetOr<double>("pixel_band_sigmas", o.photometric_refinement.band_sigmas);
   o.photometric_refinement.band_px =
@@ -350,6 +354,7 @@ std::vector<std::pair<std::string, std::string>> CircleTracker::Parameters() con
       {"min_branch_angle_rad", NumberText(o.min_branch_angle_rad)},
       {"max_other_tilt_log_ratio", NumberText(o.max_other_tilt_log_ratio)},
       {"min_design_radius_per_blur", NumberText(o.min_design_radius_per_blur)},
+      {"max_second_hypothesis_log_ratio", NumberText(o.max_second_hypothesis_log_ratio)},
       {"pixel_band_sigmas", NumberText(o.photometric_refinement.band_sigmas)},
       {"pixel_band_px", NumberText(o.photometric_refinement.band_px)},
       {"design_band_sigmas", NumberText(o.design_refinement.band_sigmas)},
@@ -603,15 +608,16 @@ TrackResult CircleTracker::TrackIn(const Observation& observation,
   const double ellipses_rms_px = EdgeRmsPx(problem, cam_from_paper);
   diagnostics_.edge_rms_px = ellipses_rms_px;
   PixelFitFound on_pixels;
+  std::optional<Rigid3> second_hypothesis;
   if (options_.refine && options_.photometric && ellipses_rms_px <= options_.max_edge_rms_px) {
     const std::vector<Rigid3> starts =
         PixelFitStarts(problem, geometry.roll_from_design, cam_from_paper, ellipses_rms_px);
-    const std::optional<Rigid3> direct = OnPixels(observation,
-                                                  geometry.roll_from_design,
-                                                  starts,
-                                                  paper_from_marker,
-                                                  last_on_pixels,
-                                                  &on_pixels);
+    const std::optional<FitOnPixels> direct = OnPixels(observation,
+                                                       geometry.roll_from_design,
+                                                       starts,
+                                                       paper_from_marker,
+                                                       last_on_pixels,
+                                                       &on_pixels);
     // Kept unless it leaves the edges (a fit gone astray: the pixels and the edge points
     // measure the same edges) by more than half a pixel RMS. For (e) and (f) the edge points
     // under blur are pulled by the design next to the rim (f's wedge meets it) by up to a
@@ -619,7 +625,7 @@ TrackResult CircleTracker::TrackIn(const Observation& observation,
     // within the ellipses' acceptance goes too, and the design must still show there (a fit
     // of clutter can leave the design behind).
     if (direct) {
-      const Rigid3 on_pixels = *direct * geometry.marker_from_paper;
+      const Rigid3 on_pixels = direct->cam_from_marker * geometry.marker_from_paper;
       const double rms = EdgeRmsPx(problem, on_pixels);
       const bool keeps_the_edges = rms <= ellipses_rms_px + 0.5;
       if (geometry.roll_from_design) {
@@ -632,6 +638,16 @@ TrackResult CircleTracker::TrackIn(const Observation& observation,
       if (diagnostics_.photometric_used) {
         cam_from_paper = on_pixels;
         diagnostics_.edge_rms_px = rms;
+        // (e, f) The other tilt's fit, where it ended there, and where the pixels hardly tell
+        // the two apart (far away, under blur, near the pixels' limit): a second hypothesis.
+        if (direct->runner_up_cam_from_marker &&
+            TiltsApart(*direct->runner_up_cam_from_marker * geometry.marker_from_paper,
+                       on_pixels)) {
+          diagnostics_.second_tilt_log_ratio = direct->runner_up_log_ratio;
+          if (direct->runner_up_log_ratio <= options_.max_second_hypothesis_log_ratio) {
+            second_hypothesis = direct->runner_up_cam_from_marker;
+          }
+        }
       }
     }
   }
@@ -656,7 +672,7 @@ TrackResult CircleTracker::TrackIn(const Observation& observation,
         "ellipses rejected: edge residual " + NumberText(ellipses_rms_px) + " px > max_edge_rms_px";
     return result;
   }
-  result = Accept(observation, cam_from_paper, cam_from_marker);
+  result = Accept(observation, cam_from_paper, cam_from_marker, second_hypothesis);
   if (result.status == TrackStatus::kOk && diagnostics_.photometric_used &&
       !geometry.roll_from_design) {
     previous_on_pixels_ = on_pixels;
@@ -733,8 +749,7 @@ TrackResult CircleTracker::TrackOnPixels(const Observation& observation,
   // the fit (its squared distance in standard errors, to second order): else which tilt is
   // seen needs both fitted (full detection).
   const Rigid3 other = OtherTilt(cam_from_paper);
-  if (other.rotation.col(2).dot(cam_from_paper.rotation.col(2)) <
-      std::cos(options_.min_branch_angle_rad)) {
+  if (TiltsApart(other, cam_from_paper)) {
     const double standard_errors =
         PoseMoveInStandardErrors(fit->fit, other * paper_from_marker, found.noise_sigma);
     if (!(standard_errors * standard_errors >= options_.max_other_tilt_log_ratio)) {
@@ -750,7 +765,8 @@ TrackResult CircleTracker::TrackOnPixels(const Observation& observation,
 
 TrackResult CircleTracker::Accept(const Observation& observation,
                                   const Rigid3& cam_from_paper,
-                                  const Rigid3& cam_from_marker) {
+                                  const Rigid3& cam_from_marker,
+                                  const std::optional<Rigid3>& second_hypothesis) {
   TrackResult result;
   const Camera& camera = *observation.camera;
   const AppearanceFit appearance = CheckPrintedAppearance(*observation.image,
@@ -769,12 +785,18 @@ TrackResult CircleTracker::Accept(const Observation& observation,
   }
   result.status = TrackStatus::kOk;
   result.hypotheses = {cam_from_marker};
+  if (second_hypothesis) result.hypotheses.push_back(*second_hypothesis);
   for (const Eigen::Vector2d& k : observation.marker->keypoints) {
     result.keypoints_px.push_back(
         camera.ImgFromCam(cam_from_marker * Eigen::Vector3d(k.x(), k.y(), 0.0)));
   }
   previous_cam_from_paper_ = cam_from_paper;
   return result;
+}
+
+bool CircleTracker::TiltsApart(const Rigid3& cam_from_plane, const Rigid3& other) const {
+  return cam_from_plane.rotation.col(2).dot(other.rotation.col(2)) <
+         std::cos(options_.min_branch_angle_rad);
 }
 
 std::vector<Rigid3> CircleTracker::PixelFitStarts(const RefinementProblem& problem,
@@ -785,12 +807,8 @@ std::vector<Rigid3> CircleTracker::PixelFitStarts(const RefinementProblem& probl
   // under heavy blur, do the edge points of two small disks, or (e, f) the centre point; the
   // pixels tell the two apart, so the fit on them starts from the other too, unless the two
   // nearly coincide (near fronto-parallel).
-  const auto apart = [&](const Rigid3& pose) {
-    return pose.rotation.col(2).dot(cam_from_paper.rotation.col(2)) <
-           std::cos(options_.min_branch_angle_rad);
-  };
   const Rigid3 other = OtherTilt(cam_from_paper);
-  if (!apart(other)) return {cam_from_paper};
+  if (!TiltsApart(other, cam_from_paper)) return {cam_from_paper};
   if (whole_design) return {cam_from_paper, other};
   // Disks: the other tilt's basin, where the edge points have one and do not rule it out
   // (2 ln Λ of the two fits, the points' RMS taken as their noise).
@@ -802,18 +820,19 @@ std::vector<Rigid3> CircleTracker::PixelFitStarts(const RefinementProblem& probl
   const double other_rms = EdgeRmsPx(problem, refined);
   const double log_ratio =
       edge_points * (other_rms * other_rms / (edge_rms_px * edge_rms_px) - 1.0);
-  if (apart(refined) && log_ratio < options_.max_other_tilt_log_ratio) {
+  if (TiltsApart(refined, cam_from_paper) && log_ratio < options_.max_other_tilt_log_ratio) {
     return {cam_from_paper, refined};
   }
   return {cam_from_paper};
 }
 
-std::optional<Rigid3> CircleTracker::OnPixels(const Observation& observation,
-                                              bool whole_design,
-                                              const std::vector<Rigid3>& cam_from_paper_starts,
-                                              const Rigid3& paper_from_marker,
-                                              const PixelFitFound* last,
-                                              PixelFitFound* found) const {
+std::optional<CircleTracker::FitOnPixels> CircleTracker::OnPixels(
+    const Observation& observation,
+    bool whole_design,
+    const std::vector<Rigid3>& cam_from_paper_starts,
+    const Rigid3& paper_from_marker,
+    const PixelFitFound* last,
+    PixelFitFound* found) const {
   const Image8& image = *observation.image;
   const Camera& camera = *observation.camera;
   const MarkerSpec& marker = *observation.marker;
@@ -822,10 +841,15 @@ std::optional<Rigid3> CircleTracker::OnPixels(const Observation& observation,
   for (const Rigid3& start : cam_from_paper_starts) starts.push_back(start * paper_from_marker);
   if (whole_design) {
     const DesignRefinementOptions& options = options_.design_refinement;
-    const std::optional<DesignRefinement> fit = RefineDesignFromStarts(
+    const std::vector<RankedDesignRefinement> fits = RefineDesignFromStarts(
         image, camera, marker, starts, sigma_px, diagnostics_.noise_sigma, options);
-    if (!fit) return std::nullopt;
-    return fit->fit.cam_from_marker;
+    if (fits.empty()) return std::nullopt;
+    FitOnPixels best{fits[0].refinement.fit.cam_from_marker, std::nullopt, 0.0};
+    if (fits.size() > 1) {
+      best.runner_up_cam_from_marker = fits[1].refinement.fit.cam_from_marker;
+      best.runner_up_log_ratio = fits[1].log_ratio;
+    }
+    return best;
   }
   // A tracked frame's fit starts from the levels and noise the last one found.
   const double noise_sigma = last ? last->noise_sigma : diagnostics_.noise_sigma;
@@ -842,7 +866,7 @@ std::optional<Rigid3> CircleTracker::OnPixels(const Observation& observation,
                                   levels);
   if (!fit) return std::nullopt;
   *found = {EdgeSigmaOfBlur(fit->fit.sigma_px), fit->noise_sigma, fit->fit.levels};
-  return fit->fit.cam_from_marker;
+  return FitOnPixels{fit->fit.cam_from_marker, std::nullopt, 0.0};
 }
 
 std::unique_ptr<Tracker> MakeCircleTracker(const CircleTrackerOptions& options) {

@@ -50,6 +50,11 @@ struct CircleTrackerOptions {
   // set, dark blobs as circles of 14.7-15.9 px at σ 2.2-3.7 px, 4.2-6.7 σ; on the paper sweeps
   // 6 % of the frames of e and f, at blur σ 4 and beyond, fall below).
   double min_design_radius_per_blur = 7.0;
+  // (e, f) The fit on the design's pixels from the circle's other tilt is returned as a second
+  // hypothesis where it explains them nearly as well as the first: 2 ln Λ against it at most
+  // this (4: odds of at least e^-2, 1 to 7.4; on the paper's blur sweep 12 of 13 wrong choices
+  // of tilt at blur σ 4-5 were within 3.6 of the right one).
+  double max_second_hypothesis_log_ratio = 4.0;
   bool tracking = true;  // search around the pose predicted from the last frames first (step 5)
   // Tracking mode predicts this frame's pose by moving the previous one on by the camera's
   // last frame-to-frame motion, where the two frames before both had a pose (constant
@@ -71,11 +76,11 @@ struct CircleTrackerOptions {
   // blocks_per_side and min_significance), min_contrast, edge_passes, max_rays,
   // max_blurred_dot_disks, max_blurred_dot_peak, min_dot_area_px, min_blurred_dot_radius_px,
   // min_dot_radius_px, blurred_dot_min_significance, min_branch_angle_rad,
-  // max_other_tilt_log_ratio, min_design_radius_per_blur; pixel_band_sigmas and pixel_band_px, the
-  // disks' fit's band_sigmas and band_px; design_band_sigmas, design_band_px and
-  // design_max_other_tilt_log_ratio, e's and f's band_sigmas, band_px and
-  // max_first_round_log_ratio: the keys of Parameters()); throws ConfigError naming the file
-  // and key.
+  // max_other_tilt_log_ratio, min_design_radius_per_blur, max_second_hypothesis_log_ratio;
+  // pixel_band_sigmas and pixel_band_px, the disks' fit's band_sigmas and band_px;
+  // design_band_sigmas, design_band_px and design_max_other_tilt_log_ratio, e's and f's
+  // band_sigmas, band_px and max_first_round_log_ratio: the keys of Parameters()); throws
+  // ConfigError naming the file and key.
   static CircleTrackerOptions FromYaml(const YamlMap& map);
 };
 
@@ -99,8 +104,12 @@ struct CircleDiagnostics {
   std::optional<Rigid3> refined_cam_from_marker;
   int iterations = 0;
   double final_cost = 0.0;
-  double edge_rms_px = 0.0;        // PND residual RMS of the edges to the final pose's conics
-  bool photometric_used = false;   // the final pose is the photometric refinement's
+  double edge_rms_px = 0.0;       // PND residual RMS of the edges to the final pose's conics
+  bool photometric_used = false;  // the final pose is the photometric refinement's
+  // (e, f) 2 ln Λ of the design's fit from the circle's other tilt against the final pose, where
+  // that fit ended apart from it; a second hypothesis where at most
+  // max_second_hypothesis_log_ratio.
+  std::optional<double> second_tilt_log_ratio;
   double appearance_misfit = 0.0;  // of the printed design at the final pose
 };
 
@@ -139,10 +148,12 @@ class CircleTracker final : public Tracker {
                             const Rigid3& predicted_cam_from_paper,
                             const PixelFitFound& last);
   // The check of the printed design at a pose (CheckPrintedAppearance), and the result: found,
-  // and the pose kept for the next frame's prediction, or not detected.
+  // with `second_hypothesis` after the pose where given, and the pose kept for the next frame's
+  // prediction, or not detected.
   TrackResult Accept(const Observation& observation,
                      const Rigid3& cam_from_paper,
-                     const Rigid3& cam_from_marker);
+                     const Rigid3& cam_from_marker,
+                     const std::optional<Rigid3>& second_hypothesis = std::nullopt);
   // The detection in `region` (from the predicted ellipses where given); the fit on the disks'
   // pixels there starts from the levels and noise the last frame's found (`last_on_pixels`)
   // where given.
@@ -152,6 +163,9 @@ class CircleTracker final : public Tracker {
                       const std::vector<Eigen::Matrix3d>* predicted_conics_px,
                       const Rigid3* predicted_cam_from_paper,
                       const PixelFitFound* last_on_pixels);
+  // Whether the normals of two poses' planes (the marker's, seen from the camera) lie more than
+  // min_branch_angle_rad apart: the circle's two tilts told apart.
+  bool TiltsApart(const Rigid3& cam_from_plane, const Rigid3& other) const;
   // Where the fit on the pixels starts: the refined pose (`cam_from_paper`, whose edge
   // residual is `edge_rms_px`), and the circle's other tilt where it may be the one seen.
   std::vector<Rigid3> PixelFitStarts(const RefinementProblem& problem,
@@ -160,15 +174,21 @@ class CircleTracker final : public Tracker {
                                      double edge_rms_px) const;
   // The pose refined on the pixels from each start, the one that explains them best: around
   // the disks' edges (photometric_refinement.h), or (e, f) around every edge of the whole
-  // design (design_refinement.h).
+  // design (design_refinement.h); nullopt where no start gives a fit.
   // With the disks' fit, what it found of the image (`found`); it starts from the levels and
   // noise of `last` where given.
-  std::optional<Rigid3> OnPixels(const Observation& observation,
-                                 bool whole_design,
-                                 const std::vector<Rigid3>& cam_from_paper_starts,
-                                 const Rigid3& paper_from_marker,
-                                 const PixelFitFound* last,
-                                 PixelFitFound* found) const;
+  struct FitOnPixels {
+    Rigid3 cam_from_marker;
+    // (e, f) The next best fit, from another start, and its 2 ln Λ against this one.
+    std::optional<Rigid3> runner_up_cam_from_marker;
+    double runner_up_log_ratio = 0.0;
+  };
+  std::optional<FitOnPixels> OnPixels(const Observation& observation,
+                                      bool whole_design,
+                                      const std::vector<Rigid3>& cam_from_paper_starts,
+                                      const Rigid3& paper_from_marker,
+                                      const PixelFitFound* last,
+                                      PixelFitFound* found) const;
 
   CircleTrackerOptions options_;
   std::optional<Rigid3> previous_cam_from_paper_;

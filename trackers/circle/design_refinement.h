@@ -65,17 +65,25 @@ std::optional<DesignRefinement> RefineDesign(
     const DesignRefinementOptions& options = {},
     const std::function<bool(const DesignRefinement&)>& abandons = nullptr);
 
-// The refinement from each start (RefineDesign) that explains the image best
-// (BestDesignRefinement); a start after the first is given up after its first round where
-// that round's result is far less likely than an earlier start's (max_first_round_log_ratio).
-// nullopt when no start gives a refinement.
-std::optional<DesignRefinement> RefineDesignFromStarts(const Image8& image,
-                                                       const Camera& camera,
-                                                       const MarkerSpec& marker,
-                                                       const std::vector<Rigid3>& starts,
-                                                       double sigma_px,
-                                                       double noise_sigma,
-                                                       const DesignRefinementOptions& options = {});
+// A refinement and how much less likely it is than the best of those it was ranked with.
+struct RankedDesignRefinement {
+  DesignRefinement refinement;
+  // 2 ln Λ against the best (BestDesignRefinement's costs over the noise's variance); 0 for it.
+  double log_ratio = 0.0;
+};
+
+// The refinement from each start (RefineDesign), best first (BestDesignRefinement), each with
+// its 2 ln Λ against the first; a start after the first is given up after its first round
+// where that round's result is far less likely than an earlier start's
+// (max_first_round_log_ratio). Empty when no start gives a refinement.
+std::vector<RankedDesignRefinement> RefineDesignFromStarts(
+    const Image8& image,
+    const Camera& camera,
+    const MarkerSpec& marker,
+    const std::vector<Rigid3>& starts,
+    double sigma_px,
+    double noise_sigma,
+    const DesignRefinementOptions& options = {});
 
 // Which of several refinements explains the image best: the least cost (the clipped pixels'
 // likelihood) over the pixels near the design's edges at any of them (each fit judged on the
