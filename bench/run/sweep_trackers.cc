@@ -60,7 +60,9 @@ std::unique_ptr<Tracker> SweepTrackerContext::MakeTracker(size_t index) const {
   std::unique_ptr<Tracker> local = MakeScenarioTracker(scenario_, entry);
   if (!entry.isolated) return local;
   IsolationOptions options;
-  options.worker_argv = {fs::read_symlink("/proc/self/exe").string(),
+  // The worker is this program's own build, also after a build during the sweep replaced its
+  // file (by the file's path, a rebuilt program's worker, or none: its path then named nothing).
+  options.worker_argv = {kThisProgram,
                          "tracker-worker",
                          scenario_.path,
                          "--tracker-index",

@@ -15,6 +15,10 @@
 
 namespace markerbench {
 
+// The path that starts this very program: the kernel's link to the running process's own file, so
+// a worker started by it is the same build even where the file has since been rebuilt or removed.
+inline constexpr char kThisProgram[] = "/proc/self/exe";
+
 struct IsolationOptions {
   // The worker program and its arguments; argv[0] is the path run.
   std::vector<std::string> worker_argv;

@@ -5,9 +5,11 @@
 
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
+#include <sys/wait.h>
 #include <unistd.h>
 
 #include <csignal>
+#include <cstdio>
 #include <cstdlib>
 #include <cstring>
 #include <filesystem>
@@ -75,11 +77,11 @@ MarkerSpec TestMarker() {
   return marker;
 }
 
-std::string g_program;  // this test program, which serves as its own worker
+std::string g_program;  // this test program's file, which serves as its own worker
 
 IsolationOptions WorkerOptions(double timeout_s = 20.0) {
   IsolationOptions options;
-  options.worker_argv = {g_program, "--serve-test-tracker"};
+  options.worker_argv = {kThisProgram, "--serve-test-tracker"};
   options.timeout_s = timeout_s;
   return options;
 }
@@ -223,6 +225,23 @@ TEST(IsolatedTracker, AWorkerThatDiesWhileItStartsIsStartedOnceMore) {
   ExpectSameResult(isolated.Track(frame.observation()), local.Track(frame.observation()));
 }
 
+// A worker started as kThisProgram is the running program, even after its file is removed (as a
+// build does when it replaces it during a sweep): a copy of this test program removes itself,
+// then tracks a frame in a worker (in main, --track-without-my-file) and exits 0 on its result.
+TEST(IsolatedTracker, StartsItsWorkerFromTheRunningProgramWhoseFileIsGone) {
+  const std::filesystem::path copy = std::filesystem::temp_directory_path() /
+                                     ("isolated_tracker_test_copy_" + std::to_string(getpid()));
+  std::filesystem::copy_file(g_program, copy, std::filesystem::copy_options::overwrite_existing);
+  const std::string command = copy.string() + " --track-without-my-file";
+  const int status = std::system(command.c_str());
+  std::error_code ignored;
+  const bool removed = !std::filesystem::exists(copy, ignored);
+  std::filesystem::remove(copy, ignored);
+  EXPECT_TRUE(removed) << "the copy did not remove its file";
+  ASSERT_TRUE(WIFEXITED(status)) << status;
+  EXPECT_EQ(WEXITSTATUS(status), 0);
+}
+
 // Workers started from several threads at once, each tracker failing on some frames: every
 // thread sees exactly its own results (the race a fork of a multithreaded process had).
 TEST(IsolatedTracker, WorkersOfManyThreads) {
@@ -268,7 +287,21 @@ int main(int argc, char** argv) {
     return markerbench::ServeTrackerWorker(
         &tracker, {markerbench::TestMarker()}, markerbench::kWorkerFd);
   }
-  markerbench::g_program = std::filesystem::read_symlink("/proc/self/exe").string();
+  if (argc == 2 && std::strcmp(argv[1], "--track-without-my-file") == 0) {
+    std::filesystem::remove(std::filesystem::read_symlink(markerbench::kThisProgram));
+    try {
+      markerbench::IsolatedTracker isolated(std::make_unique<markerbench::ScriptedTracker>(),
+                                            markerbench::WorkerOptions());
+      const markerbench::Frame frame(markerbench::kPose, 3, 4);
+      const markerbench::TrackResult result = isolated.Track(frame.observation());
+      std::fprintf(stderr, "%s\n", result.message.c_str());
+      return result.status == markerbench::TrackStatus::kOk ? 0 : 1;
+    } catch (const std::exception& e) {
+      std::fprintf(stderr, "%s\n", e.what());
+      return 2;
+    }
+  }
+  markerbench::g_program = std::filesystem::read_symlink(markerbench::kThisProgram).string();
   testing::InitGoogleTest(&argc, argv);
   return RUN_ALL_TESTS();
 }
