@@ -44,16 +44,13 @@ ShardFolder ReadShardFolder(const std::string& dir, const std::string& folder) {
     throw ConfigError(run_json + ": missing; expected the folder of a markerbench sweep");
   }
   ShardFolder s{dir, folder, ReadManifest(run_json), {}};
-  const nlohmann::json shard = s.run.value("shard", nlohmann::json());
-  if (!shard.is_object() || !shard.value("index", nlohmann::json()).is_number_integer() ||
-      !shard.value("count", nlohmann::json()).is_number_integer()) {
+  const std::optional<Shard> shard = RunJsonShard(s.run, run_json);
+  if (!shard) {
     throw ConfigError(run_json +
                       ": key 'shard': missing; written by a markerbench older than shards "
                       "or not by sweep");
   }
-  s.shard = ParseShard(std::to_string(shard["index"].get<long long>()) + "/" +
-                           std::to_string(shard["count"].get<long long>()),
-                       run_json + ": key 'shard'");
+  s.shard = *shard;
   return s;
 }
 

@@ -300,6 +300,25 @@ TEST_F(ShardMergeTest, MergeRefusesARunJsonItCannotRead) {
     EXPECT_EQ(f.status, 2);
     EXPECT_THAT(f.error, HasSubstr(run_json + ": key '" + key + "': expected "));
   }
+  // The shard, read as --resume reads it, but required.
+  const std::vector<std::pair<nlohmann::json, std::string>> shards = {
+      {nlohmann::json(), "key 'shard': missing; written by a markerbench older than shards"},
+      {"1/2", "key 'shard': expected {index, count}, got \"1/2\""},
+      {{{"index", 1.5}, {"count", 2}}, "key 'shard': key 'index': expected an integer, got 1.5"},
+      {{{"index", 2}, {"count", 2}}, "key 'shard'"}};
+  for (const auto& [shard, message] : shards) {
+    SCOPED_TRACE(shard.dump());
+    nlohmann::json run = written;
+    if (shard.is_null()) {
+      run.erase("shard");
+    } else {
+      run["shard"] = shard;
+    }
+    WriteManifest(run_json, run);
+    const Finished f = Merge(dirs, (work_ / "out").string());
+    EXPECT_EQ(f.status, 2);
+    EXPECT_THAT(f.error, HasSubstr(run_json + ": " + message));
+  }
 }
 
 // A shard's manifest read only once its rows are merged (its wall time, here of another type):

@@ -208,6 +208,18 @@ nlohmann::json ReadManifest(const std::string& path) {
   return manifest;
 }
 
+std::optional<Shard> RunJsonShard(const nlohmann::json& run, const std::string& path) {
+  const auto shard = run.find("shard");
+  if (shard == run.end()) return std::nullopt;
+  if (!shard->is_object()) {
+    throw ConfigError(path + ": key 'shard': expected {index, count}, got " + shard->dump());
+  }
+  const std::string key = path + ": key 'shard'";
+  return ParseShard(std::to_string(ManifestValue(*shard, key, "index", 0)) + "/" +
+                        std::to_string(ManifestValue(*shard, key, "count", 1)),
+                    key);
+}
+
 void WriteManifest(const std::string& path, const nlohmann::json& manifest) {
   WriteFileAtomically(path, manifest.dump(2) + "\n");
 }

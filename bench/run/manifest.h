@@ -4,9 +4,11 @@
 #pragma once
 
 #include <nlohmann/json.hpp>
+#include <optional>
 #include <string>
 #include <type_traits>
 
+#include "bench/plan/shard.h"
 #include "core/config_error.h"
 
 namespace markerbench {
@@ -68,5 +70,9 @@ T ManifestValue(const nlohmann::json& manifest,
   }
   throw ConfigError(path + ": key '" + key + "': expected " + expected + ", got " + found->dump());
 }
+
+// run.json's shard ({"index", "count"}), read from `path`; nullopt where the key is absent. One
+// of another type, or naming no shard of its count, is a ConfigError naming the file and the key.
+std::optional<Shard> RunJsonShard(const nlohmann::json& run, const std::string& path);
 
 }  // namespace markerbench

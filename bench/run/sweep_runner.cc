@@ -239,14 +239,8 @@ void TakeOverEarlierRun(PreparedSweep& p, const SweepOptions& options) {
                       "(run.json fingerprint " + fingerprint + ", " + path + " has " +
                       p.fingerprint + "); refusing to --resume into it");
   }
-  const nlohmann::json unsharded = {{"index", 0}, {"count", 1}};
-  const nlohmann::json& shard_json = run.contains("shard") ? run["shard"] : unsharded;
-  if (!shard_json.is_object()) {
-    throw ConfigError(run_json + ": key 'shard': expected {index, count}, got " +
-                      shard_json.dump());
-  }
-  const Shard shard{ManifestValue(shard_json, run_json + ": key 'shard'", "index", 0),
-                    ManifestValue(shard_json, run_json + ": key 'shard'", "count", 1)};
+  // A run.json written before shards were kept is one whole run.
+  const Shard shard = RunJsonShard(run, run_json).value_or(Shard{});
   if (shard.index != p.shard.index || shard.count != p.shard.count) {
     throw ConfigError(run_json + ": key 'shard': this folder holds shard " +
                       std::to_string(shard.index) + "/" + std::to_string(shard.count) +
