@@ -638,8 +638,8 @@ TrackResult CircleTracker::TrackIn(const Observation& observation,
       if (diagnostics_.photometric_used) {
         cam_from_paper = on_pixels;
         diagnostics_.edge_rms_px = rms;
-        // (e, f) The other tilt's fit, where it ended there, and where the pixels hardly tell
-        // the two apart (far away, under blur, near the pixels' limit): a second hypothesis.
+        // The other tilt's fit, where it ended there, and where the pixels hardly tell the two
+        // apart (far away, under blur, near the pixels' limit): a second hypothesis.
         if (direct->runner_up_cam_from_marker &&
             TiltsApart(*direct->runner_up_cam_from_marker * geometry.marker_from_paper,
                        on_pixels)) {
@@ -826,6 +826,17 @@ std::vector<Rigid3> CircleTracker::PixelFitStarts(const RefinementProblem& probl
   return {cam_from_paper};
 }
 
+template <class Result>
+CircleTracker::FitOnPixels CircleTracker::RankedOnPixels(
+    const std::vector<RankedFit<Result>>& fits) {
+  FitOnPixels best{fits[0].result.fit.cam_from_marker, std::nullopt, 0.0};
+  if (fits.size() > 1) {
+    best.runner_up_cam_from_marker = fits[1].result.fit.cam_from_marker;
+    best.runner_up_log_ratio = fits[1].log_ratio;
+  }
+  return best;
+}
+
 std::optional<CircleTracker::FitOnPixels> CircleTracker::OnPixels(
     const Observation& observation,
     bool whole_design,
@@ -841,21 +852,16 @@ std::optional<CircleTracker::FitOnPixels> CircleTracker::OnPixels(
   for (const Rigid3& start : cam_from_paper_starts) starts.push_back(start * paper_from_marker);
   if (whole_design) {
     const DesignRefinementOptions& options = options_.design_refinement;
-    const std::vector<RankedDesignRefinement> fits = RefineDesignFromStarts(
+    const std::vector<RankedFit<DesignRefinement>> fits = RefineDesignFromStarts(
         image, camera, marker, starts, sigma_px, diagnostics_.noise_sigma, options);
     if (fits.empty()) return std::nullopt;
-    FitOnPixels best{fits[0].refinement.fit.cam_from_marker, std::nullopt, 0.0};
-    if (fits.size() > 1) {
-      best.runner_up_cam_from_marker = fits[1].refinement.fit.cam_from_marker;
-      best.runner_up_log_ratio = fits[1].log_ratio;
-    }
-    return best;
+    return RankedOnPixels(fits);
   }
   // A tracked frame's fit starts from the levels and noise the last one found.
   const double noise_sigma = last ? last->noise_sigma : diagnostics_.noise_sigma;
   std::optional<Eigen::VectorXd> levels;
   if (last) levels = last->levels;
-  const std::optional<PhotometricResult> fit =
+  const std::vector<RankedFit<PhotometricResult>> fits =
       RefinePhotometricFromStarts(image,
                                   camera,
                                   marker,
@@ -864,9 +870,10 @@ std::optional<CircleTracker::FitOnPixels> CircleTracker::OnPixels(
                                   noise_sigma,
                                   options_.photometric_refinement,
                                   levels);
-  if (!fit) return std::nullopt;
-  *found = {EdgeSigmaOfBlur(fit->fit.sigma_px), fit->noise_sigma, fit->fit.levels};
-  return FitOnPixels{fit->fit.cam_from_marker, std::nullopt, 0.0};
+  if (fits.empty()) return std::nullopt;
+  const PhotometricResult& fit = fits[0].result;
+  *found = {EdgeSigmaOfBlur(fit.fit.sigma_px), fit.noise_sigma, fit.fit.levels};
+  return RankedOnPixels(fits);
 }
 
 std::unique_ptr<Tracker> MakeCircleTracker(const CircleTrackerOptions& options) {

@@ -50,10 +50,10 @@ struct CircleTrackerOptions {
   // set, dark blobs as circles of 14.7-15.9 px at σ 2.2-3.7 px, 4.2-6.7 σ; on the paper sweeps
   // 6 % of the frames of e and f, at blur σ 4 and beyond, fall below).
   double min_design_radius_per_blur = 7.0;
-  // (e, f) The fit on the design's pixels from the circle's other tilt is returned as a second
+  // The fit on the pixels from the circle's other tilt (above) is returned as a second
   // hypothesis where it explains them nearly as well as the first: 2 ln Λ against it at most
   // this (4: odds of at least e^-2, 1 to 7.4; on the paper's blur sweep 12 of 13 wrong choices
-  // of tilt at blur σ 4-5 were within 3.6 of the right one).
+  // of e's and f's tilt at blur σ 4-5 were within 3.6 of the right one).
   double max_second_hypothesis_log_ratio = 4.0;
   bool tracking = true;  // search around the pose predicted from the last frames first (step 5)
   // Tracking mode predicts this frame's pose by moving the previous one on by the camera's
@@ -106,7 +106,7 @@ struct CircleDiagnostics {
   double final_cost = 0.0;
   double edge_rms_px = 0.0;       // PND residual RMS of the edges to the final pose's conics
   bool photometric_used = false;  // the final pose is the photometric refinement's
-  // (e, f) 2 ln Λ of the design's fit from the circle's other tilt against the final pose, where
+  // 2 ln Λ of the fit on the pixels from the circle's other tilt against the final pose, where
   // that fit ended apart from it; a second hypothesis where at most
   // max_second_hypothesis_log_ratio.
   std::optional<double> second_tilt_log_ratio;
@@ -179,10 +179,13 @@ class CircleTracker final : public Tracker {
   // noise of `last` where given.
   struct FitOnPixels {
     Rigid3 cam_from_marker;
-    // (e, f) The next best fit, from another start, and its 2 ln Λ against this one.
+    // The next best fit, from another start, and its 2 ln Λ against this one.
     std::optional<Rigid3> runner_up_cam_from_marker;
     double runner_up_log_ratio = 0.0;
   };
+  // The first of fits ranked on the pixels, with the next best.
+  template <class Result>
+  static FitOnPixels RankedOnPixels(const std::vector<RankedFit<Result>>& fits);
   std::optional<FitOnPixels> OnPixels(const Observation& observation,
                                       bool whole_design,
                                       const std::vector<Rigid3>& cam_from_paper_starts,

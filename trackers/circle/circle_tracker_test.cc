@@ -121,7 +121,10 @@ TEST_P(CircleTrackerTest, RoundTripsOverDistanceTiltAndRoll) {
         const Rigid3 truth = TiltedView(distance, tilt, roll);
         const TrackedFrame t = RenderAndTrack(&tracker, marker, truth, kLowNoiseVar, frames);
         ASSERT_EQ(t.result.status, TrackStatus::kOk) << t.result.message;
-        ASSERT_EQ(t.result.hypotheses.size(), 1u);
+        // Far away a near-frontal view may get the circle's other tilt second (the pixels
+        // hardly tell the two apart: max_second_hypothesis_log_ratio).
+        ASSERT_GE(t.result.hypotheses.size(), 1u);
+        ASSERT_LE(t.result.hypotheses.size(), far ? 2u : 1u);
         const Rigid3& estimate = t.result.hypotheses.front();
         const double position_fraction = far           ? kFarPositionFraction
                                          : tilt == 0.0 ? range.frontal_position_fraction

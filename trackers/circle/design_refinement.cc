@@ -323,46 +323,37 @@ size_t BestDesignRefinement(const Image8& image,
   return static_cast<size_t>(std::min_element(costs.begin(), costs.end()) - costs.begin());
 }
 
-std::vector<RankedDesignRefinement> RefineDesignFromStarts(const Image8& image,
-                                                           const Camera& camera,
-                                                           const MarkerSpec& marker,
-                                                           const std::vector<Rigid3>& starts,
-                                                           double sigma_px,
-                                                           double noise_sigma,
-                                                           const DesignRefinementOptions& options) {
+std::vector<RankedFit<DesignRefinement>> RefineDesignFromStarts(
+    const Image8& image,
+    const Camera& camera,
+    const MarkerSpec& marker,
+    const std::vector<Rigid3>& starts,
+    double sigma_px,
+    double noise_sigma,
+    const DesignRefinementOptions& options) {
   // 2 ln Λ of each fit against the best on the pixels all share.
   const auto log_ratios = [&](const std::vector<DesignRefinement>& fits) {
-    std::vector<double> ratios(fits.size(), 0.0);
-    if (fits.size() <= 1) return ratios;
     const DesignCosts shared = CostsOnSharedPixels(image, camera, marker, fits, options);
     const double least = *std::min_element(shared.costs.begin(), shared.costs.end());
-    for (size_t i = 0; i < fits.size(); ++i) {
-      ratios[i] = (shared.costs[i] - least) / (shared.noise_sigma * shared.noise_sigma);
+    std::vector<double> ratios;
+    for (const double cost : shared.costs) {
+      ratios.push_back((cost - least) / (shared.noise_sigma * shared.noise_sigma));
     }
     return ratios;
   };
-  std::vector<DesignRefinement> fits;
-  for (const Rigid3& start : starts) {
-    const auto far_less_likely = [&](const DesignRefinement& first_round) {
-      if (fits.empty()) return false;
-      std::vector<DesignRefinement> compared = fits;
-      compared.push_back(first_round);
-      const std::vector<double> ratios = log_ratios(compared);
-      return ratios.back() > options.max_first_round_log_ratio;
-    };
-    std::optional<DesignRefinement> fit =
-        RefineDesign(image, camera, marker, start, sigma_px, noise_sigma, options, far_less_likely);
-    if (fit) fits.push_back(std::move(*fit));
-  }
-  const std::vector<double> ratios = log_ratios(fits);
-  std::vector<RankedDesignRefinement> ranked;
-  for (size_t i = 0; i < fits.size(); ++i) ranked.push_back({std::move(fits[i]), ratios[i]});
-  std::stable_sort(ranked.begin(),
-                   ranked.end(),
-                   [](const RankedDesignRefinement& a, const RankedDesignRefinement& b) {
-                     return a.log_ratio < b.log_ratio;
-                   });
-  return ranked;
+  return RankedFitsFromStarts<DesignRefinement>(
+      starts,
+      [&](const Rigid3& start, const std::vector<DesignRefinement>& earlier) {
+        const auto far_less_likely = [&](const DesignRefinement& first_round) {
+          if (earlier.empty()) return false;
+          std::vector<DesignRefinement> compared = earlier;
+          compared.push_back(first_round);
+          return log_ratios(compared).back() > options.max_first_round_log_ratio;
+        };
+        return RefineDesign(
+            image, camera, marker, start, sigma_px, noise_sigma, options, far_less_likely);
+      },
+      log_ratios);
 }
 
 }  // namespace markerbench

@@ -65,18 +65,11 @@ std::optional<DesignRefinement> RefineDesign(
     const DesignRefinementOptions& options = {},
     const std::function<bool(const DesignRefinement&)>& abandons = nullptr);
 
-// A refinement and how much less likely it is than the best of those it was ranked with.
-struct RankedDesignRefinement {
-  DesignRefinement refinement;
-  // 2 ln Λ against the best (BestDesignRefinement's costs over the noise's variance); 0 for it.
-  double log_ratio = 0.0;
-};
-
 // The refinement from each start (RefineDesign), best first (BestDesignRefinement), each with
-// its 2 ln Λ against the first; a start after the first is given up after its first round
-// where that round's result is far less likely than an earlier start's
+// its 2 ln Λ against the first on the pixels all share; a start after the first is given up after
+// its first round where that round's result is far less likely than an earlier start's
 // (max_first_round_log_ratio). Empty when no start gives a refinement.
-std::vector<RankedDesignRefinement> RefineDesignFromStarts(
+std::vector<RankedFit<DesignRefinement>> RefineDesignFromStarts(
     const Image8& image,
     const Camera& camera,
     const MarkerSpec& marker,

@@ -809,16 +809,16 @@ std::optional<PhotometricResult> RefineOnce(const Image8& image,
   return PhotometricResult{*fit, static_cast<int>(at->pixels.pixels.size()), model.noise_sigma()};
 }
 
-// Which of several fits explains the image best: the least cost (the clipped pixels'
+// How much less likely each of several fits is than the best: the cost (the clipped pixels'
 // likelihood) over the pixels near the edges at each of them in turn (each fit judged on the same
-// pixels, its own σ and levels). For the circle's two tilts, whose images nearly coincide far away
-// or under heavy blur. `fits` not empty.
-size_t BestPhotometricFit(const Image8& image,
-                          const Camera& camera,
-                          const MarkerSpec& marker,
-                          const std::vector<PhotometricResult>& fits,
-                          const PhotometricOptions& options) {
-  if (fits.size() == 1) return 0;
+// pixels, its own σ and levels), less the least, over the noise's variance and the number of
+// those sets of pixels (2 ln Λ on each set, averaged). For the circle's two tilts, whose images
+// nearly coincide far away or under heavy blur. `fits` not empty.
+std::vector<double> PhotometricLogRatios(const Image8& image,
+                                         const Camera& camera,
+                                         const MarkerSpec& marker,
+                                         const std::vector<PhotometricResult>& fits,
+                                         const PhotometricOptions& options) {
   double noise = 0.0;
   for (const PhotometricResult& fit : fits) noise += fit.noise_sigma / fits.size();
   std::vector<double> costs(fits.size(), 0.0);
@@ -834,7 +834,13 @@ size_t BestPhotometricFit(const Image8& image,
           PixelFitParameters(fit.cam_from_marker, fit.sigma_px, fit.levels), nullptr, nullptr);
     }
   }
-  return static_cast<size_t>(std::min_element(costs.begin(), costs.end()) - costs.begin());
+  const double least = *std::min_element(costs.begin(), costs.end());
+  std::vector<double> ratios;
+  for (const double cost : costs) {
+    ratios.push_back((cost - least) /
+                     (fits.size() * ModelNoiseSigma(noise) * ModelNoiseSigma(noise)));
+  }
+  return ratios;
 }
 
 }  // namespace
@@ -877,7 +883,7 @@ std::optional<PhotometricResult> RefinePhotometric(const Image8& image,
       moved_less_than(options.later_round_settles_within_standard_errors));
 }
 
-std::optional<PhotometricResult> RefinePhotometricFromStarts(
+std::vector<RankedFit<PhotometricResult>> RefinePhotometricFromStarts(
     const Image8& image,
     const Camera& camera,
     const MarkerSpec& marker,
@@ -886,14 +892,14 @@ std::optional<PhotometricResult> RefinePhotometricFromStarts(
     double noise_sigma,
     const PhotometricOptions& options,
     const std::optional<Eigen::VectorXd>& levels) {
-  return BestFitFromStarts<PhotometricResult>(
+  return RankedFitsFromStarts<PhotometricResult>(
       starts,
       [&](const Rigid3& start, const std::vector<PhotometricResult>&) {
         return RefinePhotometric(
             image, camera, marker, start, sigma_px, noise_sigma, options, levels);
       },
       [&](const std::vector<PhotometricResult>& fits) {
-        return BestPhotometricFit(image, camera, marker, fits, options);
+        return PhotometricLogRatios(image, camera, marker, fits, options);
       });
 }
 

@@ -127,12 +127,13 @@ std::optional<PhotometricResult> RefinePhotometric(
     const PhotometricOptions& options = {},
     const std::optional<Eigen::VectorXd>& levels = std::nullopt);
 
-// The refinement from each start (RefinePhotometric) that explains the image best (the least
-// cost, the clipped pixels' likelihood, over the pixels near the edges at each fit in turn, each
-// fit judged on the same pixels with its own σ and levels: for the circle's two tilts, whose
-// images nearly coincide far away or under heavy blur); nullopt when no start gives one. Each
-// from `levels` where given, as RefinePhotometric's.
-std::optional<PhotometricResult> RefinePhotometricFromStarts(
+// The refinement from each start (RefinePhotometric), best first by how well it explains the
+// image (the cost, the clipped pixels' likelihood, over the pixels near the edges at each fit in
+// turn, each fit judged on the same pixels with its own σ and levels: for the circle's two tilts,
+// whose images nearly coincide far away or under heavy blur), each with its 2 ln Λ against the
+// first (averaged over those sets of pixels); empty when no start gives one. Each from `levels`
+// where given, as RefinePhotometric's.
+std::vector<RankedFit<PhotometricResult>> RefinePhotometricFromStarts(
     const Image8& image,
     const Camera& camera,
     const MarkerSpec& marker,

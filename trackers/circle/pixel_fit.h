@@ -280,20 +280,36 @@ std::optional<Result> FitInRounds(const Rigid3& cam_from_marker,
   return result;
 }
 
+// A fit and how much less likely it is than the best of those it was ranked with: 2 ln Λ against
+// that best, on the pixels both were judged on; 0 for the best.
+template <class Result>
+struct RankedFit {
+  Result result;
+  double log_ratio = 0.0;
+};
+
 // The fit from each start by refine(start, the fits from earlier starts) (an optional Result),
-// the one best(fits) picks among them (its index); nullopt when no start gives one. The earlier
-// fits let a refine give a start up early.
-template <class Result, class Refine, class Best>
-std::optional<Result> BestFitFromStarts(const std::vector<Rigid3>& starts,
-                                        const Refine& refine,
-                                        const Best& best) {
+// ranked best first by log_ratios(fits) (each one's 2 ln Λ against the best: 0 for it, and for a
+// single fit); empty when no start gives one. The earlier fits let a refine give a start up
+// early. Of fits equally likely the earlier start's comes first.
+template <class Result, class Refine, class LogRatios>
+std::vector<RankedFit<Result>> RankedFitsFromStarts(const std::vector<Rigid3>& starts,
+                                                    const Refine& refine,
+                                                    const LogRatios& log_ratios) {
   std::vector<Result> fits;
   for (const Rigid3& start : starts) {
     std::optional<Result> fit = refine(start, std::as_const(fits));
     if (fit) fits.push_back(std::move(*fit));
   }
-  if (fits.empty()) return std::nullopt;
-  return std::move(fits[best(std::as_const(fits))]);
+  const std::vector<double> ratios =
+      fits.size() > 1 ? log_ratios(std::as_const(fits)) : std::vector<double>(fits.size(), 0.0);
+  std::vector<RankedFit<Result>> ranked;
+  for (size_t i = 0; i < fits.size(); ++i) ranked.push_back({std::move(fits[i]), ratios[i]});
+  std::stable_sort(
+      ranked.begin(), ranked.end(), [](const RankedFit<Result>& a, const RankedFit<Result>& b) {
+        return a.log_ratio < b.log_ratio;
+      });
+  return ranked;
 }
 
 }  // namespace markerbench

@@ -258,9 +258,11 @@ TEST(FitInRounds, GivesUpWhereTheFirstRoundSaysSo) {
   EXPECT_NEAR(result->fit.cam_from_marker.translation.x(), 3e-3, 1e-15);
 }
 
-// BestFitFromStarts refines each start in turn, handing it the fits of the earlier starts that
-// gave one (a start that gives none is left out), and keeps the fit `best` picks among them.
-TEST(BestFitFromStarts, RefinesEachStartWithTheEarlierFitsAndKeepsTheOneBestPicks) {
+// RankedFitsFromStarts refines each start in turn, handing it the fits of the earlier starts
+// that gave one (a start that gives none is left out), and ranks them by the 2 ln Λ that
+// log_ratios gives each, best first, the earlier start first among equals; a single fit is not
+// judged.
+TEST(RankedFitsFromStarts, RefinesEachStartWithTheEarlierFitsAndRanksThemBestFirst) {
   std::vector<Rigid3> starts(4, kFacing);
   for (size_t i = 0; i < starts.size(); ++i) starts[i].translation.y() = static_cast<double>(i);
   std::vector<size_t> earlier_counts;
@@ -269,23 +271,34 @@ TEST(BestFitFromStarts, RefinesEachStartWithTheEarlierFitsAndKeepsTheOneBestPick
     // The second start gives no fit.
     return start.translation.y() == 1.0 ? std::nullopt : MovedSideways(start, 1.0);
   };
-  std::vector<double> offered;  // the y of each fit best was offered
-  const auto best = [&](const std::vector<Solved>& fits) {
+  std::vector<double> offered;  // the y of each fit log_ratios was offered
+  const auto log_ratios = [&](const std::vector<Solved>& fits) {
     for (const Solved& fit : fits) offered.push_back(fit.fit.cam_from_marker.translation.y());
-    return size_t{1};
+    return fits.size() == 3 ? std::vector<double>{2.5, 0.0, 2.5}
+                            : std::vector<double>(fits.size(), 7.0);
   };
-  const std::optional<Solved> kept = BestFitFromStarts<Solved>(starts, refine, best);
-  ASSERT_TRUE(kept);
+  const std::vector<RankedFit<Solved>> ranked =
+      RankedFitsFromStarts<Solved>(starts, refine, log_ratios);
   EXPECT_EQ(earlier_counts, (std::vector<size_t>{0, 1, 1, 2}));
   EXPECT_EQ(offered, (std::vector<double>{0.0, 2.0, 3.0}));
-  EXPECT_EQ(kept->fit.cam_from_marker.translation.y(), 2.0);
-  EXPECT_EQ(kept->fit.cam_from_marker.translation.x(), 1e-3);
-  // No start gives a fit: none, and best is not asked.
+  ASSERT_EQ(ranked.size(), 3u);
+  // The fits of the starts at y 2, 0 and 3, each moved sideways by 1e-3.
+  const std::vector<double> ys = {2.0, 0.0, 3.0}, ratios = {0.0, 2.5, 2.5};
+  for (size_t i = 0; i < ranked.size(); ++i) {
+    EXPECT_EQ(ranked[i].result.fit.cam_from_marker.translation.y(), ys[i]) << i;
+    EXPECT_EQ(ranked[i].result.fit.cam_from_marker.translation.x(), 1e-3) << i;
+    EXPECT_EQ(ranked[i].log_ratio, ratios[i]) << i;
+  }
+  // One start: its fit, with no judging; none gives a fit: none, and nothing judged.
   offered.clear();
+  const std::vector<RankedFit<Solved>> one =
+      RankedFitsFromStarts<Solved>({starts[3]}, refine, log_ratios);
+  ASSERT_EQ(one.size(), 1u);
+  EXPECT_EQ(one[0].log_ratio, 0.0);
   const auto none = [](const Rigid3&, const std::vector<Solved>&) {
     return std::optional<Solved>();
   };
-  EXPECT_FALSE(BestFitFromStarts<Solved>(starts, none, best));
+  EXPECT_TRUE(RankedFitsFromStarts<Solved>(starts, none, log_ratios).empty());
   EXPECT_TRUE(offered.empty());
 }
 
