@@ -107,13 +107,13 @@ void CheckKeys(const nlohmann::json& object,
   }
 }
 
-// The builds listed at `key` of `object` (an entry's or a shard's), each an object whose keys
-// BuildText reads are strings.
-void CheckBuilds(const nlohmann::json& object, const std::string& path, const std::string& key) {
+// The builds of `object` (an entry's or a shard's, named `prefix` in messages), each an object
+// whose keys BuildText reads are strings.
+void CheckBuilds(const nlohmann::json& object, const std::string& path, const std::string& prefix) {
   const auto builds = object.find("builds");
   if (builds == object.end()) return;
   for (size_t i = 0; i < builds->size(); ++i) {
-    const std::string at = key + "builds/" + std::to_string(i);
+    const std::string at = prefix + "builds/" + std::to_string(i);
     if (!(*builds)[i].is_object()) FailKey(path, at, "an object", (*builds)[i]);
     CheckKeys((*builds)[i],
               path,
