@@ -633,7 +633,7 @@ def sequence_phrases():
         ("({} against {} ms on the orbit at σ² 0.02, {} against {} on the approach",
          [ms("orbit", 0.02, "tracking_median_ms"), ms("orbit", 0.02, "detection_median_ms"),
           ms("approach", 0.02, "tracking_median_ms"), ms("approach", 0.02, "detection_median_ms")]),
-        ("{}-{} % on the hand-held shake", [percent(min(shake)), percent(max(shake))]),
+        ("{}-{} % on the hand-held shake", [f"{100 * min(shake):.1f}", f"{100 * max(shake):.1f}"]),
         ("tracker (from {} to {} mm), AprilTag ({} to {}) and ARToolKitPlus ({} to {})",
          [ate_mm(s, t) for t in ("circle", "apriltag", "artkplus")
           for s in ("handheld", "handheld_rolling_shutter")]),
