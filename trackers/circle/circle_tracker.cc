@@ -640,12 +640,11 @@ TrackResult CircleTracker::TrackIn(const Observation& observation,
         diagnostics_.edge_rms_px = rms;
         // The other tilt's fit, where it ended there, and where the pixels hardly tell the two
         // apart (far away, under blur, near the pixels' limit): a second hypothesis.
-        if (direct->runner_up_cam_from_marker &&
-            TiltsApart(*direct->runner_up_cam_from_marker * geometry.marker_from_paper,
-                       on_pixels)) {
-          diagnostics_.second_tilt_log_ratio = direct->runner_up_log_ratio;
-          if (direct->runner_up_log_ratio <= options_.max_second_hypothesis_log_ratio) {
-            second_hypothesis = direct->runner_up_cam_from_marker;
+        const std::optional<RankedFit<Rigid3>>& runner_up = direct->runner_up;
+        if (runner_up && TiltsApart(runner_up->result * geometry.marker_from_paper, on_pixels)) {
+          diagnostics_.second_tilt_log_ratio = runner_up->log_ratio;
+          if (runner_up->log_ratio <= options_.max_second_hypothesis_log_ratio) {
+            second_hypothesis = runner_up->result;
           }
         }
       }
@@ -829,10 +828,9 @@ std::vector<Rigid3> CircleTracker::PixelFitStarts(const RefinementProblem& probl
 template <class Result>
 CircleTracker::FitOnPixels CircleTracker::RankedOnPixels(
     const std::vector<RankedFit<Result>>& fits) {
-  FitOnPixels best{fits[0].result.fit.cam_from_marker, std::nullopt, 0.0};
+  FitOnPixels best{fits[0].result.fit.cam_from_marker, std::nullopt};
   if (fits.size() > 1) {
-    best.runner_up_cam_from_marker = fits[1].result.fit.cam_from_marker;
-    best.runner_up_log_ratio = fits[1].log_ratio;
+    best.runner_up = RankedFit<Rigid3>{fits[1].result.fit.cam_from_marker, fits[1].log_ratio};
   }
   return best;
 }

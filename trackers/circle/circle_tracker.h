@@ -179,9 +179,8 @@ class CircleTracker final : public Tracker {
   // noise of `last` where given.
   struct FitOnPixels {
     Rigid3 cam_from_marker;
-    // The next best fit, from another start, and its 2 ln Λ against this one.
-    std::optional<Rigid3> runner_up_cam_from_marker;
-    double runner_up_log_ratio = 0.0;
+    // The next best fit, from another start, with its 2 ln Λ against this one.
+    std::optional<RankedFit<Rigid3>> runner_up;
   };
   // The first of fits ranked on the pixels, with the next best.
   template <class Result>

@@ -631,7 +631,7 @@ FarFrames TrackDFarAway(double distance_m,
 // small dots); with the dots held to the disks' minimum and no search of small dots, on none.
 // The misses are the circle's other tilt (rotation errors twice the tilt), which a single disk
 // and two small dots barely tell apart there: from the true pose and its mirror, the likelihood
-// on the whole design (BestDesignRefinement) picked the mirror on 4 of the 12 frames.
+// on the whole design (DesignLogRatios) picked the mirror on 4 of the 12 frames.
 TEST(CircleTracker, FindsTheFeatureDotOfDBeyondTwoMetres) {
   CircleTrackerOptions dots_as_disks;
   dots_as_disks.detector.min_dot_area_px = dots_as_disks.detector.min_area_px;

@@ -313,14 +313,18 @@ std::optional<DesignRefinement> RefineDesign(
       abandons);
 }
 
-size_t BestDesignRefinement(const Image8& image,
-                            const Camera& camera,
-                            const MarkerSpec& marker,
-                            const std::vector<DesignRefinement>& fits,
-                            const DesignRefinementOptions& options) {
-  if (fits.size() == 1) return 0;
-  const std::vector<double> costs = CostsOnSharedPixels(image, camera, marker, fits, options).costs;
-  return static_cast<size_t>(std::min_element(costs.begin(), costs.end()) - costs.begin());
+std::vector<double> DesignLogRatios(const Image8& image,
+                                    const Camera& camera,
+                                    const MarkerSpec& marker,
+                                    const std::vector<DesignRefinement>& fits,
+                                    const DesignRefinementOptions& options) {
+  const DesignCosts shared = CostsOnSharedPixels(image, camera, marker, fits, options);
+  const double least = *std::min_element(shared.costs.begin(), shared.costs.end());
+  std::vector<double> ratios;
+  for (const double cost : shared.costs) {
+    ratios.push_back((cost - least) / (shared.noise_sigma * shared.noise_sigma));
+  }
+  return ratios;
 }
 
 std::vector<RankedFit<DesignRefinement>> RefineDesignFromStarts(
@@ -331,15 +335,8 @@ std::vector<RankedFit<DesignRefinement>> RefineDesignFromStarts(
     double sigma_px,
     double noise_sigma,
     const DesignRefinementOptions& options) {
-  // 2 ln Λ of each fit against the best on the pixels all share.
   const auto log_ratios = [&](const std::vector<DesignRefinement>& fits) {
-    const DesignCosts shared = CostsOnSharedPixels(image, camera, marker, fits, options);
-    const double least = *std::min_element(shared.costs.begin(), shared.costs.end());
-    std::vector<double> ratios;
-    for (const double cost : shared.costs) {
-      ratios.push_back((cost - least) / (shared.noise_sigma * shared.noise_sigma));
-    }
-    return ratios;
+    return DesignLogRatios(image, camera, marker, fits, options);
   };
   return RankedFitsFromStarts<DesignRefinement>(
       starts,

@@ -65,8 +65,8 @@ std::optional<DesignRefinement> RefineDesign(
     const DesignRefinementOptions& options = {},
     const std::function<bool(const DesignRefinement&)>& abandons = nullptr);
 
-// The refinement from each start (RefineDesign), best first (BestDesignRefinement), each with
-// its 2 ln Λ against the first on the pixels all share; a start after the first is given up after
+// The refinement from each start (RefineDesign), best first (DesignLogRatios), each with its
+// 2 ln Λ against the first on the pixels all share; a start after the first is given up after
 // its first round where that round's result is far less likely than an earlier start's
 // (max_first_round_log_ratio). Empty when no start gives a refinement.
 std::vector<RankedFit<DesignRefinement>> RefineDesignFromStarts(
@@ -78,13 +78,14 @@ std::vector<RankedFit<DesignRefinement>> RefineDesignFromStarts(
     double noise_sigma,
     const DesignRefinementOptions& options = {});
 
-// Which of several refinements explains the image best: the least cost (the clipped pixels'
-// likelihood) over the pixels near the design's edges at any of them (each fit judged on the
-// same pixels, at the least noise any fit leaves). `fits` not empty.
-size_t BestDesignRefinement(const Image8& image,
-                            const Camera& camera,
-                            const MarkerSpec& marker,
-                            const std::vector<DesignRefinement>& fits,
-                            const DesignRefinementOptions& options = {});
+// How much less likely each of several refinements explains the image than the best: its 2 ln Λ
+// against the least cost (the clipped pixels' likelihood), 0 for the best, each fit judged on
+// the same pixels (those near the design's edges at any of them) at the least noise any fit
+// leaves. `fits` not empty.
+std::vector<double> DesignLogRatios(const Image8& image,
+                                    const Camera& camera,
+                                    const MarkerSpec& marker,
+                                    const std::vector<DesignRefinement>& fits,
+                                    const DesignRefinementOptions& options = {});
 
 }  // namespace markerbench

@@ -165,7 +165,9 @@ TEST(DesignRefinement, KeepsTheTiltTheDesignShows) {
     // Measured: 420-760 mm from the other tilt, 0.5-3.9 mm from the true one.
     EXPECT_GT(PositionError(fits[0].fit.cam_from_marker, truth), 0.1);
     EXPECT_LT(PositionError(fits[1].fit.cam_from_marker, truth), 0.01);
-    EXPECT_EQ(BestDesignRefinement(frame.image, camera, marker, fits), 1u);
+    const std::vector<double> log_ratios = DesignLogRatios(frame.image, camera, marker, fits);
+    EXPECT_EQ(log_ratios[1], 0.0);
+    EXPECT_GT(log_ratios[0], 100.0);
     // From both starts in either order, the true tilt's fit, whether a later start is given up
     // after its first round where it is far behind (the default) or at all behind (0), or never
     // (infinity: then the other tilt's fit follows, far less likely).
@@ -218,7 +220,8 @@ TEST(DesignRefinement, KeepsTheTrueTiltWithoutNoise) {
     }
     ASSERT_LT(PositionError(fits[1].fit.cam_from_marker, truth), 1e-3) << "frame " << i;
     // (Near a frontal view both starts end at the true tilt.)
-    const size_t best = BestDesignRefinement(frame.image, camera, marker, fits);
+    const std::vector<double> log_ratios = DesignLogRatios(frame.image, camera, marker, fits);
+    const size_t best = std::min_element(log_ratios.begin(), log_ratios.end()) - log_ratios.begin();
     EXPECT_LT(PositionError(fits[best].fit.cam_from_marker, truth), 1e-3) << "frame " << i;
   }
 }
