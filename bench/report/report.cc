@@ -104,9 +104,9 @@ std::string ScenarioSection(const std::string& scenario,
   md += "\n| " + parameter + (grid ? " | grid" : "") +
         " | tracker | marker | n | size (px) | detected | success" +
         " | median pos. err (mm) | mean (mm) | p90 (mm) | median rot. err (°)" +
-        " | oracle median (mm) | flips | median ms | bound (mm) | × bound | rot. × bound" +
-        " | success at bound |\n" + (grid ? "|---" : "") +
-        "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n";
+        " | oracle median (mm) | oracle success | flips | median ms | bound (mm) | × bound" +
+        " | rot. × bound | success at bound |\n" + (grid ? "|---" : "") +
+        "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n";
   for (const SummaryRow& r : summary) {
     if (r.scenario != scenario) continue;
     md += "| " + FormattedOrDash(r.sweep_value, "%g") + (grid ? " | " + r.grid : "") + " | " +
@@ -118,7 +118,8 @@ std::string ScenarioSection(const std::string& scenario,
           Significant(1e3 * r.position_error_mean_m) + " | " +
           Significant(1e3 * r.position_error_p90_m) + " | " +
           Significant(r.rotation_error_median_deg) + " | " +
-          Significant(1e3 * r.best_position_error_median_m) + " | " + Percent(r.flip_rate) + " | " +
+          Significant(1e3 * r.best_position_error_median_m) + " | " + Percent(r.best_success_rate) +
+          " (" + PercentRange(r.best_success_rate_ci) + ") | " + Percent(r.flip_rate) + " | " +
           Significant(r.time_median_ms) + " | " + Significant(1e3 * r.crlb_position_median_m) +
           " | " + Significant(r.efficiency) + " | " + Significant(r.rotation_efficiency) + " | " +
           Percent(r.success_at_bound) + " |\n";

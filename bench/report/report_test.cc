@@ -211,7 +211,7 @@ TEST_F(ReportTest, SummaryOfASyntheticSweep) {
   for (const std::vector<double>& want : expected) {
     ASSERT_TRUE(std::getline(summary, line));
     const std::vector<std::string> fields = SplitCsvLine(line);
-    ASSERT_EQ(fields.size(), 30u) << line;
+    ASSERT_EQ(fields.size(), 33u) << line;
     // Five or fewer posed frames: no median interval reaches 95 % (empty fields).
     for (size_t i = 25; i < 29; ++i) {
       EXPECT_EQ(fields[i], "") << line;
@@ -221,6 +221,9 @@ TEST_F(ReportTest, SummaryOfASyntheticSweep) {
     // Success at the bound: the mean over the 5 trials of erf(√2 / (trial + 1)), whatever
     // the tracker found (0.95450, 0.68269, 0.49501, 0.38292, 0.31084).
     EXPECT_NEAR(std::stod(fields[29]), 0.5651945, 1e-6) << line;
+    // The oracle's success and its interval: one hypothesis a frame, so the first's.
+    EXPECT_EQ(fields[30], fields[9]) << line;
+    EXPECT_EQ(fields[31] + "-" + fields[32], fields[23] + "-" + fields[24]) << line;
     for (size_t i = 0; i < want.size(); ++i) {
       EXPECT_NEAR(std::stod(fields[6 + i]), want[i], i < 15 ? 1e-12 : 5e-5)
           << line << " column " << 6 + i;
@@ -413,6 +416,30 @@ namespace {
 
 // The summary is built one sweep cell at a time: trackers may interleave within a cell, but
 // a cell that comes back after another is refused (its groups were already summarised).
+// The oracle's success counts a frame whose first hypothesis is the circle's other tilt and whose
+// second is right; its flip counts too, and the first hypothesis's success does not.
+TEST(SummaryBuilderTest, TheOraclesSuccessCountsTheRightHypothesisOfAFlippedFrame) {
+  SummaryBuilder builder({});
+  for (int trial = 0; trial < 4; ++trial) {
+    FrameRow row = Row("s", "a", 0.0, trial, trial < 3 ? 0.5 : 0.01);
+    if (trial < 2) {  // the second hypothesis 1 cm off
+      row.hypotheses = 2;
+      row.errors.best_position_error_m = 0.01;
+      row.errors.flip = true;
+    }
+    builder.Add(row, 1.0);
+  }
+  builder.Add(Row("s", "a", 0.0, 4, NAN), 1.0);
+  const std::vector<SummaryRow> summary = builder.Finish();
+  ASSERT_EQ(summary.size(), 1u);
+  EXPECT_DOUBLE_EQ(summary[0].success_rate, 1.0 / 5.0);
+  EXPECT_DOUBLE_EQ(summary[0].best_success_rate, 3.0 / 5.0);
+  EXPECT_DOUBLE_EQ(summary[0].flip_rate, 2.0 / 4.0);
+  // Wilson, 3 of 5.
+  EXPECT_NEAR(summary[0].best_success_rate_ci.lo, 0.2307, 5e-5);
+  EXPECT_NEAR(summary[0].best_success_rate_ci.hi, 0.8824, 5e-5);
+}
+
 TEST(SummaryBuilderTest, SummarisesCellByCellAndRefusesACellThatComesBack) {
   SummaryBuilder builder({});
   builder.Add(Row("s", "a", 0.0, 0, 0.001), 1.0);

@@ -44,6 +44,8 @@ void SummaryBuilder::Add(const FrameRow& r, double time_ms) {
   g.detected += r.status == TrackStatus::kOk || r.status == TrackStatus::kPoseFailed;
   g.successes +=
       IsSuccess(has_pose, r.errors.position_error_m, r.distance_m, options_.success_fraction);
+  g.best_successes +=
+      IsSuccess(has_pose, r.errors.best_position_error_m, r.distance_m, options_.success_fraction);
   g.sizes.push_back(r.apparent_size_px);
   g.times.push_back(time_ms);
   g.position_bound.push_back(r.bound.position_med_m);
@@ -74,6 +76,7 @@ void SummaryBuilder::CloseCell() {
     s.rotation_error_median_deg = Median(g.rotation);
     s.best_position_error_median_m = Median(g.best_position);
     s.flip_rate = g.posed ? static_cast<double>(g.flips) / g.posed : NAN;
+    s.best_success_rate = static_cast<double>(g.best_successes) / s.n;
     s.time_median_ms = Median(g.times);
     s.crlb_position_median_m = Median(g.position_bound);
     s.crlb_rotation_median_deg = Median(g.rotation_bound);
@@ -82,6 +85,7 @@ void SummaryBuilder::CloseCell() {
     s.success_at_bound = g.success_at_bound_sum / s.n;
     s.detection_rate_ci = WilsonInterval(g.detected, s.n);
     s.success_rate_ci = WilsonInterval(g.successes, s.n);
+    s.best_success_rate_ci = WilsonInterval(g.best_successes, s.n);
     s.position_error_median_ci_m = MedianInterval(g.position);
     s.rotation_error_median_ci_deg = MedianInterval(g.rotation);
     rows_.push_back(s);
@@ -149,7 +153,8 @@ std::string SummaryCsv(const std::vector<SummaryRow>& rows) {
       "crlb_position_median_m,efficiency,crlb_rotation_median_deg,rotation_efficiency,"
       "detection_rate_lo,detection_rate_hi,success_rate_lo,success_rate_hi,"
       "position_error_median_lo_m,position_error_median_hi_m,"
-      "rotation_error_median_lo_deg,rotation_error_median_hi_deg,success_at_bound\n";
+      "rotation_error_median_lo_deg,rotation_error_median_hi_deg,success_at_bound,"
+      "best_success_rate,best_success_rate_lo,best_success_rate_hi\n";
   for (const SummaryRow& r : rows) {
     csv += CsvField(r.scenario) + ',' + r.sweep_parameter + ',' + NumberText(r.sweep_value) + ',' +
            CsvField(r.grid) + ',' + CsvField(r.tracker) + ',' + CsvField(r.marker) + ',' +
@@ -170,7 +175,9 @@ std::string SummaryCsv(const std::vector<SummaryRow>& rows) {
                               r.rotation_error_median_ci_deg}) {
       csv += ',' + NumberTextOrEmpty(i.lo) + ',' + NumberTextOrEmpty(i.hi);
     }
-    csv += ',' + NumberTextOrEmpty(r.success_at_bound) + '\n';
+    csv += ',' + NumberTextOrEmpty(r.success_at_bound) + ',' + NumberText(r.best_success_rate) +
+           ',' + NumberTextOrEmpty(r.best_success_rate_ci.lo) + ',' +
+           NumberTextOrEmpty(r.best_success_rate_ci.hi) + '\n';
   }
   return csv;
 }

@@ -39,6 +39,9 @@ struct SummaryRow {
   double rotation_error_median_deg = 0.0;
   double best_position_error_median_m = 0.0;  // the oracle hypothesis
   double flip_rate = 0.0;
+  // Success of the oracle hypothesis (over all frames): what a tracker that returns several
+  // would reach if the right one were told apart, e.g. by the next frame.
+  double best_success_rate = 0.0;
   double time_median_ms = 0.0;  // NaN when timing.csv is missing
   // The physical limit (frames.csv's crlb_*_med columns; NaN when the run has no bound):
   // the median over all the cell's frames of the error an efficient estimator would have,
@@ -55,6 +58,7 @@ struct SummaryRow {
   // 95 % intervals (bench/metrics/intervals.h): Wilson for the rates, order statistics for medians.
   Interval detection_rate_ci;
   Interval success_rate_ci;
+  Interval best_success_rate_ci;
   Interval position_error_median_ci_m;
   Interval rotation_error_median_ci_deg;
 };
@@ -78,7 +82,7 @@ class SummaryBuilder {
   // One (tracker, marker) group of the open cell.
   struct Group {
     SummaryRow row;  // names and counts so far
-    int detected = 0, successes = 0, posed = 0, flips = 0;
+    int detected = 0, successes = 0, best_successes = 0, posed = 0, flips = 0;
     std::vector<double> sizes, times, position_bound, rotation_bound;  // every frame
     std::vector<double> position, rotation, best_position;             // frames with a pose
     std::vector<double> posed_position_bound, posed_rotation_bound;
