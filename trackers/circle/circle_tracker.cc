@@ -226,6 +226,8 @@ bool CircleTrackerOptions::IsValid(std::string* error) const {
     msg << "min_design_radius_per_blur=" << min_design_radius_per_blur << " must be >= 0";
   } else if (!(max_second_hypothesis_log_ratio >= 0.0)) {
     msg << "max_second_hypothesis_log_ratio=" << max_second_hypothesis_log_ratio << " must be >= 0";
+  } else if (!(max_carried_tilt_log_ratio >= 0.0)) {
+    msg << "max_carried_tilt_log_ratio=" << max_carried_tilt_log_ratio << " must be >= 0";
   } else if (!(photometric_refinement.band_sigmas > 0.0)) {
     msg << "pixel_band_sigmas=" << photometric_refinement.band_sigmas << " must be > 0";
   } else if (!(photometric_refinement.band_px >= 0.0)) {
@@ -301,6 +303,8 @@ CircleTrackerOptions CircleTrackerOptions::FromYaml(const YamlMap& map) {
       map.GetOr<double>("min_design_radius_per_blur", o.min_design_radius_per_blur);
   o.max_second_hypothesis_log_ratio =
       map.GetOr<double>("max_second_hypothesis_log_ratio", o.max_second_hypothesis_log_ratio);
+  o.max_carried_tilt_log_ratio =
+      map.GetOr<double>("max_carried_tilt_log_ratio", o.max_carried_tilt_log_ratio);
   o.photometric_refinement.band_sigmas =
       map.GetOr<double>("pixel_band_sigmas", o.photometric_refinement.band_sigmas);
   o.photometric_refinement.band_px =
@@ -355,6 +359,7 @@ std::vector<std::pair<std::string, std::string>> CircleTracker::Parameters() con
       {"max_other_tilt_log_ratio", NumberText(o.max_other_tilt_log_ratio)},
       {"min_design_radius_per_blur", NumberText(o.min_design_radius_per_blur)},
       {"max_second_hypothesis_log_ratio", NumberText(o.max_second_hypothesis_log_ratio)},
+      {"max_carried_tilt_log_ratio", NumberText(o.max_carried_tilt_log_ratio)},
       {"pixel_band_sigmas", NumberText(o.photometric_refinement.band_sigmas)},
       {"pixel_band_px", NumberText(o.photometric_refinement.band_px)},
       {"design_band_sigmas", NumberText(o.design_refinement.band_sigmas)},
@@ -418,12 +423,13 @@ TrackResult CircleTracker::FindInFrame(const Observation& observation) {
       }
       const std::vector<Eigen::Matrix3d>* const starts[] = {&prediction->through_lens.conics_px,
                                                             nullptr};
+      const PredictedPose predicted{predicted_pose, tilt_log_ratio_};
       for (const std::vector<Eigen::Matrix3d>* start : starts) {
         TrackResult result = TrackIn(observation,
                                      *geometry,
                                      prediction->region,
                                      start,
-                                     &predicted_pose,
+                                     &predicted,
                                      last_on_pixels ? &*last_on_pixels : nullptr);
         diagnostics_.used_tracking_region = true;
         diagnostics_.used_predicted_ellipses = start != nullptr;
@@ -440,7 +446,7 @@ TrackResult CircleTracker::TrackIn(const Observation& observation,
                                    const CircleGeometry& geometry,
                                    const cv::Rect& region,
                                    const std::vector<Eigen::Matrix3d>* predicted_conics_px,
-                                   const Rigid3* predicted_cam_from_paper,
+                                   const PredictedPose* predicted,
                                    const PixelFitFound* last_on_pixels) {
   diagnostics_ = CircleDiagnostics{};
   previous_cam_from_paper_.reset();
@@ -527,8 +533,8 @@ TrackResult CircleTracker::TrackIn(const Observation& observation,
   // analytic pose or the predicted one; otherwise every analytic candidate, since with small
   // or blurred ellipses the chosen l_inf can land in the wrong basin.
   std::vector<Rigid3> starts;
-  if (predicted_cam_from_paper) {
-    starts.push_back(*predicted_cam_from_paper);
+  if (predicted) {
+    starts.push_back(predicted->cam_from_paper);
   } else {
     for (const AnalyticSolution& candidate :
          AnalyticCandidates(geometry, K, measurements, options_.analytic.depth)) {
@@ -609,6 +615,7 @@ TrackResult CircleTracker::TrackIn(const Observation& observation,
   diagnostics_.edge_rms_px = ellipses_rms_px;
   PixelFitFound on_pixels;
   std::optional<Rigid3> second_hypothesis;
+  double tilt_evidence = 0.0;  // for the pose's tilt (ChooseTilt); 0 without the fit on the pixels
   if (options_.refine && options_.photometric && ellipses_rms_px <= options_.max_edge_rms_px) {
     const std::vector<Rigid3> starts =
         PixelFitStarts(problem, geometry.roll_from_design, cam_from_paper, ellipses_rms_px);
@@ -616,6 +623,7 @@ TrackResult CircleTracker::TrackIn(const Observation& observation,
                                                        geometry.roll_from_design,
                                                        starts,
                                                        paper_from_marker,
+                                                       predicted,
                                                        last_on_pixels,
                                                        &on_pixels);
     // Kept unless it leaves the edges (a fit gone astray: the pixels and the edge points
@@ -640,11 +648,11 @@ TrackResult CircleTracker::TrackIn(const Observation& observation,
         diagnostics_.edge_rms_px = rms;
         // The other tilt's fit, where it ended there, and where the pixels hardly tell the two
         // apart (far away, under blur, near the pixels' limit): a second hypothesis.
-        const std::optional<RankedFit<Rigid3>>& runner_up = direct->runner_up;
-        if (runner_up && TiltsApart(runner_up->result * geometry.marker_from_paper, on_pixels)) {
-          diagnostics_.second_tilt_log_ratio = runner_up->log_ratio;
-          if (runner_up->log_ratio <= options_.max_second_hypothesis_log_ratio) {
-            second_hypothesis = runner_up->result;
+        tilt_evidence = direct->tilt_log_ratio;
+        if (direct->other_tilt) {
+          diagnostics_.second_tilt_log_ratio = direct->tilt_log_ratio;
+          if (direct->tilt_log_ratio <= options_.max_second_hypothesis_log_ratio) {
+            second_hypothesis = direct->other_tilt;
           }
         }
       }
@@ -672,6 +680,7 @@ TrackResult CircleTracker::TrackIn(const Observation& observation,
     return result;
   }
   result = Accept(observation, cam_from_paper, cam_from_marker, second_hypothesis);
+  if (result.status == TrackStatus::kOk) tilt_log_ratio_ = tilt_evidence;
   if (result.status == TrackStatus::kOk && diagnostics_.photometric_used &&
       !geometry.roll_from_design) {
     previous_on_pixels_ = on_pixels;
@@ -747,18 +756,24 @@ TrackResult CircleTracker::TrackOnPixels(const Observation& observation,
   // The circle's other tilt, where apart, must lie beyond 2 ln Λ = max_other_tilt_log_ratio of
   // the fit (its squared distance in standard errors, to second order): else which tilt is
   // seen needs both fitted (full detection).
+  // That squared distance is the evidence carried for the fit's tilt.
   const Rigid3 other = OtherTilt(cam_from_paper);
+  double tilt_evidence = 0.0;
   if (TiltsApart(other, cam_from_paper)) {
     const double standard_errors =
         PoseMoveInStandardErrors(fit->fit, other * paper_from_marker, found.noise_sigma);
-    if (!(standard_errors * standard_errors >= options_.max_other_tilt_log_ratio)) {
+    tilt_evidence = standard_errors * standard_errors;
+    if (!(tilt_evidence >= options_.max_other_tilt_log_ratio)) {
       result.message = "the circle's other tilt is " + NumberText(standard_errors) +
                        " standard errors from the fit";
       return result;
     }
   }
   result = Accept(observation, cam_from_paper, cam_from_marker);
-  if (result.status == TrackStatus::kOk) previous_on_pixels_ = found;
+  if (result.status == TrackStatus::kOk) {
+    previous_on_pixels_ = found;
+    tilt_log_ratio_ = tilt_evidence;
+  }
   return result;
 }
 
@@ -826,13 +841,32 @@ std::vector<Rigid3> CircleTracker::PixelFitStarts(const RefinementProblem& probl
 }
 
 template <class Result>
-CircleTracker::FitOnPixels CircleTracker::RankedOnPixels(
-    const std::vector<RankedFit<Result>>& fits) {
-  FitOnPixels best{fits[0].result.fit.cam_from_marker, std::nullopt};
-  if (fits.size() > 1) {
-    best.runner_up = RankedFit<Rigid3>{fits[1].result.fit.cam_from_marker, fits[1].log_ratio};
+CircleTracker::FitOnPixels CircleTracker::ChooseTilt(const Rigid3& marker_from_paper,
+                                                     const PredictedPose* predicted,
+                                                     std::vector<RankedFit<Result>>* fits) const {
+  const auto pose = [&](size_t i) -> const Rigid3& {
+    return (*fits)[i].result.fit.cam_from_marker;
+  };
+  const Rigid3 first = pose(0) * marker_from_paper;
+  if (fits->size() < 2 || !TiltsApart(pose(1) * marker_from_paper, first)) {
+    const bool ruled_out = TiltsApart(OtherTilt(first), first);
+    return {pose(0), std::nullopt, ruled_out ? std::numeric_limits<double>::infinity() : 0.0};
   }
-  return best;
+  double evidence = (*fits)[1].log_ratio - (*fits)[0].log_ratio;
+  if (predicted) {
+    const Eigen::Vector3d predicted_normal = predicted->cam_from_paper.rotation.col(2);
+    const bool first_continues =
+        first.rotation.col(2).dot(predicted_normal) >=
+        (pose(1) * marker_from_paper).rotation.col(2).dot(predicted_normal);
+    const double limit = options_.max_carried_tilt_log_ratio;
+    evidence +=
+        (first_continues ? 1.0 : -1.0) * std::clamp(predicted->tilt_log_ratio, -limit, limit);
+    if (evidence < 0.0) {
+      std::swap((*fits)[0], (*fits)[1]);
+      evidence = -evidence;
+    }
+  }
+  return {pose(0), pose(1), evidence};
 }
 
 std::optional<CircleTracker::FitOnPixels> CircleTracker::OnPixels(
@@ -840,26 +874,28 @@ std::optional<CircleTracker::FitOnPixels> CircleTracker::OnPixels(
     bool whole_design,
     const std::vector<Rigid3>& cam_from_paper_starts,
     const Rigid3& paper_from_marker,
+    const PredictedPose* predicted,
     const PixelFitFound* last,
     PixelFitFound* found) const {
   const Image8& image = *observation.image;
   const Camera& camera = *observation.camera;
   const MarkerSpec& marker = *observation.marker;
   const double sigma_px = diagnostics_.image_blur_sigma_px;
+  const Rigid3 marker_from_paper = paper_from_marker.Inverse();
   std::vector<Rigid3> starts;
   for (const Rigid3& start : cam_from_paper_starts) starts.push_back(start * paper_from_marker);
   if (whole_design) {
     const DesignRefinementOptions& options = options_.design_refinement;
-    const std::vector<RankedFit<DesignRefinement>> fits = RefineDesignFromStarts(
+    std::vector<RankedFit<DesignRefinement>> fits = RefineDesignFromStarts(
         image, camera, marker, starts, sigma_px, diagnostics_.noise_sigma, options);
     if (fits.empty()) return std::nullopt;
-    return RankedOnPixels(fits);
+    return ChooseTilt(marker_from_paper, predicted, &fits);
   }
   // A tracked frame's fit starts from the levels and noise the last one found.
   const double noise_sigma = last ? last->noise_sigma : diagnostics_.noise_sigma;
   std::optional<Eigen::VectorXd> levels;
   if (last) levels = last->levels;
-  const std::vector<RankedFit<PhotometricResult>> fits =
+  std::vector<RankedFit<PhotometricResult>> fits =
       RefinePhotometricFromStarts(image,
                                   camera,
                                   marker,
@@ -869,9 +905,10 @@ std::optional<CircleTracker::FitOnPixels> CircleTracker::OnPixels(
                                   options_.photometric_refinement,
                                   levels);
   if (fits.empty()) return std::nullopt;
+  const FitOnPixels chosen = ChooseTilt(marker_from_paper, predicted, &fits);
   const PhotometricResult& fit = fits[0].result;
   *found = {EdgeSigmaOfBlur(fit.fit.sigma_px), fit.noise_sigma, fit.fit.levels};
-  return RankedOnPixels(fits);
+  return chosen;
 }
 
 std::unique_ptr<Tracker> MakeCircleTracker(const CircleTrackerOptions& options) {

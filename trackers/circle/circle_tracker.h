@@ -55,6 +55,12 @@ struct CircleTrackerOptions {
   // this (4: odds of at least e^-2, 1 to 7.4; on the paper's blur sweep 12 of 13 wrong choices
   // of e's and f's tilt at blur σ 4-5 were within 3.6 of the right one).
   double max_second_hypothesis_log_ratio = 4.0;
+  // Tracking mode weighs the circle's two tilts over the frames: each frame's 2 ln Λ between its
+  // fits on the two is added to the evidence the frames before left for the tilt they tracked,
+  // carried at most this far either way (2 ln odds; 10: a switch of the tracked tilt between
+  // frames taken as about e^-5 likely, and a frame whose pixels favour the other by more
+  // overrides the frames before).
+  double max_carried_tilt_log_ratio = 10.0;
   bool tracking = true;  // search around the pose predicted from the last frames first (step 5)
   // Tracking mode predicts this frame's pose by moving the previous one on by the camera's
   // last frame-to-frame motion, where the two frames before both had a pose (constant
@@ -76,7 +82,8 @@ struct CircleTrackerOptions {
   // blocks_per_side and min_significance), min_contrast, edge_passes, max_rays,
   // max_blurred_dot_disks, max_blurred_dot_peak, min_dot_area_px, min_blurred_dot_radius_px,
   // min_dot_radius_px, blurred_dot_min_significance, min_branch_angle_rad,
-  // max_other_tilt_log_ratio, min_design_radius_per_blur, max_second_hypothesis_log_ratio;
+  // max_other_tilt_log_ratio, min_design_radius_per_blur, max_second_hypothesis_log_ratio,
+  // max_carried_tilt_log_ratio;
   // pixel_band_sigmas and pixel_band_px, the disks' fit's band_sigmas and band_px;
   // design_band_sigmas, design_band_px and design_max_other_tilt_log_ratio, e's and f's
   // band_sigmas, band_px and max_first_round_log_ratio: the keys of Parameters()); throws
@@ -108,7 +115,8 @@ struct CircleDiagnostics {
   bool photometric_used = false;  // the final pose is the photometric refinement's
   // 2 ln Λ of the fit on the pixels from the circle's other tilt against the final pose, where
   // that fit ended apart from it; a second hypothesis where at most
-  // max_second_hypothesis_log_ratio.
+  // max_second_hypothesis_log_ratio. In tracking mode with the evidence of the frames before
+  // (max_carried_tilt_log_ratio).
   std::optional<double> second_tilt_log_ratio;
   double appearance_misfit = 0.0;  // of the printed design at the final pose
 };
@@ -123,6 +131,7 @@ class CircleTracker final : public Tracker {
     previous_on_pixels_.reset();
     prediction_error_px_.reset();
     last_motion_.reset();
+    tilt_log_ratio_ = 0.0;
   }
   std::vector<std::pair<std::string, std::string>> Parameters() const override;
 
@@ -134,6 +143,12 @@ class CircleTracker final : public Tracker {
     double edge_sigma_px = 0.0;  // the blur with the pixel's area, as edge points measure it
     double noise_sigma = 0.0;    // 0-1
     Eigen::VectorXd levels;      // offset and gain per channel (PixelFit::levels)
+  };
+  // Tracking mode: the pose predicted for the frame, and the evidence the frames before left for
+  // its tilt (2 ln of the odds against the circle's other).
+  struct PredictedPose {
+    Rigid3 cam_from_paper;
+    double tilt_log_ratio = 0.0;
   };
 
   // Tracking mode around the predicted pose first, then the whole image.
@@ -154,14 +169,14 @@ class CircleTracker final : public Tracker {
                      const Rigid3& cam_from_paper,
                      const Rigid3& cam_from_marker,
                      const std::optional<Rigid3>& second_hypothesis = std::nullopt);
-  // The detection in `region` (from the predicted ellipses where given); the fit on the disks'
-  // pixels there starts from the levels and noise the last frame's found (`last_on_pixels`)
-  // where given.
+  // The detection in `region` (from the predicted ellipses where given; in tracking mode the
+  // predicted pose starts the refinement and weighs the tilts); the fit on the disks' pixels
+  // there starts from the levels and noise the last frame's found (`last_on_pixels`) where given.
   TrackResult TrackIn(const Observation& observation,
                       const CircleGeometry& geometry,
                       const cv::Rect& region,
                       const std::vector<Eigen::Matrix3d>* predicted_conics_px,
-                      const Rigid3* predicted_cam_from_paper,
+                      const PredictedPose* predicted,
                       const PixelFitFound* last_on_pixels);
   // Whether the normals of two poses' planes (the marker's, seen from the camera) lie more than
   // min_branch_angle_rad apart: the circle's two tilts told apart.
@@ -179,16 +194,26 @@ class CircleTracker final : public Tracker {
   // noise of `last` where given.
   struct FitOnPixels {
     Rigid3 cam_from_marker;
-    // The next best fit, from another start, with its 2 ln Λ against this one.
-    std::optional<RankedFit<Rigid3>> runner_up;
+    // The best fit on the circle's other tilt, where one ended apart from this one.
+    std::optional<Rigid3> other_tilt;
+    // 2 ln of the odds of this fit's tilt against the other's (ChooseTilt).
+    double tilt_log_ratio = 0.0;
   };
-  // The first of fits ranked on the pixels, with the next best.
+  // The first of `fits` (ranked on the pixels) and the evidence for its tilt against the
+  // circle's other: 2 ln Λ against the next fit where that one lies on the other tilt; else
+  // infinite (the other ruled out), or 0 where the two tilts nearly coincide. In tracking mode
+  // (`predicted`), where the first two fits lie on the two tilts, the predicted pose's evidence
+  // (within max_carried_tilt_log_ratio) is added for the one whose normal is nearer its, and
+  // that fit goes first where the sum favours it.
   template <class Result>
-  static FitOnPixels RankedOnPixels(const std::vector<RankedFit<Result>>& fits);
+  FitOnPixels ChooseTilt(const Rigid3& marker_from_paper,
+                         const PredictedPose* predicted,
+                         std::vector<RankedFit<Result>>* fits) const;
   std::optional<FitOnPixels> OnPixels(const Observation& observation,
                                       bool whole_design,
                                       const std::vector<Rigid3>& cam_from_paper_starts,
                                       const Rigid3& paper_from_marker,
+                                      const PredictedPose* predicted,
                                       const PixelFitFound* last,
                                       PixelFitFound* found) const;
 
@@ -200,6 +225,8 @@ class CircleTracker final : public Tracker {
   // (PredictionErrorPx).
   std::optional<double> prediction_error_px_;
   std::optional<Rigid3> last_motion_;  // cam_previous_from_cam_before, both frames with a pose
+  // 2 ln of the odds of the previous pose's tilt against the circle's other (ChooseTilt).
+  double tilt_log_ratio_ = 0.0;
   CircleDiagnostics diagnostics_;
 };
 
