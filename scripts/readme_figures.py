@@ -6,6 +6,7 @@ the paper sweeps' times in results/speed.md) between
     <!-- readme_figures.py: NAME -->   and   <!-- end NAME -->
 and is computed from results/ (summary.csv of results/circle_accuracy and results/paper,
 results/paper/breakdowns.csv, results/paper/report.md, results/speed.md, results/sequences/sequence_summary.csv,
+results/sequences/recede_pairs.csv,
 results/independent/*/summary.csv).
 
 The README's prose cites some of the same figures; each such phrase is listed in PHRASES with
@@ -609,7 +610,8 @@ def sequence_phrases():
     against AprilTag's and ARToolKitPlus's, its tracking mode's time, the rolling shutter, and
     the frames ARToolKitPlus and ArUco lose."""
     rows = {(r["scenario"], number(r["sweep_value"]), r["tracker"]): r
-            for r in read_summary("results/sequences/sequence_summary.csv")}
+            for r in read_summary("results/sequences/sequence_summary.csv")
+            if not r["scenario"].startswith("recede")}  # the circle markers alone: below
 
     def figure(scenario, value, tracker, column):
         return number(rows[(scenario, value, tracker)][column])
@@ -655,6 +657,25 @@ def sequence_phrases():
         ("ARToolKitPlus loses {} % of the approach's frames", [lost("approach", 0.02, "artkplus")]),
         ("loses none of the orbit's frames without noise but {} % at σ² 0.02 and {} % at 0.1",
          [lost("orbit", 0.02, "aruco"), lost("orbit", 0.1, "aruco")]),
+    ] + recede_phrases()
+
+
+def recede_phrases():
+    """The circle markers receding, tracked against each frame alone, beyond 2.5 m
+    (results/sequences/recede_pairs.csv)."""
+    pairs = {r["marker"]: r for r in read_summary("results/sequences/recede_pairs.csv")}
+    markers = ("circle_f", "circle_e", "circle_d", "circles_a")
+    worst_p = max(number(pairs[m]["mcnemar_p"]) for m in markers)
+    return [
+        ("its first hypothesis succeeds on {} % of f's frames against {} % each frame alone, on {} % "
+         "against {} % of e's, {} % against {} % of `circle_d`'s and {} % against {} % of "
+         "`circles_a`'s (McNemar on the frames: p below 1e-{} for each",
+         [percent(number(pairs[m][c])) for m in markers for c in ("success_a", "success_b")] +
+         [str(-math.ceil(math.log10(worst_p)))]),
+        ("tracking mode is better on {}, {}, {} and {} of the {} videos and worse on {}, {}, {} and "
+         "{}",
+         [pairs[m]["videos_a_better"] for m in markers] + [pairs[markers[0]]["videos"]] +
+         [pairs[m]["videos_b_better"] for m in markers]),
     ]
 
 
