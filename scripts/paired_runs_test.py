@@ -69,6 +69,16 @@ class PairedRunsTest(unittest.TestCase):
         self.assertEqual(result.stdout.splitlines()[1],
                          "circle,circle_f,9,1,0.5556,4,0,0.125,3,2,0,0.5")
 
+    def test_reads_compressed_frames(self):
+        # `sweep --zstd` leaves frames.csv.zst: read as the plain file.
+        rows = [(0, 0, 3.0, 0.01), (0, 1, 3.0, None)]
+        self.write("plain", rows)
+        self.write("compressed", rows)
+        subprocess.run(["zstd", "-q", "--rm", str(self.root / "compressed" / "frames.csv")],
+                       check=True)
+        self.assertEqual(paired_runs.read_frames(self.root / "compressed"),
+                         paired_runs.read_frames(self.root / "plain"))
+
     def test_runs_of_other_frames_are_refused(self):
         self.write("tracked", [(0, 0, 1.0, 0.01), (0, 1, 2.0, 0.01)])
         self.write("fewer", [(0, 0, 1.0, 0.01)])
