@@ -503,7 +503,7 @@ def paper_phrases():
                                                                "apriltag")
     # Success with the better of the circle markers' hypotheses (the oracle's).
     best = ("best_success_rate", "best_success_rate_lo", "best_success_rate_hi")
-    f_near, f_far = circle("fig8_distance", 2.5, "circle_f"), circle("fig8_distance", 3.5, "circle_f")
+    f_near, f_far = (circle("fig8_distance", d, "circle_f") for d in (2.5, 3.5))
     f_blur = circle("fig7_blur", 4.0, "circle_f")
     e_far, d_far = (circle("fig8_distance", 3.5, m) for m in ("circle_e", "circle_d"))
     return [
@@ -667,13 +667,13 @@ def recede_phrases():
     markers = ("circle_f", "circle_e", "circle_d", "circles_a")
     worst_p = max(number(pairs[m]["mcnemar_p"]) for m in markers)
     return [
-        ("its first hypothesis succeeds on {} % of f's frames against {} % each frame alone, on {} % "
-         "against {} % of e's, {} % against {} % of `circle_d`'s and {} % against {} % of "
+        ("its first hypothesis succeeds on {} % of f's frames against {} % each frame alone, on "
+         "{} % against {} % of e's, {} % against {} % of `circle_d`'s and {} % against {} % of "
          "`circles_a`'s (McNemar on the frames: p below 1e-{} for each",
          [percent(number(pairs[m][c])) for m in markers for c in ("success_a", "success_b")] +
          [str(-math.ceil(math.log10(worst_p)))]),
-        ("tracking mode is better on {}, {}, {} and {} of the {} videos and worse on {}, {}, {} and "
-         "{}",
+        ("tracking mode is better on {}, {}, {} and {} of the {} videos and worse on {}, {}, {} "
+         "and {}",
          [pairs[m]["videos_a_better"] for m in markers] + [pairs[markers[0]]["videos"]] +
          [pairs[m]["videos_b_better"] for m in markers]),
     ]
