@@ -848,19 +848,26 @@ CircleTracker::FitOnPixels CircleTracker::ChooseTilt(const Rigid3& marker_from_p
     return (*fits)[i].result.fit.cam_from_marker;
   };
   const Rigid3 first = pose(0) * marker_from_paper;
+  const double limit = options_.max_carried_tilt_log_ratio;
+  const auto carried_for = [&](const Rigid3& on_paper, const Rigid3& other_on_paper) {
+    const Eigen::Vector3d predicted_normal = predicted->cam_from_paper.rotation.col(2);
+    const bool continues = on_paper.rotation.col(2).dot(predicted_normal) >=
+                           other_on_paper.rotation.col(2).dot(predicted_normal);
+    return (continues ? 1.0 : -1.0) * std::clamp(predicted->tilt_log_ratio, -limit, limit);
+  };
   if (fits->size() < 2 || !TiltsApart(pose(1) * marker_from_paper, first)) {
-    const bool ruled_out = TiltsApart(OtherTilt(first), first);
-    return {pose(0), std::nullopt, ruled_out ? std::numeric_limits<double>::infinity() : 0.0};
+    const Rigid3 other = OtherTilt(first);
+    if (!TiltsApart(other, first)) return {pose(0), std::nullopt, 0.0};
+    // The other tilt's fit was given up or ended on this one: ruled out, unless that is the
+    // tilt tracked, whose evidence then stands against this fit (the fit from the tracked tilt
+    // slid over, by an amount of likelihood unknown).
+    const double carried = predicted ? carried_for(first, other) : 0.0;
+    if (carried < 0.0) return {pose(0), std::nullopt, carried};
+    return {pose(0), std::nullopt, std::numeric_limits<double>::infinity()};
   }
   double evidence = (*fits)[1].log_ratio - (*fits)[0].log_ratio;
   if (predicted) {
-    const Eigen::Vector3d predicted_normal = predicted->cam_from_paper.rotation.col(2);
-    const bool first_continues =
-        first.rotation.col(2).dot(predicted_normal) >=
-        (pose(1) * marker_from_paper).rotation.col(2).dot(predicted_normal);
-    const double limit = options_.max_carried_tilt_log_ratio;
-    evidence +=
-        (first_continues ? 1.0 : -1.0) * std::clamp(predicted->tilt_log_ratio, -limit, limit);
+    evidence += carried_for(first, pose(1) * marker_from_paper);
     if (evidence < 0.0) {
       std::swap((*fits)[0], (*fits)[1]);
       evidence = -evidence;

@@ -202,9 +202,11 @@ class CircleTracker final : public Tracker {
   // The first of `fits` (ranked on the pixels) and the evidence for its tilt against the
   // circle's other: 2 ln Λ against the next fit where that one lies on the other tilt; else
   // infinite (the other ruled out), or 0 where the two tilts nearly coincide. In tracking mode
-  // (`predicted`), where the first two fits lie on the two tilts, the predicted pose's evidence
-  // (within max_carried_tilt_log_ratio) is added for the one whose normal is nearer its, and
-  // that fit goes first where the sum favours it.
+  // (`predicted`) the predicted pose's evidence (within max_carried_tilt_log_ratio) counts for
+  // the fit whose normal is nearer its: where the first two fits lie on the two tilts it is
+  // added, and the fit the sum favours goes first; where no fit lies on the tilt the evidence
+  // favours, the one fit left keeps that evidence against it (a fit from the tracked tilt slid
+  // to the other by a likelihood unknown), negative.
   template <class Result>
   FitOnPixels ChooseTilt(const Rigid3& marker_from_paper,
                          const PredictedPose* predicted,
