@@ -21,9 +21,7 @@ from collections import defaultdict
 
 import numpy as np
 
-
-def binomial_tail(n, p, k):
-    return sum(math.comb(n, i) * p**i * (1 - p) ** (n - i) for i in range(k, n + 1))
+import binomial
 
 
 def log_ratio_spread(reference):
@@ -85,7 +83,7 @@ def main():
     tests = 3 * args.cells
     threshold = args.alpha / tests
     lost_needed = math.ceil(math.log(threshold) / math.log(0.5))
-    success_power = binomial_tail(args.trials, args.success_drop, lost_needed)
+    success_power = binomial.at_least(args.trials, lost_needed, args.success_drop)
     spread, cells = log_ratio_spread(args.reference)
     if args.spread is not None:
         spread, cells = args.spread, 0

@@ -21,10 +21,11 @@ metres from the marker (the true distance, `distance_m`), and writes per tracker
 import argparse
 import csv
 import io
-import math
 import os
 import subprocess
 import sys
+
+import binomial
 
 SUCCESS_FRACTION = 0.1
 
@@ -50,14 +51,6 @@ def read_frames(run_dir):
 def success(row):
     error = row["position_error_m"]
     return error != "" and float(error) <= SUCCESS_FRACTION * float(row["distance_m"])
-
-
-def two_sided_sign_p(n, k):
-    """P of a split at least as uneven as k of n under a fair coin (exact, two-sided)."""
-    if n == 0:
-        return 1.0
-    tail = sum(math.comb(n, i) for i in range(0, min(k, n - k) + 1)) / 2 ** n
-    return min(1.0, 2 * tail)
 
 
 def compare(rows_a, rows_b, min_distance):
@@ -93,10 +86,10 @@ def compare(rows_a, rows_b, min_distance):
             "success_a": sum(a for a, _ in pairs) / len(pairs),
             "success_b": sum(b for _, b in pairs) / len(pairs),
             "only_a": only_a, "only_b": only_b,
-            "mcnemar_p": two_sided_sign_p(only_a + only_b, only_a),
+            "mcnemar_p": binomial.two_sided_sign_p(only_a + only_b, only_a),
             "videos": len(g["videos"]), "videos_a_better": a_better,
             "videos_b_better": b_better,
-            "sign_p": two_sided_sign_p(a_better + b_better, a_better),
+            "sign_p": binomial.two_sided_sign_p(a_better + b_better, a_better),
         })
     return out
 

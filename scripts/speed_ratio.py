@@ -22,12 +22,13 @@ with a message naming the program and the benchmark on bad input or a benchmark 
 """
 import argparse
 import json
-import math
 import os
 import re
 import statistics
 import subprocess
 import sys
+
+import binomial
 
 MIN_RUNS = 6
 MS_PER_UNIT = {"ns": 1e-6, "us": 1e-3, "ms": 1.0, "s": 1e3}
@@ -78,12 +79,9 @@ def median_interval(values, confidence=0.95):
     tail P(B < k) is at most (1 - confidence)/2."""
     n = len(values)
     ordered = sorted(values)
-    tail, k = 0.0, 0
-    while True:
-        next_tail = tail + math.comb(n, k) / 2.0**n  # P(B <= k)
-        if next_tail > (1.0 - confidence) / 2.0:
-            break
-        tail, k = next_tail, k + 1
+    k = 0
+    while binomial.at_most(n, k) <= (1.0 - confidence) / 2.0:
+        k += 1
     if k == 0:
         raise SpeedRatioError(f"{n} runs give no {confidence:.0%} interval: {MIN_RUNS} at least")
     return statistics.median(ordered), ordered[k - 1], ordered[n - k]
