@@ -53,7 +53,9 @@ struct CircleTrackerOptions {
   // The fit on the pixels from the circle's other tilt (above) is returned as a second
   // hypothesis where it explains them nearly as well as the first: 2 ln Λ against it at most
   // this (4: odds of at least e^-2, 1 to 7.4; on the paper's blur sweep 12 of 13 wrong choices
-  // of e's and f's tilt at blur σ 4-5 were within 3.6 of the right one).
+  // of e's and f's tilt at blur σ 4-5 were within 3.6 of the right one). In tracking mode the
+  // fit straight from the prediction, which fits one tilt, runs only where the evidence carried
+  // for it exceeds this.
   double max_second_hypothesis_log_ratio = 4.0;
   // Tracking mode weighs the circle's two tilts over the frames: each frame's 2 ln Λ between its
   // fits on the two is added to the evidence the frames before left for the tilt they tracked,
@@ -145,9 +147,12 @@ class CircleTracker final : public Tracker {
     Eigen::VectorXd levels;      // offset and gain per channel (PixelFit::levels)
   };
   // Tracking mode: the pose predicted for the frame, and the evidence the frames before left for
-  // its tilt (2 ln of the odds against the circle's other).
+  // the tilt of the last pose, the plane's normal `tracked_normal` (2 ln of the odds against the
+  // circle's other). The prediction's own normal may have crossed over: far away a frame's tilt
+  // is uncertain by degrees, and the motion from the last two carries that on.
   struct PredictedPose {
     Rigid3 cam_from_paper;
+    Eigen::Vector3d tracked_normal;
     double tilt_log_ratio = 0.0;
   };
 
@@ -156,11 +161,13 @@ class CircleTracker final : public Tracker {
   // The fit on the disks' pixels (a-d) from the predicted pose, at the last frame's blur, noise
   // and levels, with the checks of a detection that need no edge points: the marker's image within
   // the frame, its contrast (each channel's gain) within kMaxContrastChange of the last frame's,
-  // the residuals' noise at most kMaxNoiseGrowth times the last frame's, the other tilt ruled out
-  // by the fit's information, and the printed design.
+  // the residuals' noise at most kMaxNoiseGrowth times the last frame's, the tilt the one that was
+  // predicted and settled by the frames before (`predicted`'s evidence above
+  // max_second_hypothesis_log_ratio), and the printed design. One fit does not measure its other
+  // tilt's likelihood, so the evidence carried stands.
   TrackResult TrackOnPixels(const Observation& observation,
                             const CircleGeometry& geometry,
-                            const Rigid3& predicted_cam_from_paper,
+                            const PredictedPose& predicted,
                             const PixelFitFound& last);
   // The check of the printed design at a pose (CheckPrintedAppearance), and the result: found,
   // with `second_hypothesis` after the pose where given, and the pose kept for the next frame's
@@ -181,6 +188,11 @@ class CircleTracker final : public Tracker {
   // Whether the normals of two poses' planes (the marker's, seen from the camera) lie more than
   // min_branch_angle_rad apart: the circle's two tilts told apart.
   bool TiltsApart(const Rigid3& cam_from_plane, const Rigid3& other) const;
+  // Whether a pose continues the tilt tracked: its plane's normal is nearer the tracked one
+  // (PredictedPose::tracked_normal) than the normal of its other tilt (`other`) is.
+  static bool ContinuesTilt(const Rigid3& cam_from_paper,
+                            const Rigid3& other,
+                            const PredictedPose& predicted);
   // Where the fit on the pixels starts: the refined pose (`cam_from_paper`, whose edge
   // residual is `edge_rms_px`), and the circle's other tilt where it may be the one seen.
   std::vector<Rigid3> PixelFitStarts(const RefinementProblem& problem,
@@ -202,9 +214,9 @@ class CircleTracker final : public Tracker {
   // The first of `fits` (ranked on the pixels) and the evidence for its tilt against the
   // circle's other: 2 ln Λ against the next fit where that one lies on the other tilt; else
   // infinite (the other ruled out), or 0 where the two tilts nearly coincide. In tracking mode
-  // (`predicted`) the predicted pose's evidence (within max_carried_tilt_log_ratio) counts for
-  // the fit whose normal is nearer its: where the first two fits lie on the two tilts it is
-  // added, and the fit the sum favours goes first; where no fit lies on the tilt the evidence
+  // (`predicted`) the evidence carried (within max_carried_tilt_log_ratio) counts for the fit
+  // that continues the tilt tracked (ContinuesTilt): where the first two fits lie on the two tilts
+  // it is added, and the fit the sum favours goes first; where no fit lies on the tilt the evidence
   // favours, the one fit left keeps that evidence against it (a fit from the tracked tilt slid
   // to the other by a likelihood unknown), negative.
   template <class Result>
