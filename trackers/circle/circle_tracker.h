@@ -161,8 +161,8 @@ class CircleTracker final : public Tracker {
   // The fit on the disks' pixels (a-d) from the predicted pose, at the last frame's blur, noise
   // and levels, with the checks of a detection that need no edge points: the marker's image within
   // the frame, its contrast (each channel's gain) within kMaxContrastChange of the last frame's,
-  // the residuals' noise at most kMaxNoiseGrowth times the last frame's, the tilt the one that was
-  // predicted and settled by the frames before (`predicted`'s evidence above
+  // the residuals' noise at most kMaxNoiseGrowth times the last frame's, the tilt the one tracked
+  // (ContinuesTilt) and settled by the frames before (`predicted`'s evidence above
   // max_second_hypothesis_log_ratio), and the printed design. One fit does not measure its other
   // tilt's likelihood, so the evidence carried stands.
   TrackResult TrackOnPixels(const Observation& observation,
