@@ -530,8 +530,8 @@ TEST(CircleTracker, TrackingOnThePixelsGivesWayWhereItsChecksFail) {
 // does not settle which is seen: tracking on the pixels, which fits one, gives way to the search,
 // which fits both, until the frames' evidence for one exceeds max_second_hypothesis_log_ratio.
 // circles_a at 1 m, 3° of tilt, sharp: the first frame's fits on the two tilts lie 2 ln Λ 0.6
-// apart, and no later frame's fits settle it. (When the straight fit took its other tilt's
-// distance in standard errors, squared, for that evidence, it ran on every frame from the third.)
+// apart, and no later frame's fits settle it. (Without the condition on the evidence, the
+// straight fit ran on every frame from the third.)
 TEST(CircleTracker, TrackingOnThePixelsGivesWayWhereTheTiltIsUnsettled) {
   const MarkerSpec marker = Load("circles_a");
   const Camera camera = FrameRequest().scene.camera;
