@@ -864,13 +864,9 @@ CircleTracker::FitOnPixels CircleTracker::ChooseTilt(const Rigid3& marker_from_p
     if (!TiltsApart(other, first)) return {pose(0), std::nullopt, 0.0};
     // The other tilt's fit was given up or ended on this one: ruled out, unless that is the
     // tilt tracked, whose evidence then stands against this fit (the fit from the tracked tilt
-    // slid over, by an amount of likelihood unknown). A fit on the tilt tracked rules the other
-    // out whatever its evidence: an evidence against the tilt tracked, left by such a slide,
-    // stood at every frame after it (on an approach at 4° of tilt, from 1.9 m to 0.5 m), each
-    // frame taking the search for a tilt no fit found.
-    if (predicted && !ContinuesTilt(first, other, *predicted) && predicted->tilt_log_ratio > 0.0) {
-      return {pose(0), std::nullopt, carried_for(first, other)};
-    }
+    // slid over, by an amount of likelihood unknown).
+    const double carried = predicted ? carried_for(first, other) : 0.0;
+    if (carried < 0.0) return {pose(0), std::nullopt, carried};
     return {pose(0), std::nullopt, std::numeric_limits<double>::infinity()};
   }
   double evidence = (*fits)[1].log_ratio - (*fits)[0].log_ratio;
