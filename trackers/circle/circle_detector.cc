@@ -169,32 +169,6 @@ const Hole* FindHole(const Candidate& c,
   return best;
 }
 
-// The conic of the ellipse `conic` moved by `shift_px`: C' = Sᵀ C S, S taking x' to x' - shift.
-Eigen::Matrix3d ConicMovedBy(const Eigen::Matrix3d& conic, const Eigen::Vector2d& shift_px) {
-  Eigen::Matrix3d back = Eigen::Matrix3d::Identity();
-  back.topRightCorner<2, 1>() = -shift_px;
-  return CanonicalConic(back.transpose() * conic * back);
-}
-
-// The centre of the ink in `window` of one channel: the centroid of the pixels on the ink side
-// of Otsu's threshold after smoothing by `sigma_px`; nullopt where the window shows no ink.
-std::optional<Eigen::Vector2d> InkCentroid(const cv::Mat& channel,
-                                           const cv::Rect& window,
-                                           bool ink_dark,
-                                           double sigma_px) {
-  if (window.width < 8 || window.height < 8) return std::nullopt;
-  cv::Mat smoothed, ink;
-  cv::GaussianBlur(channel(window), smoothed, cv::Size(0, 0), sigma_px);
-  cv::threshold(smoothed,
-                ink,
-                0,
-                255,
-                (ink_dark ? cv::THRESH_BINARY_INV : cv::THRESH_BINARY) | cv::THRESH_OTSU);
-  const cv::Moments m = cv::moments(ink, true);
-  if (m.m00 <= 0.0) return std::nullopt;
-  return Eigen::Vector2d(window.x + m.m10 / m.m00, window.y + m.m01 / m.m00);
-}
-
 }  // namespace
 
 bool CircleDetectorOptions::IsValid(std::string* error) const {
@@ -757,45 +731,17 @@ std::optional<MarkerDetection> CircleDetector::Detect(
   const Eigen::Vector2d patch_offset = offset + Eigen::Vector2d(patch.x, patch.y);
   shift.topRightCorner<2, 1>() = -patch_offset;
   for (size_t i = 0; i < initial.size(); ++i) {
-    const auto fit_edges_from = [&](const Eigen::Matrix3d& start) {
-      return FitEdgesInPasses(i,
-                              smoothed[plans_[i].channel],
-                              start,
-                              detection.smoothing_sigma_px + 1.0,
-                              passes,
-                              !from_prediction,
-                              smooth_the_rest);
-    };
-    FittedEdges fitted = fit_edges_from(initial[i]);
-    bool recentred_start = false;
-    if (!fitted.error.empty() && from_prediction) {
-      // A prediction off by more than its rays reach (a camera turned by 1° between frames moves
-      // the image by 10-15 px): one more pass from the ellipse moved onto the ink within half
-      // its semi-minor axis around it (the tracker's max_prediction_error takes no more). Twice,
-      // each window centred on the last centroid: a window cutting the disk pulls its centroid
-      // toward the window's centre.
-      const cv::Mat& channel = raw[plans_[i].channel];
-      const Ellipse predicted = EllipseFromConic(initial[i]);
-      const int reach = static_cast<int>(std::ceil(0.5 * predicted.semi_minor));
-      Eigen::Matrix3d recentred = initial[i];
-      for (int round = 0; round < 2; ++round) {
-        const cv::Rect window = (box_around(recentred, reach) + patch.tl()) &
-                                cv::Rect(0, 0, channel.cols, channel.rows);
-        const std::optional<Eigen::Vector2d> ink =
-            InkCentroid(channel, window, plans_[i].ink_dark, detection.smoothing_sigma_px);
-        if (!ink) break;
-        recentred =
-            ConicMovedBy(initial[i], *ink - Eigen::Vector2d(patch.x, patch.y) - predicted.center);
-      }
-      smooth(channel, box_around(recentred, first_reach_px) & patch, &smoothed[plans_[i].channel]);
-      fitted = fit_edges_from(recentred);
-      recentred_start = true;
-    }
+    FittedEdges fitted = FitEdgesInPasses(i,
+                                          smoothed[plans_[i].channel],
+                                          initial[i],
+                                          detection.smoothing_sigma_px + 1.0,
+                                          passes,
+                                          !from_prediction,
+                                          smooth_the_rest);
     if (!fitted.error.empty()) return fail(fitted.error);
     DetectedCircle circle;
     circle.edges = std::move(fitted.edges);
     circle.edge_passes = fitted.passes;
-    circle.recentred = recentred_start;
     // The edge contrast must stand out of the noise left after smoothing (a Gaussian of σ_s
     // divides white noise by 2√π σ_s): blobs of pure noise reach about 6 of those σ.
     const double contrast =

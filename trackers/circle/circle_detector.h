@@ -82,8 +82,6 @@ struct DetectedCircle {
   Eigen::Matrix3d conic_px = Eigen::Matrix3d::Zero();  // fitted to the edges, canonical
   CircleEdges edges;
   int edge_passes = 0;  // run
-  // Its predicted ellipse was moved onto the ink around it first (beyond its rays' reach).
-  bool recentred = false;
 };
 
 struct MarkerDetection {
@@ -104,8 +102,7 @@ class CircleDetector {
   // pixels. nullopt, with `why` set, when the marker is not found whole.
   // With `predicted_conics_px` (one per circle, from the previous pose), markers whose pose
   // needs no detected dot skip the candidate search and take one edge pass from the
-  // prediction (the paper's step 5); a circle whose rays miss its edge there takes one more
-  // from its ellipse moved onto the ink around it (DetectedCircle::recentred).
+  // prediction (the paper's step 5).
   std::optional<MarkerDetection> Detect(const Image8& image,
                                         const cv::Rect& roi,
                                         const std::vector<Eigen::Matrix3d>* predicted_conics_px,

@@ -505,7 +505,6 @@ TrackResult CircleTracker::TrackIn(const Observation& observation,
     diagnostics_.conics_px.push_back(circle.conic_px);
     diagnostics_.edges.push_back(circle.edges.points_px);
     diagnostics_.edge_passes.push_back(circle.edge_passes);
-    diagnostics_.recentred_prediction |= circle.recentred;
     diagnostics_.blur_sigma_px = std::max(diagnostics_.blur_sigma_px, circle.edges.sigma_px);
     RefinementCircle rc;
     rc.center = geometry.centers[i];

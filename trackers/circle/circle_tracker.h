@@ -97,7 +97,6 @@ struct CircleTrackerOptions {
 struct CircleDiagnostics {
   bool used_tracking_region = false;
   bool used_predicted_ellipses = false;  // the result is one edge pass from the predicted ellipses
-  bool recentred_prediction = false;     // ... one of them first moved onto the ink around it
   // The result is the fit on the pixels from the predicted pose (no detector; conics_px and m1_px
   // are the fitted pose's image, edges empty).
   bool tracked_on_pixels = false;

@@ -80,7 +80,7 @@ void TimeLastFramesOfVideos(benchmark::State& state,
                             const std::vector<std::vector<Image8>>& videos) {
   const Camera camera;
   CircleTracker tracker;
-  size_t i = 0, ok = 0, in_region = 0, from_prediction = 0, recentred = 0, on_pixels = 0;
+  size_t i = 0, ok = 0, in_region = 0, from_prediction = 0, on_pixels = 0;
   for (auto _ : state) {
     const size_t k = i++ % videos.front().size();
     state.PauseTiming();
@@ -90,7 +90,6 @@ void TimeLastFramesOfVideos(benchmark::State& state,
     ok += tracker.Track({&videos.back()[k], &camera, &marker}).status == TrackStatus::kOk;
     in_region += tracker.diagnostics().used_tracking_region;
     from_prediction += tracker.diagnostics().used_predicted_ellipses;
-    recentred += tracker.diagnostics().recentred_prediction;
     on_pixels += tracker.diagnostics().tracked_on_pixels;
   }
   state.counters["ok_fraction"] = static_cast<double>(ok) / static_cast<double>(i);
@@ -98,8 +97,6 @@ void TimeLastFramesOfVideos(benchmark::State& state,
   // Found by the edge pass from the predicted ellipses (else by the search of the region).
   state.counters["predicted_fraction"] =
       static_cast<double>(from_prediction) / static_cast<double>(i);
-  // ... after an ellipse was moved onto the ink around it (its rays missed the edge).
-  state.counters["recentred_fraction"] = static_cast<double>(recentred) / static_cast<double>(i);
   // Found by the fit on the pixels from the predicted pose, without the detector.
   state.counters["on_pixels_fraction"] = static_cast<double>(on_pixels) / static_cast<double>(i);
 }
