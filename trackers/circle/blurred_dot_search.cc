@@ -150,9 +150,13 @@ void BlurredDotSearch::FitDisk() {
   disk_.outside_level = 255.0 * theta[2];
 }
 
-bool BlurredDotSearch::Passes(const FoundDot& found, double contrast) const {
-  return found.significance >= options_.min_significance &&
-         std::abs(found.contrast / contrast - 1.0) <= options_.contrast_tolerance;
+bool BlurredDotSearch::Passes(const FoundDot& found, double contrast, double tolerance) const {
+  if (!(found.significance >= options_.min_significance)) return false;
+  const double gamma = found.contrast / contrast;
+  const double standard_error = gamma / found.significance;
+  return std::abs(gamma - 1.0) <=
+         std::min(options_.contrast_tolerance,
+                  tolerance + options_.contrast_standard_errors * standard_error);
 }
 
 double BlurredDotSearch::Reach(double radius_px) const {
@@ -207,7 +211,8 @@ FoundDot BlurredDotSearch::FitAt(const Eigen::Vector2d& p,
 
 std::optional<FoundDot> BlurredDotSearch::Find(const std::vector<Eigen::Vector2d>& positions,
                                                double radius_px,
-                                               double contrast) const {
+                                               double contrast,
+                                               double tolerance) const {
   if (positions.empty() || area_.empty() || contrast == 0.0) return std::nullopt;
   const double reach = Reach(radius_px);
   auto fit = [&](const Eigen::Vector2d& p, const Eigen::Vector2d& center, double radius) {
@@ -245,7 +250,7 @@ std::optional<FoundDot> BlurredDotSearch::Find(const std::vector<Eigen::Vector2d
       }
     }
   }
-  if (!Passes(best, contrast)) return std::nullopt;
+  if (!Passes(best, contrast, tolerance)) return std::nullopt;
   return best;
 }
 

@@ -18,6 +18,8 @@ namespace {
 
 constexpr double kBlurPx = 6.0;
 constexpr double kNoiseVar = 0.0005;  // σ 5.7 levels: next to no clipping at the inks
+const double kCenterTolerance = BlurredDotOptions().contrast_tolerance;
+const double kFeatureTolerance = BlurredDotOptions().feature_dot_tolerance;
 
 struct Scene {
   MarkerSpec marker = LoadMarkerYaml("scenarios/markers/circle_d.yaml");
@@ -78,20 +80,22 @@ TEST(BlurredDotSearch, FindsBothDotsWhereThePrintPutsThem) {
   const Eigen::Vector2d m1 = scene.Project(Eigen::Vector2d(0.07, 0.0));
   const double radius = scene.DotRadiusPx();
 
-  const std::optional<FoundDot> center = search.Find(Scene::Around(m0, 4.0), radius, -1.0);
+  const std::optional<FoundDot> center =
+      search.Find(Scene::Around(m0, 4.0), radius, -1.0, kCenterTolerance);
   ASSERT_TRUE(center);
   EXPECT_LT((center->position_px - m0).norm(), 0.3);
   EXPECT_NEAR(center->contrast, -1.0, 0.1);
   EXPECT_GT(center->significance, 50.0);
 
-  const std::optional<FoundDot> feature = search.Find(Scene::Around(m1, 4.0), radius, 1.0);
+  const std::optional<FoundDot> feature =
+      search.Find(Scene::Around(m1, 4.0), radius, 1.0, kFeatureTolerance);
   ASSERT_TRUE(feature);
   EXPECT_LT((feature->position_px - m1).norm(), 0.3);
   EXPECT_NEAR(feature->contrast, 1.0, 0.1);
 
   // Asked for a dot of the other colour, it finds none.
-  EXPECT_FALSE(search.Find(Scene::Around(m0, 4.0), radius, 1.0));
-  EXPECT_FALSE(search.Find(Scene::Around(m1, 4.0), radius, -1.0));
+  EXPECT_FALSE(search.Find(Scene::Around(m0, 4.0), radius, 1.0, kFeatureTolerance));
+  EXPECT_FALSE(search.Find(Scene::Around(m1, 4.0), radius, -1.0, kCenterTolerance));
 }
 
 // From the edge points' values (blur low, levels those of the clipped noise, the noise as the
@@ -112,7 +116,7 @@ TEST(BlurredDotSearch, FitsTheDisksBlurAndLevels) {
   EXPECT_NEAR(search.disk().outside_level, 255.0, 10.0);
   const Eigen::Vector2d m0 = scene.Project(Eigen::Vector2d(0.0, 0.0));
   const std::optional<FoundDot> center =
-      search.Find(Scene::Around(m0, 4.0), scene.DotRadiusPx(), -1.0);
+      search.Find(Scene::Around(m0, 4.0), scene.DotRadiusPx(), -1.0, kCenterTolerance);
   ASSERT_TRUE(center);
   EXPECT_LT((center->position_px - m0).norm(), 1.0);
   EXPECT_NEAR(center->contrast, -1.0, BlurredDotOptions().contrast_tolerance);
@@ -127,8 +131,37 @@ TEST(BlurredDotSearch, FindsNoDotOnADiskPrintedWithout) {
   const cv::Mat image = Grey(frame);
   const BlurredDotSearch search(image, scene.disk, scene.Area(), 255.0 * std::sqrt(kNoiseVar));
   const double radius = scene.DotRadiusPx();
-  EXPECT_FALSE(search.Find(Scene::Around(scene.Project({0.0, 0.0}), 4.0), radius, -1.0));
-  EXPECT_FALSE(search.Find(Scene::Around(scene.Project({0.07, 0.0}), 4.0), radius, 1.0));
+  EXPECT_FALSE(
+      search.Find(Scene::Around(scene.Project({0.0, 0.0}), 4.0), radius, -1.0, kCenterTolerance));
+  EXPECT_FALSE(
+      search.Find(Scene::Around(scene.Project({0.07, 0.0}), 4.0), radius, 1.0, kFeatureTolerance));
+}
+
+// A feature dot printed grey, at 0.6 of the designed contrast: within contrast_tolerance of it,
+// but its contrast is measured to a few hundredths here, so the dot is not the design's.
+// Printed as designed in the same scene, it is found (FindsBothDotsWhereThePrintPutsThem).
+TEST(BlurredDotSearch, RejectsADotWhoseContrastIsSurelyNotTheDesigns) {
+  const Scene scene;
+  MarkerSpec faint = scene.marker;
+  ASSERT_EQ(faint.layers.size(), 3u);
+  const auto* feature_dot = std::get_if<DiskShape>(&faint.layers[2].shape);
+  ASSERT_TRUE(feature_dot && feature_dot->center.isApprox(Eigen::Vector2d(0.07, 0.0)));
+  faint.layers[2].color = Rgb(0.4, 0.4, 0.4);
+  const RenderedFrame frame = RenderMarker(faint, scene.truth, kNoiseVar, kBlurPx, 5);
+  BlurredDotOptions given_disk;
+  given_disk.fit_disk = false;
+  const BlurredDotSearch search(
+      Grey(frame), scene.disk, scene.Area(), 255.0 * std::sqrt(kNoiseVar), given_disk);
+  const std::vector<Eigen::Vector2d> around_m1 =
+      Scene::Around(scene.Project(Eigen::Vector2d(0.07, 0.0)), 4.0);
+  const double radius = scene.DotRadiusPx();
+  EXPECT_FALSE(search.Find(around_m1, radius, 1.0, kFeatureTolerance));
+  // What contrast_tolerance alone would take: the dot, at about 0.6 of the designed contrast.
+  const std::optional<FoundDot> within_tolerance =
+      search.Find(around_m1, radius, 1.0, given_disk.contrast_tolerance);
+  ASSERT_TRUE(within_tolerance);
+  EXPECT_NEAR(within_tolerance->contrast, 0.6, 0.1);
+  EXPECT_GT(within_tolerance->significance, 15.0);
 }
 
 }  // namespace

@@ -427,7 +427,8 @@ std::optional<CircleDetector::DiskWithDots> CircleDetector::BlurredDots(
       }
     }
   }
-  const std::optional<FoundDot> center = search.Find(positions, dot_px, center_dot_contrast_);
+  const std::optional<FoundDot> center = search.Find(
+      positions, dot_px, center_dot_contrast_, options_.blurred_dots.contrast_tolerance);
   if (!center) return std::nullopt;
   found.m0_px = center->position_px;
   if (geometry_.roll_from_design) return found;
@@ -443,7 +444,8 @@ std::optional<CircleDetector::DiskWithDots> CircleDetector::BlurredDots(
     positions.push_back(found.m0_px + ring * (e.semi_major * std::cos(theta) * major +
                                               e.semi_minor * std::sin(theta) * minor));
   }
-  const std::optional<FoundDot> feature = search.Find(positions, dot_px, feature_dot_contrast_);
+  const std::optional<FoundDot> feature = search.Find(
+      positions, dot_px, feature_dot_contrast_, options_.blurred_dots.feature_dot_tolerance);
   if (!feature) return std::nullopt;
   found.m1_px = feature->position_px;
   return found;
