@@ -2,7 +2,8 @@
 // negative_scenes.h, 560 frames of clutter and other marker systems) no circle marker a-f
 // may be reported, in detection mode or in tracking mode after a frame that showed it (the
 // set's frames of e and f do not count for those two). Under the sanitizers, every fourth frame
-// (testing/sanitized_build.h). One frame that needs the design check's blocks of samples. And,
+// (testing/sanitized_build.h). One frame that needs the design check's blocks of samples, and one
+// under heavy blur that needs the feature dot's contrast to be the design's. And,
 // when asked, the rate on fresh draws of the set.
 #include <gtest/gtest.h>
 
