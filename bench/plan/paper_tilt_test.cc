@@ -92,8 +92,8 @@ TEST(PaperBlurSweep, CirclesAChoosesTheTiltAsOftenAsFromTheTruePoseAndItsMirror)
 
 // circle_d at σ 5 and 6, where its dots are found by their blurred images
 // (blurred_dot_search.h): the likelier fit is wrong on 28 and 22 of 100 frames, the tracker on
-// 29 and 25 (only ours 1 and 3, only that fit's none; measured). From σ 7 on the tracker
-// loses frames that fit gets right (the centre dot's test: README).
+// 29 and 27 (only ours 1 and 5, only that fit's none; measured). From σ 7 on the tracker
+// loses frames that fit gets right, where it finds no marker (README).
 TEST(PaperBlurSweep, CircleDChoosesTheTiltAsOftenAsFromTheTruePoseAndItsMirror) {
   if (kSanitizedBuild) GTEST_SKIP() << "200 frames under heavy blur: the optimised build's";
   const std::map<double, TiltChoiceCounts> cells =

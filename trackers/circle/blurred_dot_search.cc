@@ -90,14 +90,25 @@ void BlurredDotSearch::FitDisk() {
   auto evaluate = [&](const Eigen::Vector3d& t, Eigen::Matrix3d* JtJ, Eigen::Vector3d* Jtr) {
     modelled.clear();
     BlurredEllipse blurred(*chords, t[0], BlurredEllipse::NodesFor(1.25 * semi_major / t[0]));
+    // Each dot blurred, G(s, z) with s = ρ/σ and z = (ρ - |x - p|)/σ.
+    std::vector<BlurredDiskProfile> dots;
+    for (const DotInFit& dot : disk_.dots) dots.emplace_back(dot.radius_px / t[0]);
     JtJ->setZero();
     Jtr->setZero();
     double cost = 0.0;
     for (size_t i = 0; i < pixels.size(); ++i) {
       const BlurredEllipseValue g = blurred.At(pixels[i]);
-      const ClippedMeanValue c = ClippedMean(t[2] + (t[1] - t[2]) * g.value, noise);
+      double ink = g.value, d_ink_d_sigma = g.gradient[5];
+      for (size_t k = 0; k < dots.size(); ++k) {
+        const DotInFit& dot = disk_.dots[k];
+        const double beyond = dot.radius_px - (pixels[i] - dot.position_px).norm();
+        const ProfileValue v = dots[k].At(beyond / t[0]);
+        ink += dot.contrast * v.value;
+        d_ink_d_sigma -= dot.contrast * (v.d_ds * dot.radius_px + v.d_dz * beyond) / (t[0] * t[0]);
+      }
+      const ClippedMeanValue c = ClippedMean(t[2] + (t[1] - t[2]) * ink, noise);
       const Eigen::Vector3d J =
-          c.d_mu * Eigen::Vector3d((t[1] - t[2]) * g.gradient[5], g.value, 1.0 - g.value);
+          c.d_mu * Eigen::Vector3d((t[1] - t[2]) * d_ink_d_sigma, ink, 1.0 - ink);
       const double residual = values[i] - c.mean;
       modelled.push_back({residual, c.mean});
       *JtJ += J * J.transpose();

@@ -9,9 +9,10 @@
 // The disk first (FitDisk, unless fit_disk is off): its blur σ and its levels as printed, in
 // and out, are fitted on its pixels between fit_band of its radius (around the edge, clear of
 // the dots' bodies) by Levenberg-Marquardt on y(x) = c(μ(x)), μ = out + (in - out) D_σ, D_σ the
-// disk's exact blurred image (blurred_ellipse.h; the edge points' ellipse), at the noise its
-// residuals show (the estimate from the image reads clipped paper: 14.7 of 36 levels on d's
-// frames at σ² = 0.02).
+// disk's exact blurred image (blurred_ellipse.h; the edge points' ellipse), plus κ T_σ for each
+// dot whose place is known (BlurredDisk::dots: the detector gives d's and e's centre dot at the
+// ellipse's centre), at the noise its residuals show (the estimate from the image reads clipped
+// paper: 14.7 of 36 levels on d's frames at σ² = 0.02).
 // The edge points' blur is low by a fifth at σ = 8 px and σ² = 0.02, their levels the clipped.
 //
 // Then a dot (Find): at each trial position p, the pixels within ρ + window_sigmas σ of p are
@@ -48,12 +49,13 @@ struct BlurredDotOptions {
   // residuals', so a disk that is not one (a blurred square, a blob of clutter) widens it.
   double contrast_standard_errors = 3.0;
   // The feature dot's tolerance (the centre's is contrast_tolerance). On d's frames at 1 m and
-  // blur σ 5-10 (the paper's poses, 240 frames) its γ was 0.89-1.20 without noise and 0.71-1.32
-  // at σ² = 0.02, there within 0.25 + 0.73 SE; on the frames of clutter under such blur that d was
-  // found in (30 of 3360, fresh draws of the negative set: results/circle_false_positives.md)
-  // 0.51-1.48, and 10 of them beyond 0.25 + 3 SE. The centre dot's γ was 0.50-0.99 on the same
-  // true frames without noise (the disk's fitted inside level takes part of the dot's blurred
-  // light), so it keeps contrast_tolerance alone.
+  // blur σ 5-10 (the paper's poses, 240 frames) the feature dots found had γ of 0.79-1.28 without
+  // noise (1 of 177 beyond 0.25 + 3 SE, at σ 10) and 0.61-1.26 at σ² = 0.02 (all within 0.25 +
+  // 1.5 SE). On the frames of clutter under such blur that d was found in (30 of 3360, fresh draws
+  // of the negative set, before the centre dot was in the disk's fit:
+  // results/circle_false_positives.md) they had 0.51-1.48, and 10 of them lay beyond 0.25 + 3 SE.
+  // The centre dot's γ was 0.51-1.13 on the same true frames without noise, so it keeps
+  // contrast_tolerance alone.
   double feature_dot_tolerance = 0.25;
   double fit_band_inner = 0.6;   // the disk's fit: pixels between these fractions of its
   double fit_band_outer = 1.45;  // radius (d's dots reach to 0.2 and from 1.55)
@@ -66,11 +68,20 @@ struct BlurredDotOptions {
   int max_area_pixels = 40000;
 };
 
+// A dot of the design where it is known, in the disk's fit: its blurred light reaches the band
+// the disk is fitted on.
+struct DotInFit {
+  Eigen::Vector2d position_px = Eigen::Vector2d::Zero();
+  double radius_px = 0.0;
+  double contrast = 0.0;  // its step in units of the disk's (-1 paper in the disk, +1 ink beside)
+};
+
 struct BlurredDisk {
   Eigen::Matrix3d conic_px = Eigen::Matrix3d::Zero();  // image pixels
   double sigma_px = 0.0;                               // the image's blur (not the smoothing)
   double inside_level = 0.0;                           // 0-255, as printed (before clipping)
   double outside_level = 0.0;
+  std::vector<DotInFit> dots;  // modelled in the disk's fit (not in the dots' searches)
 };
 
 struct FoundDot {

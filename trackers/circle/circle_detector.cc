@@ -405,6 +405,8 @@ std::optional<CircleDetector::DiskWithDots> CircleDetector::BlurredDots(
   if (!searched) return std::nullopt;
   disk.inside_level = edges.inside_level;
   disk.outside_level = edges.outside_level;
+  // The centre dot, near the ellipse's centre, in the disk's fit.
+  if (center_dot_contrast_ != 0.0) disk.dots.push_back({e.center, dot_px, center_dot_contrast_});
   // The dots' reach: the feature dot's ring at Lx (d), the disk itself (e), and the blur (the
   // edge points' σ is low by up to a fifth under heavy blur and clipped noise).
   const double window = dot_px + options_.blurred_dots.window_sigmas * 1.5 * disk.sigma_px;
