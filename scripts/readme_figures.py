@@ -583,7 +583,7 @@ def circle_marker_phrases():
         ("d's success there is {}/{}/{} % at σ 4/5/6 against the bound's {}/{}/{} %",
          rates("circle_d", "fig7_blur", [4.0, 5.0, 6.0]) +
          rates("circle_d", "fig7_blur", [4.0, 5.0, 6.0], "success_at_bound")),
-        ("at σ 7 and 8, {} % and {} %", rates("circle_d", "fig7_blur", [7.0, 8.0])),
+        ("at σ 7-10, {}/{}/{}/{} %", rates("circle_d", "fig7_blur", [7.0, 8.0, 9.0, 10.0])),
         ("d is now found on {}-{} % of the frames at 2.5-3.5 m",
          [percent(min(found_far)), percent(max(found_far))]),
         ("and succeeds on {}/{}/{}/{}/{} % where `success_at_bound` says {}/{}/{}/{}/{} %; e on "

@@ -131,6 +131,9 @@ TEST(BlurredDotSearch, FitsTheDiskBesideItsCentreDot) {
   for (const double blur_px : {6.0, 9.0}) {
     Scene scene;
     MarkerSpec centre_dot_alone = scene.marker;
+    ASSERT_EQ(centre_dot_alone.layers.size(), 3u);
+    const auto* centre_dot = std::get_if<DiskShape>(&centre_dot_alone.layers[1].shape);
+    ASSERT_TRUE(centre_dot && centre_dot->center.isZero());
     centre_dot_alone.layers.resize(2);
     const RenderedFrame frame = RenderMarker(centre_dot_alone, scene.truth, 0.0, blur_px, 5);
     const double sigma = std::sqrt(blur_px * blur_px + 1.0 / 12.0);  // with the pixel's area
