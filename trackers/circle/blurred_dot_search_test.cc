@@ -164,10 +164,11 @@ TEST(BlurredDotSearch, FindsNoDotOnADiskPrintedWithout) {
   const cv::Mat image = Grey(frame);
   const BlurredDotSearch search(image, scene.disk, scene.Area(), 255.0 * std::sqrt(kNoiseVar));
   const double radius = scene.DotRadiusPx();
+  // Not even within the wider tolerance.
   EXPECT_FALSE(
       search.Find(Scene::Around(scene.Project({0.0, 0.0}), 4.0), radius, -1.0, kCenterTolerance));
   EXPECT_FALSE(
-      search.Find(Scene::Around(scene.Project({0.07, 0.0}), 4.0), radius, 1.0, kFeatureTolerance));
+      search.Find(Scene::Around(scene.Project({0.07, 0.0}), 4.0), radius, 1.0, kCenterTolerance));
 }
 
 // A feature dot printed grey, at 0.6 of the designed contrast: within contrast_tolerance of it,
