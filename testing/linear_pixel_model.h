@@ -1,6 +1,7 @@
 // A model for the pixel fits' own tests (pixel_fit_test, clipped_noise_test): linear in
-// θ = (angle-axis, translation, σ, offset, gain), so its cost is exactly quadratic, with a
-// known least-squares θ and a misfit off the model's range that stays at it. It lists its
+// (angle-axis, translation, σ², offset, gain), θ with σ² for σ, the parameters the fits step
+// along (SigmaAfterStep), so its cost is exactly quadratic in them, with a known least-squares θ
+// and a misfit off the model's range that stays at it. It lists its
 // pixels, takes a noise for its clipping as the photometric models do (unused: no pixel is
 // clipped), and counts its evaluations.
 #pragma once
@@ -40,7 +41,7 @@ class LinearPixelModel {
     Eigen::VectorXd misfit(shape.pixels);
     for (int row = 0; row < shape.pixels; ++row) misfit[row] = std::cos(1.3 * row);
     misfit -= a_ * (a_.transpose() * a_).ldlt().solve(a_.transpose() * misfit);
-    b_ = Eigen::VectorXd::Constant(shape.pixels, level_) + a_ * solution_ +
+    b_ = Eigen::VectorXd::Constant(shape.pixels, level_) + a_ * AlongSigmaSquared(solution_) +
          shape.misfit * misfit / misfit.norm();
   }
 
@@ -55,18 +56,22 @@ class LinearPixelModel {
   int evaluations() const { return evaluations_; }
   int evaluations_without_normal_equations() const { return without_normal_equations_; }
 
-  // Each row is a pixel whose value is b and whose modelled mean is level + A θ.
+  // Each row is a pixel whose value is b and whose modelled mean is level + A θ', θ' θ with σ²
+  // for σ (its Jacobian A with σ's column times 2σ).
   double Evaluate(const Eigen::VectorXd& theta,
                   Eigen::MatrixXd* jtj,
                   Eigen::VectorXd* jtr,
                   std::vector<ModelledPixel>* modelled) const {
     ++evaluations_;
     if (!jtj) ++without_normal_equations_;
-    const Eigen::VectorXd mean = Eigen::VectorXd::Constant(b_.size(), level_) + a_ * theta;
+    const Eigen::VectorXd mean =
+        Eigen::VectorXd::Constant(b_.size(), level_) + a_ * AlongSigmaSquared(theta);
     const Eigen::VectorXd r = mean - b_;
     if (jtj) {
-      *jtj = a_.transpose() * a_;
-      *jtr = a_.transpose() * r;
+      Eigen::MatrixXd jacobian = a_;
+      jacobian.col(6) *= 2.0 * theta[6];
+      *jtj = jacobian.transpose() * jacobian;
+      *jtr = jacobian.transpose() * r;
     }
     for (int row = 0; modelled && row < r.size(); ++row) {
       modelled->push_back({b_[row] - mean[row], mean[row]});
@@ -75,6 +80,11 @@ class LinearPixelModel {
   }
 
  private:
+  static Eigen::VectorXd AlongSigmaSquared(Eigen::VectorXd theta) {
+    theta[6] *= theta[6];
+    return theta;
+  }
+
   Eigen::MatrixXd a_;
   Eigen::VectorXd b_;
   double level_;

@@ -1,7 +1,8 @@
-// Levenberg-Marquardt on the normal equations (pixel_fit.h) on a model linear in θ, whose
-// cost is exactly quadratic: the first (lightly damped) step lands next to the least-squares
-// solution, and the fit stops there without evaluating a second step, whose predicted
-// decrease is below the tolerance; a step held at σ's bound is the best given that bound.
+// Levenberg-Marquardt on the normal equations (pixel_fit.h) on a model linear in θ with σ²
+// for σ (what the fit steps along), whose cost is exactly quadratic in them: the first (lightly
+// damped) step lands next to the least-squares solution, σ too, and the fit stops there without
+// evaluating a second step, whose predicted decrease is below the tolerance; a step held at σ's
+// bound is the best given that bound.
 #include "trackers/circle/pixel_fit.h"
 
 #include <gtest/gtest.h>
@@ -34,6 +35,9 @@ TEST(FitPixels, StopsAtTheMinimumOfAQuadraticCostWithoutASecondStep) {
   EXPECT_EQ(model.evaluations(), 2);
   const Eigen::VectorXd theta = PixelFitParameters(fit.cam_from_marker, fit.sigma_px, fit.levels);
   EXPECT_LT((theta - model.solution()).norm(), 1e-3 * model.solution().norm());
+  // σ from 1 to the least squares' 1.05 along σ²: a step of σ by the same δσ would have ended at
+  // 1 + (1.05² - 1)/2 = 1.05125.
+  EXPECT_NEAR(fit.sigma_px, 1.05, 2e-4);
 }
 
 // A start the model cannot evaluate (a disk whose image there is no ellipse) is a failed fit
@@ -54,25 +58,33 @@ TEST(FitPixels, GivesAFailedFitWhereTheStartCannotBeEvaluated) {
 
 // A step that would take σ (θ₆) below its bound takes it to the bound, and the other
 // parameters take the step that minimises the quadratic model given that move: its gradient
-// in them vanishes. A step that stays above the bound is the free one.
+// in them vanishes. A step that stays above the bound is the free one. σ moves along σ²
+// (SigmaAfterStep): the equations' δσ moves σ² by 2σ δσ.
 TEST(FitPixels, StepsWithinTheSigmaBound) {
   const LinearPixelModel model(kTwelvePixels);
   Eigen::MatrixXd jtj;
   Eigen::VectorXd jtr;
   Eigen::VectorXd theta = model.solution();
-  theta[6] = 0.6;  // the least squares' σ is 1.05: the free step raises σ by 0.45
+  theta[6] = 0.6;  // the least squares' σ is 1.05: the free step raises σ² by 1.05² - 0.6²
   model.Evaluate(theta, &jtj, &jtr, nullptr);
   const Eigen::VectorXd free = jtj.ldlt().solve(-jtr);
-  EXPECT_NEAR(free[6], 0.45, 1e-9);
+  EXPECT_NEAR(SigmaAfterStep(theta[6], free[6], 0.2), 1.05, 1e-9);
   EXPECT_LT((StepWithinSigmaBound(jtj, jtr, theta[6], 0.2) - free).norm(), 1e-12);
   // Now from σ = 1.5 with the bound at 1.2: the free step would end at 1.05.
   theta[6] = 1.5;
   model.Evaluate(theta, &jtj, &jtr, nullptr);
   const Eigen::VectorXd step = StepWithinSigmaBound(jtj, jtr, theta[6], 1.2);
-  EXPECT_NEAR(theta[6] + step[6], 1.2, 1e-12);
+  EXPECT_NEAR(SigmaAfterStep(theta[6], step[6], 1e-3), 1.2, 1e-12);
   Eigen::VectorXd gradient = jtj * step + jtr;  // the quadratic model's, halved
   gradient[6] = 0.0;
   EXPECT_LT(gradient.norm(), 1e-9 * jtr.norm());
+}
+
+// σ after a step: σ² moves by 2σ δσ, and σ stops at its bound.
+TEST(FitPixels, MovesSigmaAlongItsSquare) {
+  EXPECT_NEAR(SigmaAfterStep(0.4, -0.1, 0.02), std::sqrt(0.16 - 0.08), 1e-15);
+  EXPECT_NEAR(SigmaAfterStep(2.0, 0.5, 0.02), std::sqrt(4.0 + 2.0), 1e-15);
+  EXPECT_EQ(SigmaAfterStep(0.4, -0.3, 0.02), 0.02);
 }
 
 // The pixels listed at the result are those of the result (its step's evaluation), not the
