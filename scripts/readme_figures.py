@@ -686,7 +686,7 @@ SPEED_RATIOS_FROM = "The latest paired times beside `apriltag`"
 def speed_phrases():
     """The circle tracker's time over apriltag's in the same runs (the median and its interval,
     the latest table of results/speed.md), and the fit's share of full detection's
-    instructions."""
+    instructions (the table of shares after it)."""
     text = (ROOT / "results/speed.md").read_text()
     if text.count(SPEED_RATIOS_FROM) != 1:
         raise SystemExit(f"readme_figures: results/speed.md: '{SPEED_RATIOS_FROM}' not once")
@@ -699,7 +699,7 @@ def speed_phrases():
         if not found:
             raise SystemExit(f"readme_figures: results/speed.md: no ratio of {benchmark}")
         figures += [f"{float(x):.2f}" for x in found.groups()]
-    share = re.findall(r"\| the fit on the pixels \| [0-9.]+ \| ([0-9.]+) %", text)
+    share = re.findall(r"\| the fit on the pixels \| [0-9.]+ \| ([0-9.]+) %", after)
     if len(share) != 1:
         raise SystemExit("readme_figures: results/speed.md: the fit's share not once")
     return [

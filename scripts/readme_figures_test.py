@@ -3,6 +3,7 @@
 numbers compared with results/ and rewritten in place; a phrase not found once is named; and
 every phrase of the README is wired to its results (a number changed in the README is caught)."""
 import pathlib
+import re
 import sys
 import unittest
 
@@ -51,13 +52,16 @@ class PhraseTest(unittest.TestCase):
         self.assertEqual(readme_figures.check_phrases(text, problems), text)
         self.assertEqual(problems, [])
         # One number of a phrase changed in the README: caught, and only that phrase.
-        changed = text.replace("`circles_a` 1.16 → 6.64× the bound",
-                               "`circles_a` 1.17 → 6.64× the bound")
+        found = re.search(r"`circles_a` ([0-9.]+) → ([0-9.]+)× the bound", text)
+        self.assertIsNotNone(found)
+        first, second = found.groups()
+        altered = f"{float(first) + 0.01:.2f}"
+        changed = text.replace(found.group(0), f"`circles_a` {altered} → {second}× the bound")
         self.assertNotEqual(changed, text)
         problems = []
         self.assertEqual(readme_figures.check_phrases(changed, problems), text)
         self.assertEqual(len(problems), 1)
-        self.assertIn("(camera_response) shows ['1.17', '6.64', '21']", problems[0])
+        self.assertIn(f"(camera_response) shows ['{altered}', '{second}', ", problems[0])
 
 
 if __name__ == "__main__":
