@@ -1,9 +1,9 @@
 // A model for the pixel fits' own tests (pixel_fit_test, clipped_noise_test): linear in
 // (angle-axis, translation, σ², offset, gain), θ with σ² for σ, the parameters the fits step
 // along (SigmaAfterStep), so its cost is exactly quadratic in them, with a known least-squares θ
-// and a misfit off the model's range that stays at it. It lists its
-// pixels, takes a noise for its clipping as the photometric models do (unused: no pixel is
-// clipped), and counts its evaluations.
+// and a misfit off the model's range that stays at it. It lists its pixels, takes a noise for
+// its clipping as the photometric models do (unused: no pixel is clipped), and counts its
+// evaluations.
 #pragma once
 
 #include <Eigen/Cholesky>
