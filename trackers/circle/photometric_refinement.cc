@@ -499,8 +499,8 @@ int NearestBin(const EdgeLayer& layer,
                const Eigen::Vector2d& ideal_px,
                const Eigen::Vector2d& on_plane) {
   const Eigen::Vector2d radial = on_plane - layer.disk.center;
-  const int turn = static_cast<int>(
-      std::lround(std::atan2(radial.y(), radial.x()) / (2.0 * M_PI) * layer.bins));
+  const int turn =
+      static_cast<int>(std::lround(std::atan2(radial.y(), radial.x()) / (2.0 * M_PI) * layer.bins));
   int bin = (turn % layer.bins + layer.bins) % layer.bins;
   // A neighbour's bin, wrapped without a division (two of them a step took 17 % of the
   // search's time).
