@@ -100,8 +100,8 @@ constexpr int kMaxNoiseRefits = 4;
 // Measured at the levels of a white paper and a black ink (offset 0, gain 1), the noise at the
 // start was 1.06-1.13× what the result showed on the first frames of the circle tracker's speed
 // benchmark (circles_a; 0.99-1.03× at the levels fitted there), and 32 % of the fits were done
-// again: none now, and a fit takes 4.19 evaluations with the normal equations, from 4.71
-// (results/speed.md).
+// again: none now, and a fit took 4.19 evaluations with the normal equations, from 4.71
+// (results/speed.md; 3.0 since σ moves along σ², pixel_fit.h).
 template <class Model>
 std::optional<PixelFit> FitPixelsAtTheirNoise(Model& model,
                                               const Rigid3& cam_from_marker,
