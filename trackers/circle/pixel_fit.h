@@ -85,8 +85,11 @@ constexpr double kFirstRoundFunctionTolerance = 1e-4;
 // (∂/∂σ vanishes at σ = 0), and steps taken along σ halved σ at each evaluation from the start's
 // (0.40 -> 0.16 -> 0.07 -> 0.04 on the speed benchmark's frames, whose σ's bound is 0.02); along
 // σ², one step takes it there.
+inline double SquaredSigmaAfterStep(double sigma, double sigma_step) {
+  return sigma * sigma + 2.0 * sigma * sigma_step;
+}
 inline double SigmaAfterStep(double sigma, double sigma_step, double min_sigma) {
-  return std::sqrt(std::max(sigma * sigma + 2.0 * sigma * sigma_step, min_sigma * min_sigma));
+  return std::sqrt(std::max(SquaredSigmaAfterStep(sigma, sigma_step), min_sigma * min_sigma));
 }
 
 // The step δ of the damped normal equations (damped δ = -Jᵀr) for θ, σ (θ₆, now `sigma`) held
@@ -100,7 +103,7 @@ inline Eigen::VectorXd StepWithinSigmaBound(const Eigen::MatrixXd& damped,
                                             double sigma,
                                             double min_sigma) {
   Eigen::VectorXd step = damped.ldlt().solve(-jtr);
-  if (sigma * sigma + 2.0 * sigma * step[6] >= min_sigma * min_sigma) return step;
+  if (SquaredSigmaAfterStep(sigma, step[6]) >= min_sigma * min_sigma) return step;
   // The equations without σ's row and column (an index list for Eigen's indexed views takes
   // GCC 12 to a false -Wfree-nonheap-object where this is inlined).
   const int others = static_cast<int>(jtr.size()) - 1;
