@@ -40,6 +40,48 @@ TEST(FitPixels, StopsAtTheMinimumOfAQuadraticCostWithoutASecondStep) {
   EXPECT_NEAR(fit.sigma_px, 1.05, 2e-4);
 }
 
+// After a taken step, a step whose predicted decrease is below kUnevaluatedLastStepTolerances
+// times the tolerance is taken without evaluating the model there, and ends the fit (its cost and
+// JᵀJ those of the point before it); one predicted above that is evaluated.
+TEST(FitPixels, TakesASmallLastStepWithoutEvaluatingIt) {
+  Rigid3 start;
+  start.translation = Eigen::Vector3d(0.0, 0.0, 0.5);
+  const LinearPixelModel model(kTwelvePixels);
+  // The first step alone (a tolerance it meets), then the next as the fit takes it: damped by a
+  // tenth of the first's damping, with its predicted decrease.
+  const PixelFit first = FitPixels(model, start, 1.0, model.StartLevels(), 15, 1.0);
+  ASSERT_EQ(first.iterations, 1);
+  const Eigen::VectorXd theta =
+      PixelFitParameters(first.cam_from_marker, first.sigma_px, first.levels);
+  Eigen::MatrixXd jtj;
+  Eigen::VectorXd jtr;
+  const double cost = model.Evaluate(theta, &jtj, &jtr, nullptr);
+  Eigen::MatrixXd damped = jtj;
+  damped.diagonal() *= 1.0 + 1e-4;
+  const Eigen::VectorXd step = StepWithinSigmaBound(damped, jtr, theta[6], model.MinSigmaPx());
+  const double predicted = -(2.0 * jtr.dot(step) + step.dot(jtj * step));
+  ASSERT_GT(predicted, 0.0);
+  Eigen::VectorXd stepped = theta + step;
+  stepped[6] = SigmaAfterStep(theta[6], step[6], model.MinSigmaPx());
+  // Predicted at 3 tolerances: taken unevaluated, the start and the first step evaluated.
+  const LinearPixelModel unevaluated(kTwelvePixels);
+  const PixelFit fit =
+      FitPixels(unevaluated, start, 1.0, model.StartLevels(), 15, predicted / (3.0 * cost));
+  EXPECT_EQ(unevaluated.evaluations(), 2);
+  EXPECT_EQ(fit.iterations, 1);
+  const Eigen::VectorXd result = PixelFitParameters(fit.cam_from_marker, fit.sigma_px, fit.levels);
+  EXPECT_LT((result - stepped).norm(), 1e-9);
+  EXPECT_LT((result - model.solution()).norm(), 0.1 * (theta - model.solution()).norm());
+  EXPECT_NEAR(fit.cost, cost, 1e-12 * cost);
+  EXPECT_LT((fit.jtj - jtj).norm(), 1e-9 * jtj.norm());
+  // At 30 tolerances: evaluated.
+  const LinearPixelModel evaluated(kTwelvePixels);
+  EXPECT_GE(FitPixels(evaluated, start, 1.0, model.StartLevels(), 15, predicted / (30.0 * cost))
+                .iterations,
+            2);
+  EXPECT_GE(evaluated.evaluations(), 3);
+}
+
 // A start the model cannot evaluate (a disk whose image there is no ellipse) is a failed fit
 // at the start, with its infinite cost, and no step is taken from it (there were none to solve
 // for: before, the step read JᵀJ of no size, and crashed on the negative set under heavy blur).
