@@ -174,11 +174,13 @@ PixelFit FitPixels(const Model& model,
     const Eigen::VectorXd step = StepWithinSigmaBound(damped, jtr, theta[6], model.MinSigmaPx());
     // The cost Σ r² changes by 2 Jᵀr·δ + δᵀ JᵀJ δ to second order.
     const double predicted_decrease = -(2.0 * jtr.dot(step) + step.dot(jtj * step));
-    if (after_a_step && damping <= kStartDamping && predicted_decrease < function_tolerance * cost)
-      break;
+    // After a taken step, damped no more than the first, the prediction decides: below the
+    // tolerance the fit stops, below kUnevaluatedLastStepTolerances of it the step ends it.
+    const bool prediction_decides = after_a_step && damping <= kStartDamping;
+    if (prediction_decides && predicted_decrease < function_tolerance * cost) break;
     Eigen::VectorXd trial = theta + step;
     trial[6] = SigmaAfterStep(theta[6], step[6], model.MinSigmaPx());
-    if (after_a_step && damping <= kStartDamping &&
+    if (prediction_decides &&
         predicted_decrease < kUnevaluatedLastStepTolerances * function_tolerance * cost) {
       theta = trial;
       break;
