@@ -55,8 +55,8 @@ struct AppearanceOptions {
   // The shared residual is taken over each pair, and over blocks of samples, this many per side of
   // the sampled box (0: pairs alone; 12: 2x2 lattice points on the coarse grid, 4x4 on the fine
   // one, about the size of circle_d's dots; the circle tracker's `appearance_blocks_per_side`). On
-  // grey squares that circle_d's pose put its disk on (noise 46 grey levels, 1.6 m), the paper part
-  // misfit by 0.27 at 3.8 standard errors over pairs, 0.32 at 7.5 over blocks.
+  // a cluster of dots that circle_f's closed-form pose put its circle on, the paper part misfit by
+  // 0.22 over pairs, not surely above max_misfit, and by 0.27 over blocks, above max_block_misfit.
   int blocks_per_side = 12;
   // The blocks' threshold of the misfit: the model's own errors that are alike over a block
   // (heavy noise clipped at black and white, the quadrature under heavy blur) show there at

@@ -66,32 +66,35 @@ TEST(CircleFalsePositives, NoMarkerOnTheNegativeSet) {
   EXPECT_GT(tries, 2 * 6 * (frames - 30 / SanitizedStride(4)));
 }
 
-// Frame "squares 141" of the set: circle_d's tracker puts the disk on a grey square under 46
-// grey levels of noise at 1.6 m. The paper around it misfits alike over wide areas (other
-// squares), which the blocks of the design check show surely and single pixel pairs do not
-// (measured: 0.32 at 7.5 standard errors over blocks, 0.27 at 3.8 over pairs).
-TEST(CircleFalsePositives, BlocksOfTheDesignCheckRejectGreySquares) {
-  const MarkerSpec marker = LoadMarkerYaml("scenarios/markers/circle_d.yaml");
+// Frame "dots 218" of the set: circle_f's closed-form pose (from the circle's edge points, before
+// the fit on the pixels) puts its circle on a cluster of dots. The paper around it misfits alike
+// over wide areas, which the blocks of the design check show and single pixel pairs do not
+// (measured: 0.27 over blocks, above their 0.25; 0.22 over pairs, not significantly above 0.1); the
+// tracker reports no marker. The tracker's fitted pose on grey squares ("squares 141", circle_d)
+// needed the blocks until the fit took steps below 1 % of its cost unevaluated; since then no frame
+// of this set or five fresh ones does at the fitted pose, and this one only at the closed form.
+TEST(CircleFalsePositives, BlocksOfTheDesignCheckRejectAClusterOfDots) {
+  const MarkerSpec marker = LoadMarkerYaml("scenarios/markers/circle_f.yaml");
   const Camera camera = FrameRequest().scene.camera;
-  const NegativeFrame negative = RenderNegative(141);
-  ASSERT_EQ(negative.label, "squares 141");
+  const NegativeFrame negative = RenderNegative(218);
+  ASSERT_EQ(negative.label, "dots 218");
   CircleTracker tracker;
   const TrackResult result = tracker.Track({&negative.frame.image, &camera, &marker});
   EXPECT_NE(result.status, TrackStatus::kOk);
   const CircleDiagnostics& d = tracker.diagnostics();
-  ASSERT_TRUE(d.refined_cam_from_marker);
+  ASSERT_TRUE(d.analytic_cam_from_marker);
   AppearanceOptions pairs_alone;
   pairs_alone.blocks_per_side = 0;
   EXPECT_TRUE(CheckPrintedAppearance(negative.frame.image,
                                      camera,
                                      marker,
-                                     *d.refined_cam_from_marker,
+                                     *d.analytic_cam_from_marker,
                                      d.image_blur_sigma_px,
                                      pairs_alone)
                   .ShowsMarker());
   EXPECT_FALSE(
       CheckPrintedAppearance(
-          negative.frame.image, camera, marker, *d.refined_cam_from_marker, d.image_blur_sigma_px)
+          negative.frame.image, camera, marker, *d.analytic_cam_from_marker, d.image_blur_sigma_px)
           .ShowsMarker());
 }
 

@@ -107,9 +107,9 @@ TEST(PhotometricRefinement, TellsTheTwoTiltsApartFarAway) {
 // its paper cells find 82 and 53 % of frames, their median errors 1.3× and 3× the median bound.
 // Fitted from the true pose and from its mirror and the likelier fit kept (tilt_choice.h), the
 // choice is wrong about as often as ours: the frames lost are the mirror's (errors of metres),
-// which the bound at the true pose does not count. Measured of 200 frames: 48 and 91 wrong from
-// the truth and its mirror; wrong only ours 7 and 14, only from the truth 1 and 9 (p 0.035 and
-// 0.20; two tests, each at 0.05/2). A tracker that never fits from the other tilt was wrong alone
+// which the bound at the true pose does not count. Measured of 200 frames: 50 and 94 wrong from
+// the truth and its mirror; wrong only ours 5 and 13, only from the truth 3 and 12 (p 0.36 and
+// 0.50; two tests, each at 0.05/2). A tracker that never fits from the other tilt was wrong alone
 // on 36 and 40 frames, against 12 and 29 (p 4e-4 at 2.5 m). Not under the sanitizers
 // (testing/sanitized_build.h).
 TEST(PhotometricRefinement, ChoosesTheTiltAsOftenAsFromTheTruePoseAndItsMirror) {

@@ -78,13 +78,19 @@ constexpr double kFunctionTolerance = 1e-5;
 // circle markers' paper sweeps no cell worse (sign tests, Holm), one better (circle_f without
 // noise), 4 of 14,400 frames' success changed (results/speed.md).
 constexpr double kFirstRoundFunctionTolerance = 1e-4;
-// A step after a taken one (damped no more than the first) whose predicted decrease is below
-// this many times the tolerance is taken without evaluating the model there, and ends the fit.
-// The normal equations predict so small a step's decrease to about 10 % (0.91-1.11 of it on the
-// speed benchmark's frames), and its χ² is at most 0.5 on 5,400 residuals: evaluated, it would be
-// taken and the fit would stop, or take one more step of a few times the tolerance (6 % of the
-// fits). On the steady glide 9 in 10 fits that take a second step take it so (results/speed.md).
-constexpr double kUnevaluatedLastStepTolerances = 10.0;
+// A step after a taken one (damped no more than the first) predicted to lower the cost by less
+// than this share of it (a χ² of 54 on 5,400 residuals) is taken without evaluating the model
+// there, and ends the fit. Near the minimum the normal equations predict such a step's decrease
+// well: on the speed benchmark's frames, evaluated, the steps of 1e-4 to 1e-2 of the cost gained
+// 0.72-1.34 of their prediction (median 1.00), none lost. At 1e-4 it took the steady glide's
+// second steps; at 1e-2 it takes full detection's second step too (the first took σ from the edge
+// points' to its bound): against 1e-4, full detection 0.93× its time, tracking mode 0.89×, the
+// hand-held shake 0.88×, and paired frame by frame on the circle markers' paper sweeps no cell
+// worse (sign tests, Holm), one better (results/speed.md).
+// A share, not a multiple of the fit's tolerance: a first round's looser one would take steps of
+// a tenth of the cost so, and that (1,000× the tolerance) cost the paper's noise sweep 0.3 % in
+// error and e's design fits at 3.5 m a frame's tilt (DesignRefinement's far-away tilt test).
+constexpr double kUnevaluatedLastStepCostShare = 1e-2;
 
 // σ after a step δσ of the normal equations, taken along σ²: σ² moves by 2σ δσ, its tangent's
 // move at σ, and σ is held at `min_sigma` at least. A pixel averages a sharp edge over its area;
@@ -132,7 +138,7 @@ inline Eigen::VectorXd StepWithinSigmaBound(const Eigen::MatrixXd& damped,
 // Stops where a step lowers the cost by less than `function_tolerance` of it, or where the normal
 // equations predict that of the next step after a taken one, damped no more than the first
 // (saving the evaluation of a step that would not count); where they predict below
-// kUnevaluatedLastStepTolerances times that, the step is taken unevaluated and the fit stops.
+// kUnevaluatedLastStepCostShare of the cost, the step is taken unevaluated and the fit stops.
 // The fit's cost and JᵀJ are those of its last evaluation: at the result, or one such step
 // before it. With `modelled_at_result`, the pixels are listed there from that evaluation (none
 // is done for them). A start the model cannot evaluate (a cost not finite, without normal
@@ -175,13 +181,12 @@ PixelFit FitPixels(const Model& model,
     // The cost Σ r² changes by 2 Jᵀr·δ + δᵀ JᵀJ δ to second order.
     const double predicted_decrease = -(2.0 * jtr.dot(step) + step.dot(jtj * step));
     // After a taken step, damped no more than the first, the prediction decides: below the
-    // tolerance the fit stops, below kUnevaluatedLastStepTolerances of it the step ends it.
+    // tolerance the fit stops, below kUnevaluatedLastStepCostShare of the cost the step ends it.
     const bool prediction_decides = after_a_step && damping <= kStartDamping;
     if (prediction_decides && predicted_decrease < function_tolerance * cost) break;
     Eigen::VectorXd trial = theta + step;
     trial[6] = SigmaAfterStep(theta[6], step[6], model.MinSigmaPx());
-    if (prediction_decides &&
-        predicted_decrease < kUnevaluatedLastStepTolerances * function_tolerance * cost) {
+    if (prediction_decides && predicted_decrease < kUnevaluatedLastStepCostShare * cost) {
       theta = trial;
       break;
     }

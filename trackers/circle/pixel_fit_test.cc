@@ -40,9 +40,11 @@ TEST(FitPixels, StopsAtTheMinimumOfAQuadraticCostWithoutASecondStep) {
   EXPECT_NEAR(fit.sigma_px, 1.05, 2e-4);
 }
 
-// After a taken step, a step whose predicted decrease is below kUnevaluatedLastStepTolerances
-// times the tolerance is taken without evaluating the model there, and ends the fit (its cost and
-// JᵀJ those of the point before it); one predicted above that is evaluated.
+// After a taken step, a step predicted to lower the cost by less than
+// kUnevaluatedLastStepCostShare of it is taken without evaluating the model there, and ends the fit
+// (its cost and JᵀJ those of the point before it); one predicted above that is evaluated. The steps
+// do not depend on the misfit off the model's range, which only adds its square to the cost: the
+// misfit sets the share.
 TEST(FitPixels, TakesASmallLastStepWithoutEvaluatingIt) {
   Rigid3 start;
   start.translation = Eigen::Vector3d(0.0, 0.0, 0.5);
@@ -63,22 +65,26 @@ TEST(FitPixels, TakesASmallLastStepWithoutEvaluatingIt) {
   ASSERT_GT(predicted, 0.0);
   Eigen::VectorXd stepped = theta + step;
   stepped[6] = SigmaAfterStep(theta[6], step[6], model.MinSigmaPx());
-  // Predicted at 3 tolerances: taken unevaluated, the start and the first step evaluated.
-  const LinearPixelModel unevaluated(kTwelvePixels);
-  const PixelFit fit =
-      FitPixels(unevaluated, start, 1.0, model.StartLevels(), 15, predicted / (3.0 * cost));
+  // The model whose cost after the first step puts the prediction at `share` of it (the misfit's
+  // square was 1 of `cost`).
+  const auto predicted_at_share = [&](double share) {
+    LinearPixelModel::Shape shape = kTwelvePixels;
+    shape.misfit = std::sqrt(predicted / share - (cost - 1.0));
+    return shape;
+  };
+  // At 0.3 of the share: taken unevaluated, the start and the first step evaluated.
+  const LinearPixelModel unevaluated(predicted_at_share(0.3 * kUnevaluatedLastStepCostShare));
+  const PixelFit fit = FitPixels(unevaluated, start, 1.0, model.StartLevels(), 15);
   EXPECT_EQ(unevaluated.evaluations(), 2);
   EXPECT_EQ(fit.iterations, 1);
   const Eigen::VectorXd result = PixelFitParameters(fit.cam_from_marker, fit.sigma_px, fit.levels);
   EXPECT_LT((result - stepped).norm(), 1e-9);
   EXPECT_LT((result - model.solution()).norm(), 0.1 * (theta - model.solution()).norm());
-  EXPECT_NEAR(fit.cost, cost, 1e-12 * cost);
+  EXPECT_NEAR(fit.cost, predicted / (0.3 * kUnevaluatedLastStepCostShare), 1e-9 * fit.cost);
   EXPECT_LT((fit.jtj - jtj).norm(), 1e-9 * jtj.norm());
-  // At 30 tolerances: evaluated.
-  const LinearPixelModel evaluated(kTwelvePixels);
-  EXPECT_GE(FitPixels(evaluated, start, 1.0, model.StartLevels(), 15, predicted / (30.0 * cost))
-                .iterations,
-            2);
+  // At 3 times it: evaluated.
+  const LinearPixelModel evaluated(predicted_at_share(3.0 * kUnevaluatedLastStepCostShare));
+  EXPECT_GE(FitPixels(evaluated, start, 1.0, model.StartLevels(), 15).iterations, 2);
   EXPECT_GE(evaluated.evaluations(), 3);
 }
 
