@@ -10,10 +10,12 @@
 namespace markerbench {
 
 double EstimateNoiseSigma(const cv::Mat& channel) {
-  // A row's differences first (a loop the compiler vectorises), then counted in two
+  // A row's differences first (a loop the compiler vectorises), then counted in four
   // histograms in turn, summed at the end: neighbouring differences mostly fall in the same
-  // few bins, and one histogram's increments would wait on each other (a third less time).
-  std::array<int, 256> even{}, odd{};
+  // few bins, and one histogram's increments would wait on each other (two took a third less
+  // time than one, four a tenth less than two).
+  constexpr int kHistograms = 4;
+  std::array<std::array<int, 256>, kHistograms> histograms{};
   std::vector<uint8_t> differences(static_cast<size_t>(std::max(0, channel.cols - 1)));
   const int n = static_cast<int>(differences.size());
   int count = 0;
@@ -23,15 +25,18 @@ double EstimateNoiseSigma(const cv::Mat& channel) {
       differences[x] = static_cast<uint8_t>(std::abs(row[x + 1] - row[x]));
     }
     int x = 0;
-    for (; x + 1 < n; x += 2) {
-      ++even[differences[x]];
-      ++odd[differences[x + 1]];
+    for (; x + kHistograms <= n; x += kHistograms) {
+      for (int h = 0; h < kHistograms; ++h) ++histograms[h][differences[x + h]];
     }
-    if (x < n) ++even[differences[x]];
+    for (; x < n; ++x) ++histograms[0][differences[x]];
     count += n;
   }
+  std::array<int, 256> histogram{};
+  for (const std::array<int, 256>& h : histograms) {
+    for (int d = 0; d < 256; ++d) histogram[d] += h[d];
+  }
   int seen = 0, median = 0;
-  while (median < 255 && (seen += even[median] + odd[median]) < (count + 1) / 2) ++median;
+  while (median < 255 && (seen += histogram[median]) < (count + 1) / 2) ++median;
   return 1.4826 * median / std::sqrt(2.0) / 255.0;
 }
 

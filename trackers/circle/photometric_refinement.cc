@@ -4,6 +4,7 @@
 #include <ceres/rotation.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
 #include <optional>
@@ -78,6 +79,14 @@ struct EdgeLayer {
   int whole_nodes = 0;
   std::optional<LocalPixelUnits> whole_units;
 };
+
+// Each grey level in units of 0-1, as g / 255.0 gives it, without a division per pixel and
+// channel (they took a tenth of choosing the pixels).
+const std::array<double, 256> kUnitOfGreyLevel = [] {
+  std::array<double, 256> units{};
+  for (int g = 0; g < 256; ++g) units[g] = g / 255.0;
+  return units;
+}();
 
 // An edge within reach of a pixel: the pixel's signed distance to it is taken along the edge's
 // normal at the start pose, from the edge point nearest the pixel then; or, for a layer
@@ -499,9 +508,11 @@ int NearestBin(const EdgeLayer& layer,
                const Eigen::Vector2d& ideal_px,
                const Eigen::Vector2d& on_plane) {
   const Eigen::Vector2d radial = on_plane - layer.disk.center;
+  // atan2's range puts the turn in [-bins/2, bins/2]; wrapped without a division (the two of
+  // a remainder's wrap took a tenth of choosing the pixels).
   const int turn =
       static_cast<int>(std::lround(std::atan2(radial.y(), radial.x()) / (2.0 * M_PI) * layer.bins));
-  int bin = (turn % layer.bins + layer.bins) % layer.bins;
+  int bin = std::clamp(turn < 0 ? turn + layer.bins : turn, 0, layer.bins - 1);
   // A neighbour's bin, wrapped without a division (two of them a step took 17 % of the
   // search's time).
   const auto beside = [&](int from, int step) {
@@ -692,7 +703,7 @@ PixelSet PixelsNearEdges(const Image8& image,
     Pixel p;
     p.ideal_px = ideal;
     p.value = Eigen::Vector3d::Zero();
-    for (int c = 0; c < image.channels; ++c) p.value[c] = image.at(u, v, c) / 255.0;
+    for (int c = 0; c < image.channels; ++c) p.value[c] = kUnitOfGreyLevel[image.at(u, v, c)];
     p.base = background;
     p.first_edge = static_cast<int>(set.near_edges.size());
     const Eigen::Vector2d on_plane = (plane_from_px * ideal.homogeneous()).hnormalized();
