@@ -352,8 +352,8 @@ CircleDetector::FittedEdges CircleDetector::FitEdgesInPasses(
                      std::to_string(fitted.edges.rays) + " rays of circle " + std::to_string(i);
       return fitted;
     }
-    const bool last = pass + 1 == passes ||
-                      (options_.stop_passes_within_start_blur && fitted.edges.sigma_px <= sigma);
+    const bool last =
+        pass + 1 == passes || (options_.edges_start_a_pixel_fit && fitted.edges.sigma_px <= sigma);
     const std::optional<ConicFit> fit =
         FitEllipse(fitted.edges.points_px, last && refine_last ? options_.fit : direct);
     if (!fit) {
@@ -674,7 +674,8 @@ std::optional<MarkerDetection> CircleDetector::Detect(
 
   // Sub-pixel edges and the conic fit, in passes that each start from the previous fit; the
   // PND refinement of the conic only in the last. A prediction needs one pass, and no PND
-  // refinement: the pose refinement (cost B) works on the edges themselves.
+  // refinement: the pose refinement (cost B) works on the edges themselves; nor do the edges
+  // that start a fit on the pixels.
   const int passes = from_prediction ? 1 : options_.edge_passes;
   // Full-resolution smoothing only around the circles, with room for rays at σ up to 12 px.
   // Where a first pass may be the last, only as far as its rays reach at first, the rest
@@ -707,7 +708,7 @@ std::optional<MarkerDetection> CircleDetector::Detect(
   const int first_reach_px = static_cast<int>(std::ceil(EdgeSearchReachPx(
                                  detection.smoothing_sigma_px + 1.0, options_.edges))) +
                              2;
-  const bool one_pass_may_do = passes == 1 || options_.stop_passes_within_start_blur;
+  const bool one_pass_may_do = passes == 1 || options_.edges_start_a_pixel_fit;
   for (const auto& [channel, mat] : raw) {
     cv::Mat& out = smoothed[channel];
     out.create(patch.size(), CV_8UC1);
@@ -740,7 +741,7 @@ std::optional<MarkerDetection> CircleDetector::Detect(
                                           initial[i],
                                           detection.smoothing_sigma_px + 1.0,
                                           passes,
-                                          !from_prediction,
+                                          !from_prediction && !options_.edges_start_a_pixel_fit,
                                           smooth_the_rest);
     if (!fitted.error.empty()) return fail(fitted.error);
     DetectedCircle circle;

@@ -42,17 +42,20 @@ struct CircleDetectorOptions {
   double min_dot_area_px = 2.0;
   double max_outline_rms_px = 1.0;  // contour-to-ellipse RMS allowed, plus 8% of the minor axis
   int edge_passes = 2;              // edge search, fit, and again from the fitted ellipse
-  // With true, a pass after the first only where the last found the edges more blurred than
-  // it started from (its rays, 2.5σ + 3 px each way, then ended short of the blurred profile;
-  // EdgeSearchOptions::reach_sigmas). The circle tracker's choice where its fit on the pixels
-  // of disks follows (a-d), which takes the pose from the image and needs the edges only for its
-  // start. Paired against two passes always on the paper sweeps of circles_a and circle_d
-  // (7,200 frames): no cell differed (sign tests, Holm), the geometric mean of the error
-  // ratios 0.999-1.001 per sweep and marker, 7 frames' success changed (4 found, 3 lost, all
-  // at 2.5 m or beyond); full detection 4 % less time (results/speed.md). Where the pose rests
-  // on the edge points themselves one pass is worse (photometric: false, circles_a with
-  // distance: errors 3 % larger, found at 3.5 m 67 -> 56 %).
-  bool stop_passes_within_start_blur = false;
+  // True where a fit on the pixels of disks follows (a-d; the circle tracker's choice), which
+  // takes the pose from the image and needs the edges only for its start. Then:
+  // - a pass after the first only where the last found the edges more blurred than it started
+  //   from (its rays, 2.5σ + 3 px each way, then ended short of the blurred profile;
+  //   EdgeSearchOptions::reach_sigmas). Paired against two passes always on the paper sweeps of
+  //   circles_a and circle_d (7,200 frames): no cell differed (sign tests, Holm), the geometric
+  //   mean of the error ratios 0.999-1.001 per sweep and marker, 7 frames' success changed (4
+  //   found, 3 lost, all at 2.5 m or beyond); full detection 4 % less time (results/speed.md).
+  //   Where the pose rests on the edge points themselves one pass is worse (photometric: false,
+  //   circles_a with distance: errors 3 % larger, found at 3.5 m 67 -> 56 %).
+  // - each conic is the direct fit of its edge points, without its PND refinement: the conics
+  //   start the pose, whose refinement fits the edge points themselves (cost B), and whose fit
+  //   on the pixels follows; full detection 3 % less time (results/speed.md).
+  bool edges_start_a_pixel_fit = false;
   double min_edge_fraction = 0.7;  // of a circle's rays that must find its edge
   // d and e: when no disk shows its dots to the threshold, the dots are looked for by their
   // blurred images (blurred_dot_search.h) beside this many of the largest disks: dots of
@@ -126,7 +129,7 @@ class CircleDetector {
     std::string error;  // empty when found
   };
   // Circle `i`'s edges and conic in up to `passes` passes of EdgesOf, each from the last
-  // pass's conic and blur (stop_passes_within_start_blur); the conic's PND refinement in the
+  // pass's conic and blur (edges_start_a_pixel_fit); the conic's PND refinement in the
   // last when `refine_last`. Before a pass after the first, `smooth_the_rest` (if given)
   // completes `smoothed`, which the first pass needs only within its rays' reach of `start`.
   // An error where too few rays find an edge or the points give no ellipse.

@@ -473,7 +473,7 @@ TrackResult CircleTracker::TrackIn(const Observation& observation,
   // The fit on the pixels of disks (a-d) takes the pose from the image: the edges need only
   // start it.
   CircleDetectorOptions detector_options = options_.detector;
-  detector_options.stop_passes_within_start_blur =
+  detector_options.edges_start_a_pixel_fit =
       options_.refine && options_.photometric && !geometry.roll_from_design;
   const CircleDetector detector(*observation.marker, geometry, detector_options);
   std::optional<MarkerDetection> detection =

@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 
 #include <Eigen/Geometry>
+#include <algorithm>
 #include <cstdio>
 #include <limits>
 #include <vector>
@@ -24,6 +25,9 @@
 #include "renderer/test_scenes.h"
 #include "testing/sanitized_build.h"
 #include "testing/square_tracker_testing.h"
+#include "trackers/circle/circle_detector.h"
+#include "trackers/circle/conic.h"
+#include "trackers/circle/conic_fit.h"
 #include "trackers/tracker_factory.h"
 #include "trackers/upper_median.h"
 
@@ -59,6 +63,15 @@ MarkerSpec Load(const std::string& kind) {
 
 // The same printed marker drawn in another in-plane frame: every layer, circle and keypoint
 // moved by marker_from_paper (rotation about z by angle_rad, then translation).
+// How far apart two ellipses lie: the larger of their centres' distance and their semi-axes'
+// differences (px).
+double EllipseDistancePx(const Eigen::Matrix3d& a, const Eigen::Matrix3d& b) {
+  const Ellipse ea = EllipseFromConic(a), eb = EllipseFromConic(b);
+  return std::max({(ea.center - eb.center).norm(),
+                   std::abs(ea.semi_major - eb.semi_major),
+                   std::abs(ea.semi_minor - eb.semi_minor)});
+}
+
 MarkerSpec InAnotherFrame(const MarkerSpec& marker,
                           double angle_rad,
                           const Eigen::Vector2d& shift) {
@@ -326,8 +339,10 @@ TEST(CircleTracker, ReportsEveryStage) {
 // only where the first found the edges more blurred than it started from (the smoothing + 1
 // px; its rays reach 2.5 of that σ + 3 px each way). Without blur one pass; where the pose
 // rests on the edge points (photometric: false) and for e, whose design is fitted, two; under
-// blur σ 6 two. The pose within three times the Cramér-Rao bound's RMS for the frame (one
-// frame each; measured 0.5-2.1).
+// blur σ 6 two. Each conic is its edge points' direct fit there, and where the pose rests on
+// them, their fit refined on the PND distance (the two 0.001-0.02 px apart in centre or axes
+// on these frames, the same fit within 1e-12 px). The pose within three times the Cramér-Rao
+// bound's RMS for the frame (one frame each; measured 0.5-2.1).
 TEST(CircleTracker, TakesASecondEdgePassWhereTheEdgesAreBlurrierThanAssumed) {
   const Camera camera = FrameRequest().scene.camera;
   CircleTrackerOptions on_edges;
@@ -355,6 +370,21 @@ TEST(CircleTracker, TakesASecondEdgePassWhereTheEdgesAreBlurrierThanAssumed) {
     const std::vector<int>& passes = tracker.diagnostics().edge_passes;
     ASSERT_FALSE(passes.empty());
     for (const int run : passes) EXPECT_EQ(run, c.passes);
+    const bool pixels_follow = c.options.photometric && c.kind != std::string("circle_e");
+    const std::vector<Eigen::Matrix3d>& conics = tracker.diagnostics().conics_px;
+    ASSERT_EQ(conics.size(), passes.size());
+    for (size_t i = 0; i < conics.size(); ++i) {
+      ConicFitOptions direct = CircleDetectorOptions().fit;
+      direct.refine_pnd = false;
+      const std::vector<Eigen::Vector2d>& points = tracker.diagnostics().edges[i];
+      const std::optional<ConicFit> expected =
+          FitEllipse(points, pixels_follow ? direct : CircleDetectorOptions().fit);
+      const std::optional<ConicFit> other =
+          FitEllipse(points, pixels_follow ? CircleDetectorOptions().fit : direct);
+      ASSERT_TRUE(expected && other);
+      EXPECT_LT(EllipseDistancePx(conics[i], expected->conic), 1e-6);
+      EXPECT_GT(EllipseDistancePx(conics[i], other->conic), 1e-4);
+    }
   }
 }
 
