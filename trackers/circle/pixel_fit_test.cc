@@ -66,10 +66,11 @@ TEST(FitPixels, TakesASmallLastStepWithoutEvaluatingIt) {
   Eigen::VectorXd stepped = theta + step;
   stepped[6] = SigmaAfterStep(theta[6], step[6], model.MinSigmaPx());
   // The model whose cost after the first step puts the prediction at `share` of it (the misfit's
-  // square was 1 of `cost`).
+  // square was part of `cost`).
   const auto predicted_at_share = [&](double share) {
     LinearPixelModel::Shape shape = kTwelvePixels;
-    shape.misfit = std::sqrt(predicted / share - (cost - 1.0));
+    shape.misfit =
+        std::sqrt(predicted / share - (cost - kTwelvePixels.misfit * kTwelvePixels.misfit));
     return shape;
   };
   // At 0.3 of the share: taken unevaluated, the start and the first step evaluated.
