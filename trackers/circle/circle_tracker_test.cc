@@ -61,8 +61,6 @@ MarkerSpec Load(const std::string& kind) {
   return LoadMarkerYaml("scenarios/markers/" + kind + ".yaml");
 }
 
-// The same printed marker drawn in another in-plane frame: every layer, circle and keypoint
-// moved by marker_from_paper (rotation about z by angle_rad, then translation).
 // How far apart two ellipses lie: the larger of their centres' distance and their semi-axes'
 // differences (px).
 double EllipseDistancePx(const Eigen::Matrix3d& a, const Eigen::Matrix3d& b) {
@@ -72,6 +70,8 @@ double EllipseDistancePx(const Eigen::Matrix3d& a, const Eigen::Matrix3d& b) {
                    std::abs(ea.semi_minor - eb.semi_minor)});
 }
 
+// The same printed marker drawn in another in-plane frame: every layer, circle and keypoint
+// moved by marker_from_paper (rotation about z by angle_rad, then translation).
 MarkerSpec InAnotherFrame(const MarkerSpec& marker,
                           double angle_rad,
                           const Eigen::Vector2d& shift) {
