@@ -145,6 +145,9 @@ std::optional<Line> FitLine(const std::vector<Pair>& pairs,
   std::array<bool, kMaxFittedLevels> held = {};
   Line line;
   for (int round = 0; round <= fitted; ++round) {
+    // Summed over the parameters of the colours fitted only (the others' rows and columns stay
+    // zero), in the lower triangle, mirrored after.
+    const int parameters = 2 + fitted;
     Eigen::Matrix4d JtJ = Eigen::Matrix4d::Zero();
     Eigen::Vector4d Jty = Eigen::Vector4d::Zero();
     for (const Pair& pair : pairs) {
@@ -153,10 +156,13 @@ std::optional<Line> FitLine(const std::vector<Pair>& pairs,
         for (int c = 0; c < fitted; ++c) {
           if (!held[c]) J(2 + c) = pair.shares[k][c];
         }
-        JtJ += J * J.transpose();
-        Jty += J * pair.y[k];
+        for (int a = 0; a < parameters; ++a) {
+          for (int b = 0; b <= a; ++b) JtJ(a, b) += J(a) * J(b);
+          Jty(a) += J(a) * pair.y[k];
+        }
       }
     }
+    JtJ.triangularView<Eigen::StrictlyUpper>() = JtJ.transpose();
     for (int p = 2; p < 4; ++p) {  // colours held, unseen or not there
       if (JtJ(p, p) == 0.0) JtJ(p, p) = 1.0;
     }

@@ -632,11 +632,23 @@ PixelSet PixelsNearEdges(const Image8& image,
   std::vector<uint8_t> taken(
       static_cast<size_t>(std::max(0, all_width)) * std::max(0, all.v1 - all.v0 + 1), 0);
   std::vector<double> distances(layers.size());
+  const bool ideal_is_pixel = !camera.HasDistortion();
+  // Without distortion a pixel's ideal x depends on its column alone and its y on its row
+  // alone: taken once per column and row of the box (the divisions of one per pixel took a
+  // sixth of the pixels' choice).
+  std::vector<double> ideal_x, ideal_y;
+  if (ideal_is_pixel) {
+    for (int u = all.u0; u <= all.u1; ++u) {
+      ideal_x.push_back(camera.IdealFromImg(Eigen::Vector2d(u, all.v0)).x());
+    }
+    for (int v = all.v0; v <= all.v1; ++v) {
+      ideal_y.push_back(camera.IdealFromImg(Eigen::Vector2d(all.u0, v)).y());
+    }
+  }
   // The columns of row v that may lie within an annulus: without distortion a pixel's ideal
   // coordinates are its own (to rounding; a pixel to spare each way), and outside the outer
   // circles or (but for a disk modelled whole) inside an inner one no pixel is near; with
   // distortion, all of them. As spans of columns, in order and apart.
-  const bool ideal_is_pixel = !camera.HasDistortion();
   std::vector<std::pair<int, int>> spans;
   const auto columns_near = [&](int v, const Box& box) {
     spans.clear();
@@ -681,7 +693,9 @@ PixelSet PixelsNearEdges(const Image8& image,
     uint8_t& seen = taken[static_cast<size_t>(v - all.v0) * all_width + (u - all.u0)];
     if (seen) return;
     seen = 1;
-    const Eigen::Vector2d ideal = camera.IdealFromImg(Eigen::Vector2d(u, v));
+    const Eigen::Vector2d ideal = ideal_is_pixel
+                                      ? Eigen::Vector2d(ideal_x[u - all.u0], ideal_y[v - all.v0])
+                                      : camera.IdealFromImg(Eigen::Vector2d(u, v));
     // Signed distance to each edge, negative inside.
     bool near_any = false;
     for (size_t m = 0; m < layers.size(); ++m) {
