@@ -145,8 +145,8 @@ std::optional<Line> FitLine(const std::vector<Pair>& pairs,
   std::array<bool, kMaxFittedLevels> held = {};
   Line line;
   for (int round = 0; round <= fitted; ++round) {
-    // Summed over the parameters of the colours fitted only (the others' rows and columns stay
-    // zero), in the lower triangle, mirrored after.
+    // Summed over the offset, the contrast and the fitted colours' shifts alone (the other rows
+    // and columns stay zero), in the lower triangle, mirrored after.
     const int parameters = 2 + fitted;
     Eigen::Matrix4d JtJ = Eigen::Matrix4d::Zero();
     Eigen::Vector4d Jty = Eigen::Vector4d::Zero();
