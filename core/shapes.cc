@@ -41,10 +41,6 @@ PaintSample GridPaint(const GridShape& grid, const Rgb& ink, const Eigen::Vector
   return sample;
 }
 
-}  // namespace
-
-namespace {
-
 // DistancesTo, each term's gradient and curvature only `with_gradients` (else left at their
 // defaults): a point's paint takes the distances alone (MarkerSpec::ColorAt at each sample of
 // the check of the printed design, whose instructions this cut by 13 %).
