@@ -2,6 +2,7 @@
 
 #include <Eigen/Eigenvalues>
 #include <Eigen/LU>
+#include <algorithm>
 
 namespace markerbench {
 
@@ -48,6 +49,13 @@ double PndReach(const Ellipse& e, double distance) {
   const double eccentricity = e.semi_major / e.semi_minor;
   const double reach = 1.000001 * e.semi_major + 2.01 * distance * eccentricity * eccentricity;
   return std::isnan(reach) ? INFINITY : reach;  // axes lost to rounding: skip nothing
+}
+
+PndBand PndBandScales(const Ellipse& e, double distance) {
+  if (std::isnan(e.semi_major) || std::isnan(e.semi_minor)) return {};
+  const double per_minor = 1.01 * distance / e.semi_minor;
+  return {std::max(0.0, 0.999999 * (1.0 - per_minor)),
+          1.000001 * (per_minor + std::sqrt(per_minor * per_minor + 1.0))};
 }
 
 Eigen::Matrix3d ConicFromEllipse(const Ellipse& ellipse) {

@@ -37,6 +37,22 @@ Eigen::Matrix3d ConicFromEllipse(const Ellipse& ellipse);
 // a + 2 distance (a / b)², with a margin for rounding; infinity where the axes are NaN.
 double PndReach(const Ellipse& e, double distance);
 
+// The scales of the real ellipse `e` about its centre between which lie all the points within
+// `distance` PND of it: every point of e scaled by more than `outer`, or by less than `inner`,
+// is farther, for scans that skip those (tighter than PndReach but along the major axis). For a
+// point s v, v on e: outside, |PND| is at least the Sampson distance (s² - 1) / (2 s |A v|)
+// (PndReach), and |A v| <= 1/b, so beyond (s² - 1) b / 2s = distance it is farther; inside,
+// |PND| is the distance to the ellipse along the normal line (d1), at least the nearest, and e
+// scaled by 1 - distance / b lies that far within it (a disk of radius distance about each of
+// its points lies in e: support functions s h + distance <= h, as h >= b). With margins for
+// rounding; `inner` 0 where no point lies that deep, and nothing skipped (0 and infinity) where
+// the axes are NaN.
+struct PndBand {
+  double inner = 0.0;
+  double outer = INFINITY;
+};
+PndBand PndBandScales(const Ellipse& e, double distance);
+
 // The line l misses the real ellipse C iff lᵀ adj(C) l > 0 (§1; invariant to scale and sign).
 bool LineMissesEllipse(const Eigen::Vector3d& l, const Eigen::Matrix3d& C);
 

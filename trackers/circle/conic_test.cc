@@ -1,5 +1,6 @@
 // PndReach: no point beyond it from an ellipse's centre is within its distance of the
-// ellipse, whatever the ellipse's eccentricity, in every direction.
+// ellipse, whatever the ellipse's eccentricity, in every direction. PndBandScales: no point of
+// the ellipse scaled beyond its scales is.
 #include "trackers/circle/conic.h"
 
 #include <gtest/gtest.h>
@@ -11,14 +12,20 @@
 namespace markerbench {
 namespace {
 
+// An ellipse of random size, eccentricity up to 50, angle and place, as the scans meet them.
+Ellipse RandomEllipse(Rng* rng) {
+  Ellipse e;
+  e.center = {rng->Uniform(-300.0, 900.0), rng->Uniform(-300.0, 700.0)};
+  e.semi_major = std::exp(rng->Uniform(std::log(0.5), std::log(2000.0)));
+  e.semi_minor = e.semi_major / std::exp(rng->Uniform(0.0, std::log(50.0)));
+  e.angle_rad = rng->Uniform(-M_PI, M_PI);
+  return e;
+}
+
 TEST(PndReach, NoPointBeyondItIsWithinTheDistance) {
   Rng rng(17);
   for (int trial = 0; trial < 2000; ++trial) {
-    Ellipse e;
-    e.center = {rng.Uniform(-300.0, 900.0), rng.Uniform(-300.0, 700.0)};
-    e.semi_major = std::exp(rng.Uniform(std::log(0.5), std::log(2000.0)));
-    e.semi_minor = e.semi_major / std::exp(rng.Uniform(0.0, std::log(50.0)));
-    e.angle_rad = rng.Uniform(-M_PI, M_PI);
+    const Ellipse e = RandomEllipse(&rng);
     const double distance = std::exp(rng.Uniform(std::log(0.05), std::log(5.0)));
     const Eigen::Matrix3d C = ConicFromEllipse(e);
     const double reach = PndReach(e, distance);
@@ -41,6 +48,61 @@ TEST(PndReach, IsInfiniteWhereTheAxesAreNaN) {
   e.semi_major = 10.0;
   e.semi_minor = std::nan("");
   EXPECT_EQ(PndReach(e, 1.0), INFINITY);
+}
+
+TEST(PndBandScales, NoPointBeyondThemIsWithinTheDistance) {
+  Rng rng(23);
+  int deep_inside = 0;
+  for (int trial = 0; trial < 2000; ++trial) {
+    const Ellipse e = RandomEllipse(&rng);
+    const double distance = std::exp(rng.Uniform(std::log(0.05), std::log(5.0)));
+    const Eigen::Matrix3d C = ConicFromEllipse(e);
+    const PndBand band = PndBandScales(e, distance);
+    const Eigen::Vector2d major(std::cos(e.angle_rad), std::sin(e.angle_rad));
+    const Eigen::Vector2d minor(-major.y(), major.x());
+    deep_inside += band.inner > 0.0;
+    for (int k = 0; k < 200; ++k) {
+      // Points of the ellipse, first the ends of its axes (the minor's is where both bounds
+      // are tight), scaled just beyond each scale and farther.
+      const double t = k < 8 ? (k % 4) * M_PI / 2 : rng.Uniform(-M_PI, M_PI);
+      const Eigen::Vector2d on_ellipse =
+          e.semi_major * std::cos(t) * major + e.semi_minor * std::sin(t) * minor;
+      const bool just_beyond = k % 2 == 0;
+      const double outside = band.outer * (just_beyond ? 1.0 + 1e-12 : rng.Uniform(1.0, 1.5));
+      Eigen::Vector2d p = e.center + outside * on_ellipse;
+      ASSERT_GT(std::abs(PndResidual<double>(C, p.x(), p.y())), distance)
+          << "outside: trial " << trial << ", a " << e.semi_major << ", b " << e.semi_minor;
+      if (band.inner == 0.0) continue;
+      const double inside = band.inner * (just_beyond ? 1.0 - 1e-12 : rng.Uniform(0.0, 1.0));
+      p = e.center + inside * on_ellipse;
+      ASSERT_GT(std::abs(PndResidual<double>(C, p.x(), p.y())), distance)
+          << "inside: trial " << trial << ", a " << e.semi_major << ", b " << e.semi_minor;
+    }
+  }
+  EXPECT_GT(deep_inside, 1000);  // the inner scale was tested
+}
+
+// The scales are tight where the PND is the distance: a circle's band is within a few percent
+// of the distance on either side.
+TEST(PndBandScales, HoldACircleWithinAFewPercentOfTheDistance) {
+  Ellipse circle;
+  circle.semi_major = circle.semi_minor = 40.0;
+  for (const double distance : {0.1, 1.0, 4.0}) {
+    const PndBand band = PndBandScales(circle, distance);
+    EXPECT_GE((band.outer - 1.0) * 40.0, distance);
+    EXPECT_LE((band.outer - 1.0) * 40.0, 1.07 * distance);
+    EXPECT_GE((1.0 - band.inner) * 40.0, distance);
+    EXPECT_LE((1.0 - band.inner) * 40.0, 1.02 * distance);
+  }
+}
+
+TEST(PndBandScales, SkipNothingWhereTheAxesAreNaN) {
+  Ellipse e;
+  e.semi_major = 10.0;
+  e.semi_minor = std::nan("");
+  const PndBand band = PndBandScales(e, 1.0);
+  EXPECT_EQ(band.inner, 0.0);
+  EXPECT_EQ(band.outer, INFINITY);
 }
 
 }  // namespace

@@ -565,6 +565,21 @@ Eigen::AlignedBox2d PixelsSeeingIdealSquare(const Image8& image,
   return {box.min() - Eigen::Vector2d::Ones(), box.max() + Eigen::Vector2d::Ones()};
 }
 
+// The span of x where row y meets the ellipse of form F about `center` (xᵀ F x <= 1); nullopt
+// where it does not.
+std::optional<std::pair<double, double>> RowWithinEllipse(const Eigen::Matrix2d& form,
+                                                          const Eigen::Vector2d& center,
+                                                          double y) {
+  // F₀₀ dx² + 2 F₀₁ dx dy + F₁₁ dy² = 1, for dx.
+  const double dy = y - center.y();
+  const double discriminant =
+      form(0, 1) * form(0, 1) * dy * dy - form(0, 0) * (form(1, 1) * dy * dy - 1.0);
+  if (!(discriminant >= 0.0)) return std::nullopt;
+  const double middle = center.x() - form(0, 1) * dy / form(0, 0);
+  const double half_width = std::sqrt(discriminant) / form(0, 0);
+  return std::make_pair(middle - half_width, middle + half_width);
+}
+
 // The pixels within `band` of an edge through H, each with every edge within `band` of it,
 // but none deeper inside a disk than `max_depth_per_curvature` of its edge's radius of
 // curvature there (PhotometricOptions). In ideal pixels, but for a disk modelled whole through
@@ -588,10 +603,17 @@ PixelSet PixelsNearEdges(const Image8& image,
   std::vector<Box> boxes;
   // Each edge's ellipse: a pixel farther than its semi-major axis + band from its centre, or
   // nearer than its semi-minor axis - band, is beyond the band (with a pixel to spare for
-  // the distance's first-order form), and needs no distance.
+  // the distance's first-order form), and needs no distance; nor is one outside the ellipse
+  // scaled by PndBandScales' outer scale, or inside it scaled by its inner (but for a disk
+  // modelled whole, whose pixels inside are all taken), x outside or inside where
+  // xᵀ F x > 1 or < 1 for the scaled ellipse's form F about its centre. The rows' spans are
+  // cut by those ellipses grown by a pixel each way, and shrunk by one (the ellipse scaled by
+  // 1/b more or less, b its semi-minor axis). Not for a disk modelled whole through a lens,
+  // whose distances are in the pixel's own units.
   struct Annulus {
     Eigen::Vector2d center;
     double outer_squared, inner_squared;
+    std::optional<Eigen::Matrix2d> outside, inside, span_outside, span_inside;
   };
   std::vector<Annulus> annuli;
   // Each edge's reach in ideal pixels: the band, but for a disk modelled whole through a lens,
@@ -616,7 +638,30 @@ PixelSet PixelsNearEdges(const Image8& image,
     }
     reaches.push_back(layer_reach);
     const double inner = std::max(0.0, e.semi_minor - layer_reach - 1.0);
-    annuli.push_back({e.center, std::pow(e.semi_major + layer_reach + 1.0, 2), inner * inner});
+    Annulus& annulus = annuli.emplace_back();
+    annulus.center = e.center;
+    annulus.outer_squared = std::pow(e.semi_major + layer_reach + 1.0, 2);
+    annulus.inner_squared = inner * inner;
+    if (!layer.whole_units) {
+      const PndBand scales = PndBandScales(e, band);
+      const Eigen::Rotation2Dd axes(e.angle_rad);
+      // The form of the ellipse scaled by k: R diag(1/(k a)², 1/(k b)²) Rᵀ.
+      const auto scaled = [&](double k) -> Eigen::Matrix2d {
+        const Eigen::Vector2d per_axis_squared(1.0 / std::pow(k * e.semi_major, 2),
+                                               1.0 / std::pow(k * e.semi_minor, 2));
+        return axes.toRotationMatrix() * per_axis_squared.asDiagonal() *
+               axes.toRotationMatrix().transpose();
+      };
+      const double pixel_scale = 1.0 / e.semi_minor;
+      if (std::isfinite(scales.outer)) {
+        annulus.outside = scaled(scales.outer);
+        annulus.span_outside = scaled(scales.outer + pixel_scale);
+      }
+      if (!layer.whole && scales.inner > 0.0) {
+        annulus.inside = scaled(scales.inner);
+        if (scales.inner > pixel_scale) annulus.span_inside = scaled(scales.inner - pixel_scale);
+      }
+    }
     const Eigen::AlignedBox2d reach =
         PixelsSeeingIdealSquare(image, camera, e.center, e.semi_major + layer_reach + 2.0);
     boxes.push_back({column(reach.min().x()),
@@ -661,18 +706,31 @@ PixelSet PixelsNearEdges(const Image8& image,
       const double dy = std::max(0.0, std::abs(v - annulus.center.y()) - 1.0);
       if (dy * dy > annulus.outer_squared) continue;
       const double half_width = std::sqrt(annulus.outer_squared - dy * dy) + 1.0;
-      const int first = column(annulus.center.x() - half_width);
-      const int last = column(annulus.center.x() + half_width + 1.0);
-      const double dy_inner = std::abs(v - annulus.center.y()) + 1.0;
-      const double inner_half_width =
-          layers[m].whole || dy_inner * dy_inner >= annulus.inner_squared
-              ? 0.0
-              : std::sqrt(annulus.inner_squared - dy_inner * dy_inner) - 1.0;
-      if (inner_half_width < 1.0) {
+      int first = column(annulus.center.x() - half_width);
+      int last = column(annulus.center.x() + half_width + 1.0);
+      std::pair<double, double> hole(annulus.center.x(), annulus.center.x());
+      if (annulus.span_outside) {
+        const std::optional<std::pair<double, double>> within =
+            RowWithinEllipse(*annulus.span_outside, annulus.center, v);
+        if (!within) continue;
+        first = std::max(first, column(within->first));
+        last = std::min(last, column(within->second + 1.0));
+        if (annulus.span_inside) {
+          hole = RowWithinEllipse(*annulus.span_inside, annulus.center, v).value_or(hole);
+        }
+      } else {
+        const double dy_inner = std::abs(v - annulus.center.y()) + 1.0;
+        const double inner_half_width =
+            layers[m].whole || dy_inner * dy_inner >= annulus.inner_squared
+                ? 0.0
+                : std::sqrt(annulus.inner_squared - dy_inner * dy_inner) - 1.0;
+        hole = {annulus.center.x() - inner_half_width, annulus.center.x() + inner_half_width};
+      }
+      if (hole.second - hole.first < 2.0) {
         spans.emplace_back(first, last);
       } else {
-        spans.emplace_back(first, column(annulus.center.x() - inner_half_width));
-        spans.emplace_back(column(annulus.center.x() + inner_half_width), last);
+        spans.emplace_back(first, column(hole.first));
+        spans.emplace_back(column(hole.second), last);
       }
     }
     std::sort(spans.begin(), spans.end());
@@ -699,10 +757,17 @@ PixelSet PixelsNearEdges(const Image8& image,
     // Signed distance to each edge, negative inside.
     bool near_any = false;
     for (size_t m = 0; m < layers.size(); ++m) {
-      const double from_center_squared = (ideal - annuli[m].center).squaredNorm();
-      if (from_center_squared > annuli[m].outer_squared) {
+      const Annulus& annulus = annuli[m];
+      const Eigen::Vector2d from_center = ideal - annulus.center;
+      const double from_center_squared = from_center.squaredNorm();
+      const auto beyond = [&](const std::optional<Eigen::Matrix2d>& form, bool outside) {
+        if (!form) return false;
+        const double scaled = from_center.dot(*form * from_center);
+        return outside ? scaled > 1.0 : scaled < 1.0;
+      };
+      if (from_center_squared > annulus.outer_squared || beyond(annulus.outside, true)) {
         distances[m] = std::numeric_limits<double>::infinity();
-      } else if (from_center_squared < annuli[m].inner_squared) {
+      } else if (from_center_squared < annulus.inner_squared || beyond(annulus.inside, false)) {
         distances[m] = -std::numeric_limits<double>::infinity();
       } else if (layers[m].whole_units) {
         const Eigen::Vector2d local = layers[m].whole_units->LocalOf(ideal);
