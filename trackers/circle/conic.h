@@ -39,8 +39,8 @@ double PndReach(const Ellipse& e, double distance);
 
 // The scales of the real ellipse `e` about its centre between which lie all the points within
 // `distance` PND of it: every point of e scaled by more than `outer`, or by less than `inner`,
-// is farther, for scans that skip those (tighter than PndReach but along the major axis). For a
-// point s v, v on e: outside, |PND| is at least the Sampson distance (s² - 1) / (2 s |A v|)
+// is farther, for scans that skip those (an ellipse's band, where PndReach's is a circle). For
+// a point s v, v on e: outside, |PND| is at least the Sampson distance (s² - 1) / (2 s |A v|)
 // (PndReach), and |A v| <= 1/b, so beyond (s² - 1) b / 2s = distance it is farther; inside,
 // |PND| is the distance to the ellipse along the normal line (d1), at least the nearest, and e
 // scaled by 1 - distance / b lies that far within it (a disk of radius distance about each of
