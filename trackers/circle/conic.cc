@@ -58,15 +58,19 @@ PndBand PndBandScales(const Ellipse& e, double distance) {
           1.000001 * (per_minor + std::sqrt(per_minor * per_minor + 1.0))};
 }
 
-Eigen::Matrix3d ConicFromEllipse(const Ellipse& ellipse) {
+Eigen::Matrix2d EllipseForm(const Ellipse& ellipse) {
   const double c = std::cos(ellipse.angle_rad), s = std::sin(ellipse.angle_rad);
   Eigen::Matrix2d rot;
   rot << c, -s, s, c;
-  const Eigen::Matrix2d A = rot *
-                            Eigen::Vector2d(1.0 / (ellipse.semi_major * ellipse.semi_major),
-                                            1.0 / (ellipse.semi_minor * ellipse.semi_minor))
-                                .asDiagonal() *
-                            rot.transpose();
+  return rot *
+         Eigen::Vector2d(1.0 / (ellipse.semi_major * ellipse.semi_major),
+                         1.0 / (ellipse.semi_minor * ellipse.semi_minor))
+             .asDiagonal() *
+         rot.transpose();
+}
+
+Eigen::Matrix3d ConicFromEllipse(const Ellipse& ellipse) {
+  const Eigen::Matrix2d A = EllipseForm(ellipse);
   Eigen::Matrix3d C;
   C.topLeftCorner<2, 2>() = A;
   C.topRightCorner<2, 1>() = -A * ellipse.center;

@@ -28,6 +28,8 @@ struct Ellipse {
 };
 Ellipse EllipseFromConic(const Eigen::Matrix3d& C);
 Eigen::Matrix3d ConicFromEllipse(const Ellipse& ellipse);
+// The ellipse's quadratic form A about its centre c: (x - c)ᵀ A (x - c) = 1 on it, < 1 inside.
+Eigen::Matrix2d EllipseForm(const Ellipse& ellipse);
 
 // The distance from the centre of the real ellipse `e` beyond which every point is more
 // than `distance` PND (PndResidual) from it, for scans that skip far points. Outside an

@@ -50,6 +50,23 @@ TEST(PndReach, IsInfiniteWhereTheAxesAreNaN) {
   EXPECT_EQ(PndReach(e, 1.0), INFINITY);
 }
 
+// EllipseForm: 1 on the ellipse about its centre, below inside, above outside.
+TEST(EllipseForm, IsOneOnTheEllipse) {
+  Rng rng(29);
+  for (int trial = 0; trial < 200; ++trial) {
+    const Ellipse e = RandomEllipse(&rng);
+    const Eigen::Matrix2d form = EllipseForm(e);
+    const Eigen::Vector2d major(std::cos(e.angle_rad), std::sin(e.angle_rad));
+    const Eigen::Vector2d minor(-major.y(), major.x());
+    const double t = rng.Uniform(-M_PI, M_PI);
+    const Eigen::Vector2d on_ellipse =
+        e.semi_major * std::cos(t) * major + e.semi_minor * std::sin(t) * minor;
+    EXPECT_NEAR(on_ellipse.dot(form * on_ellipse), 1.0, 1e-12) << "trial " << trial;
+    EXPECT_LT((0.9 * on_ellipse).dot(form * (0.9 * on_ellipse)), 1.0);
+    EXPECT_GT((1.1 * on_ellipse).dot(form * (1.1 * on_ellipse)), 1.0);
+  }
+}
+
 TEST(PndBandScales, NoPointBeyondThemIsWithinTheDistance) {
   Rng rng(23);
   int deep_inside = 0;

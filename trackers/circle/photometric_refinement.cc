@@ -644,13 +644,9 @@ PixelSet PixelsNearEdges(const Image8& image,
     annulus.inner_squared = inner * inner;
     if (!layer.whole_units) {
       const PndBand scales = PndBandScales(e, band);
-      const Eigen::Rotation2Dd axes(e.angle_rad);
-      // The form of the ellipse scaled by k: R diag(1/(k a)², 1/(k b)²) Rᵀ.
-      const auto scaled = [&](double k) -> Eigen::Matrix2d {
-        const Eigen::Vector2d per_axis_squared(1.0 / std::pow(k * e.semi_major, 2),
-                                               1.0 / std::pow(k * e.semi_minor, 2));
-        return axes.toRotationMatrix() * per_axis_squared.asDiagonal() *
-               axes.toRotationMatrix().transpose();
+      // The form of the ellipse scaled by k.
+      const auto scaled = [&](double k) {
+        return EllipseForm({e.center, k * e.semi_major, k * e.semi_minor, e.angle_rad});
       };
       const double pixel_scale = 1.0 / e.semi_minor;
       if (std::isfinite(scales.outer)) {
