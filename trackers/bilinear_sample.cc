@@ -7,15 +7,25 @@
 namespace markerbench {
 
 double BilinearSample(const uint8_t* grey, int width, int height, const Eigen::Vector2d& p) {
+  return BilinearSample(grey, width, height, 1, 0, p);
+}
+
+double BilinearSample(const uint8_t* pixels,
+                      int width,
+                      int height,
+                      int channels,
+                      int channel,
+                      const Eigen::Vector2d& p) {
   // std::clamp passes NaN through, and a NaN cast to int is undefined.
   if (p.hasNaN()) return std::numeric_limits<double>::quiet_NaN();
   const double x = std::clamp(p.x(), 0.0, width - 1.001);
   const double y = std::clamp(p.y(), 0.0, height - 1.001);
   const int x0 = static_cast<int>(x), y0 = static_cast<int>(y);
   const double fx = x - x0, fy = y - y0;
-  const uint8_t* row = grey + static_cast<size_t>(y0) * width + x0;
-  return (1 - fy) * ((1 - fx) * row[0] + fx * row[1]) +
-         fy * ((1 - fx) * row[width] + fx * row[width + 1]);
+  const uint8_t* row = pixels + (static_cast<size_t>(y0) * width + x0) * channels + channel;
+  const int below = width * channels;
+  return (1 - fy) * ((1 - fx) * row[0] + fx * row[channels]) +
+         fy * ((1 - fx) * row[below] + fx * row[below + channels]);
 }
 
 }  // namespace markerbench

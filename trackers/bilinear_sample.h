@@ -10,4 +10,12 @@ namespace markerbench {
 // The grey level at p; p is clamped into the image. NaN where p has a NaN coordinate.
 double BilinearSample(const uint8_t* grey, int width, int height, const Eigen::Vector2d& p);
 
+// The same in one channel of an image of `channels` interleaved channels.
+double BilinearSample(const uint8_t* pixels,
+                      int width,
+                      int height,
+                      int channels,
+                      int channel,
+                      const Eigen::Vector2d& p);
+
 }  // namespace markerbench

@@ -27,6 +27,24 @@ TEST(BilinearSample, PointsOutsideAreClampedToTheBorder) {
   EXPECT_NEAR(At(10.0, 10.0), 150.0, 0.2);
 }
 
+// One channel of an interleaved image reads as that channel alone would: the grey image above
+// as channel 1 of three, the other channels far off.
+TEST(BilinearSample, AChannelOfAnInterleavedImageReadsAsAGreyImage) {
+  std::array<uint8_t, 18> interleaved{};
+  for (size_t i = 0; i < kImage.size(); ++i) {
+    interleaved[3 * i] = 255;
+    interleaved[3 * i + 1] = kImage[i];
+    interleaved[3 * i + 2] = static_cast<uint8_t>(200 - kImage[i]);
+  }
+  for (const Eigen::Vector2d p : {Eigen::Vector2d(0.5, 0.0),
+                                  Eigen::Vector2d(1.25, 0.5),
+                                  Eigen::Vector2d(1.9, 0.7),
+                                  Eigen::Vector2d(-3.0, 9.0)}) {
+    EXPECT_DOUBLE_EQ(BilinearSample(interleaved.data(), 3, 2, 3, 1, p), At(p.x(), p.y()));
+    EXPECT_DOUBLE_EQ(BilinearSample(interleaved.data(), 3, 2, 3, 2, p), 200.0 - At(p.x(), p.y()));
+  }
+}
+
 // A point from a degenerate homography: NaN, never a read outside the image.
 TEST(BilinearSample, ANanPointReadsNan) {
   const double nan = std::nan("");

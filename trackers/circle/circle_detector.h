@@ -111,6 +111,17 @@ class CircleDetector {
                                         const std::vector<Eigen::Matrix3d>* predicted_conics_px,
                                         std::string* why) const;
 
+  // Where circle `i`'s edge is looked for: its channel (-1: luma) and how far the edge is clear
+  // of other ink in it, inside and outside, in metres.
+  struct EdgeClearance {
+    int channel = -1;
+    double inward_m = 0.0;
+    double outward_m = 0.0;
+  };
+  EdgeClearance ClearanceOf(size_t i) const {
+    return {plans_[i].channel, inward_clear_m_[i], outward_clear_m_[i]};
+  }
+
  private:
   struct ChannelPlan {
     int channel = -1;  // RGB channel index, or -1 for luma

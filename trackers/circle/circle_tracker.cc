@@ -154,8 +154,9 @@ bool MatchPrediction(const CircleDiagnostics& detected,
 // its gains to 0 and shows the paper's noise alone).
 constexpr double kMaxNoiseGrowth = 1.5;
 constexpr double kMaxContrastChange = 2.0;
-// It is tried where the last frame's image lay within this many px of its prediction
-// (PredictionErrorPx): a fit from a prediction off by more than its pixels' band takes several
+// It starts from the prediction itself where the last frame's image lay within this many px of
+// its prediction (PredictionErrorPx), and otherwise from the prediction moved onto the edges
+// (AlignedByEdges): a fit from a prediction off by more than its pixels' band takes several
 // rounds. Measured: on an orbit (scenarios/sequences/orbit.yaml, σ² 0.02) the motion's
 // predictions were off by at most 0.16 px, and the fit took 2.7 evaluations; in the speed
 // benchmark's hand-held shake by 1-10 px, and it took 12-28, where full detection's fit takes
@@ -429,12 +430,17 @@ TrackResult CircleTracker::FindInFrame(const Observation& observation) {
       const std::optional<PixelFitFound> last_on_pixels = previous_on_pixels_;
       const PredictedPose predicted{
           predicted_pose, previous_cam_from_paper_->rotation.col(2), tilt_log_ratio_};
-      if (last_on_pixels && last_prediction_error_px &&
-          *last_prediction_error_px <= kMaxLastPredictionErrorPx) {
-        const TrackResult result =
-            TrackOnPixels(observation, *geometry, predicted, *last_on_pixels);
-        diagnostics_.used_tracking_region = true;
-        if (found_as_predicted(result)) return result;
+      if (last_on_pixels) {
+        const bool held =
+            last_prediction_error_px && *last_prediction_error_px <= kMaxLastPredictionErrorPx;
+        const std::optional<PredictedPose> start =
+            held ? predicted : AlignedByEdges(observation, *geometry, predicted, *last_on_pixels);
+        if (start) {
+          const TrackResult result = TrackOnPixels(observation, *geometry, *start, *last_on_pixels);
+          diagnostics_.used_tracking_region = true;
+          diagnostics_.aligned_by_edge_shifts = !held;
+          if (found_as_predicted(result)) return result;
+        }
       }
       const std::vector<Eigen::Matrix3d>* const starts[] = {&prediction->through_lens.conics_px,
                                                             nullptr};
@@ -702,6 +708,42 @@ TrackResult CircleTracker::TrackIn(const Observation& observation,
   return result;
 }
 
+std::optional<CircleTracker::PredictedPose> CircleTracker::AlignedByEdges(
+    const Observation& observation,
+    const CircleGeometry& geometry,
+    const PredictedPose& predicted,
+    const PixelFitFound& last) const {
+  // A single circle's edges fit both its tilts alike (§4.7): they never rule the other out.
+  if (geometry.radii_m.size() < 2) return std::nullopt;
+  const CircleDetector detector(*observation.marker, geometry, options_.detector);
+  std::vector<CircleDetector::EdgeClearance> clearances;
+  for (size_t i = 0; i < geometry.radii_m.size(); ++i)
+    clearances.push_back(detector.ClearanceOf(i));
+  const std::optional<EdgeShiftAlignment> aligned = AlignByEdgeShifts(*observation.image,
+                                                                      *observation.camera,
+                                                                      *observation.marker,
+                                                                      geometry,
+                                                                      clearances,
+                                                                      predicted.cam_from_paper,
+                                                                      last.levels,
+                                                                      last.edge_sigma_px,
+                                                                      options_.edge_shift,
+                                                                      nullptr);
+  // Where the edges leave the circle's other tilt open, the search fits both (PixelFitStarts);
+  // the fit from this pose alone would keep the tilt predicted.
+  if (!aligned || (TiltsApart(OtherTilt(aligned->cam_from_paper), aligned->cam_from_paper) &&
+                   EdgesLeaveTheOtherTilt(aligned->cam_from_paper,
+                                          aligned->other_tilt,
+                                          aligned->points_kept,
+                                          aligned->rms_px,
+                                          aligned->other_tilt_rms_px))) {
+    return std::nullopt;
+  }
+  PredictedPose moved = predicted;
+  moved.cam_from_paper = aligned->cam_from_paper;
+  return moved;
+}
+
 TrackResult CircleTracker::TrackOnPixels(const Observation& observation,
                                          const CircleGeometry& geometry,
                                          const PredictedPose& predicted,
@@ -843,20 +885,27 @@ std::vector<Rigid3> CircleTracker::PixelFitStarts(const RefinementProblem& probl
   const Rigid3 other = OtherTilt(cam_from_paper);
   if (!TiltsApart(other, cam_from_paper)) return {cam_from_paper};
   if (whole_design) return {cam_from_paper, other};
-  // Disks: the other tilt's basin, where the edge points have one and do not rule it out
-  // (2 ln Λ of the two fits, the points' RMS taken as their noise).
+  // Disks: the other tilt's basin, where the edge points have one and do not rule it out.
   const Rigid3 refined = RefinePose(problem, other, options_.refinement).cam_from_paper;
   size_t edge_points = 0;
   for (const RefinementCircle& circle : problem.circles) {
     edge_points += circle.edge_points_px.size();
   }
-  const double other_rms = EdgeRmsPx(problem, refined);
-  const double log_ratio =
-      edge_points * (other_rms * other_rms / (edge_rms_px * edge_rms_px) - 1.0);
-  if (TiltsApart(refined, cam_from_paper) && log_ratio < options_.max_other_tilt_log_ratio) {
+  if (EdgesLeaveTheOtherTilt(
+          cam_from_paper, refined, edge_points, edge_rms_px, EdgeRmsPx(problem, refined))) {
     return {cam_from_paper, refined};
   }
   return {cam_from_paper};
+}
+
+bool CircleTracker::EdgesLeaveTheOtherTilt(const Rigid3& cam_from_paper,
+                                           const Rigid3& other_fitted,
+                                           size_t edge_points,
+                                           double edge_rms_px,
+                                           double other_rms_px) const {
+  const double log_ratio =
+      edge_points * (other_rms_px * other_rms_px / (edge_rms_px * edge_rms_px) - 1.0);
+  return TiltsApart(other_fitted, cam_from_paper) && log_ratio < options_.max_other_tilt_log_ratio;
 }
 
 template <class Result>

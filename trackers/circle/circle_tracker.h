@@ -4,11 +4,13 @@
 // for markers e and f the roll (and f's centre) from the design inside the circle
 // (RollFeature).
 // In tracking mode (the paper's step 5) the previous poses predict this frame's: where the last
-// pose came from the fit on the disks' pixels (a-d) and from a prediction that held (a smooth
-// motion), that fit runs again straight from this frame's prediction, without the detector;
-// otherwise, or where its result fails the checks of a detection, the predicted ellipses are
-// searched in a region around them; a miss there, or ellipses that are not the predicted ones,
-// fall back to full detection of the whole image.
+// pose came from the fit on the disks' pixels (a-d), that fit runs again without the detector,
+// straight from this frame's prediction where the last prediction held (a smooth motion), and
+// otherwise (a-c) from the prediction moved onto the circles' edges by their shifts
+// (AlignByEdgeShifts) where the edges rule the circle's other tilt out; otherwise, or where its
+// result fails the checks of a detection, the predicted ellipses are searched in a region around
+// them; a miss there, or ellipses that are not the predicted ones, fall back to full detection
+// of the whole image.
 #pragma once
 
 #include <memory>
@@ -19,6 +21,7 @@
 #include "trackers/circle/analytic_solver.h"
 #include "trackers/circle/circle_detector.h"
 #include "trackers/circle/design_refinement.h"
+#include "trackers/circle/edge_shift_alignment.h"
 #include "trackers/circle/photometric_refinement.h"
 #include "trackers/circle/pose_refinement.h"
 #include "trackers/printed_appearance.h"
@@ -37,6 +40,9 @@ struct CircleTrackerOptions {
   bool photometric = true;
   PhotometricOptions photometric_refinement;
   DesignRefinementOptions design_refinement;
+  // Tracking mode: a prediction moved onto the frame by its edges' shifts before the fit on
+  // the pixels runs from it (edge_shift_alignment.h).
+  EdgeShiftOptions edge_shift;
   // The pixels are fitted from the circle's other tilt too when its normal is this far from
   // the chosen one's (nearer, the fit reaches it from either): for (e) and (f) always, and for
   // disks (a-d) where the edge points, refined from it, stay there and do not rule it out:
@@ -100,6 +106,9 @@ struct CircleDiagnostics {
   // The result is the fit on the pixels from the predicted pose (no detector; conics_px and m1_px
   // are the fitted pose's image, edges empty).
   bool tracked_on_pixels = false;
+  // ... from the prediction moved by its edges' shifts (AlignByEdgeShifts), not the prediction
+  // itself.
+  bool aligned_by_edge_shifts = false;
   std::vector<Eigen::Matrix3d> conics_px;           // fitted, canonical
   std::vector<std::vector<Eigen::Vector2d>> edges;  // per circle, bias-corrected
   std::vector<int> edge_passes;                     // per circle, run
@@ -169,6 +178,13 @@ class CircleTracker final : public Tracker {
                             const CircleGeometry& geometry,
                             const PredictedPose& predicted,
                             const PixelFitFound& last);
+  // The prediction moved onto this frame by its circles' edges (AlignByEdgeShifts, at the last
+  // fit's levels and blur), where the last prediction was off by more than
+  // kMaxLastPredictionErrorPx; nullopt where the edges do not show.
+  std::optional<PredictedPose> AlignedByEdges(const Observation& observation,
+                                              const CircleGeometry& geometry,
+                                              const PredictedPose& predicted,
+                                              const PixelFitFound& last) const;
   // The check of the printed design at a pose (CheckPrintedAppearance), and the result: found,
   // with `second_hypothesis` after the pose where given, and the pose kept for the next frame's
   // prediction, or not detected.
@@ -188,6 +204,15 @@ class CircleTracker final : public Tracker {
   // Whether the normals of two poses' planes (the marker's, seen from the camera) lie more than
   // min_branch_angle_rad apart: the circle's two tilts told apart.
   bool TiltsApart(const Rigid3& cam_from_plane, const Rigid3& other) const;
+  // Whether edge points fitted at a pose, and again from its other tilt (`other_fitted`, where
+  // that fit ended), leave the other tilt open: it stayed apart, and 2 ln Λ of the two fits,
+  // N (rms_other² / rms² - 1) over the N points (their RMS taken as their noise), is below
+  // max_other_tilt_log_ratio.
+  bool EdgesLeaveTheOtherTilt(const Rigid3& cam_from_paper,
+                              const Rigid3& other_fitted,
+                              size_t edge_points,
+                              double edge_rms_px,
+                              double other_rms_px) const;
   // Whether a pose continues the tilt tracked: its plane's normal is nearer the tracked one
   // (PredictedPose::tracked_normal) than the normal of its other tilt (`other`) is.
   static bool ContinuesTilt(const Rigid3& cam_from_paper,

@@ -1,0 +1,75 @@
+// Tracking mode's coarse step (issue 21): a predicted pose moved onto the frame by how far its
+// circles' edges have shifted. The fit on the pixels (photometric_refinement.h) converges in a
+// few steps only from within about a pixel of its result; a hand-held camera's prediction is
+// often several pixels off, and a degree of unpredicted turn is 10-15 px at 0.6 m. Along rays
+// normal to each circle's predicted image (through the lens), each edge is found on the raw
+// image as the best step between two levels (its polarity and contrast those the last frame's
+// fit measured), to a fraction of a pixel by the area under the profile about it. The pose then
+// moves by the linear least squares that carries each ray's predicted edge point along its
+// normal by the shift found (the points' motion along the edge is not seen, and not asked
+// for), twice, the rays that disagree most left out. Directions the edges do not fix (the roll
+// of a single circle or of two concentric ones) stay the prediction's.
+#pragma once
+
+#include <Eigen/Core>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "core/camera.h"
+#include "core/image.h"
+#include "core/marker_spec.h"
+#include "core/rigid3.h"
+#include "trackers/circle/circle_detector.h"
+#include "trackers/circle/circle_geometry.h"
+
+namespace markerbench {
+
+struct EdgeShiftOptions {
+  int rays_per_circle = 32;
+  // The farthest an edge is looked for from its predicted place, in px (within the margins
+  // that keep a ray clear of other ink), in the first round and in the second.
+  double max_shift_px = 16.0;
+  double second_max_shift_px = 4.0;
+  double sample_step_px = 1.0;  // along a ray
+  int samples_across = 5;       // each sample the mean of this many, a pixel apart, across the ray
+  // A ray's edge counts where its step between the two levels is at least this fraction of
+  // the contrast expected there, and of the expected polarity.
+  double min_step_per_contrast = 0.5;
+  // Of each circle's rays, in the first round and in the second. A ray's reach inward stops
+  // short of other ink (b's feature dot, c's inner circle, d's centre dot), and an edge moved
+  // beyond it is missed in the first round.
+  double first_min_found_fraction = 0.4;
+  double min_found_fraction = 0.6;
+  // The alignment stands where the edge points' distances to its circles have an RMS of at
+  // most this (a single profile's edge under σ² 0.3 and blur 2 px: about 1 px).
+  double max_rms_px = 1.5;
+};
+
+struct EdgeShiftAlignment {
+  Rigid3 cam_from_paper;
+  double rms_px = 0.0;  // of the edge points kept: their distances to the circles' images
+  int points_kept = 0;
+  // The same points fitted from the circle's other tilt (OtherTilt, §4.7), and their RMS there:
+  // how far the edges rule that tilt out.
+  Rigid3 other_tilt;
+  double other_tilt_rms_px = 0.0;
+};
+
+// `levels`: offset and gain per channel of the image (PixelFit::levels: a channel reads
+// offset + gain · printed, 0-1); `clearances` per circle (CircleDetector::ClearanceOf);
+// `blur_sigma_px` the edges' blur. nullopt, with `why` set, where too few rays find their edge
+// or the edges do not agree on a pose.
+std::optional<EdgeShiftAlignment> AlignByEdgeShifts(
+    const Image8& image,
+    const Camera& camera,
+    const MarkerSpec& marker,
+    const CircleGeometry& geometry,
+    const std::vector<CircleDetector::EdgeClearance>& clearances,
+    const Rigid3& predicted_cam_from_paper,
+    const Eigen::VectorXd& levels,
+    double blur_sigma_px,
+    const EdgeShiftOptions& options,
+    std::string* why);
+
+}  // namespace markerbench
