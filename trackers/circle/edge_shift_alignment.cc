@@ -83,6 +83,7 @@ std::vector<EdgeRay> RaysOf(size_t i,
     const double px_per_m = ray.normal.dot(outward) / step;
     if (!(px_per_m > 0.0) || !ray.px.allFinite()) continue;
     ray.channel = clearance.channel;
+    // The printed colours 1 % of the radius inside and outside the edge.
     ray.inside_level =
         ExpectedLevel(levels, printed(p - 10.0 * step * radial), image.channels, ray.channel);
     ray.outside_level =
