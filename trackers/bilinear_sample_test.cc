@@ -36,10 +36,10 @@ TEST(BilinearSample, AChannelOfAnInterleavedImageReadsAsAGreyImage) {
     interleaved[3 * i + 1] = kImage[i];
     interleaved[3 * i + 2] = static_cast<uint8_t>(200 - kImage[i]);
   }
-  for (const Eigen::Vector2d p : {Eigen::Vector2d(0.5, 0.0),
-                                  Eigen::Vector2d(1.25, 0.5),
-                                  Eigen::Vector2d(1.9, 0.7),
-                                  Eigen::Vector2d(-3.0, 9.0)}) {
+  for (const Eigen::Vector2d& p : {Eigen::Vector2d(0.5, 0.0),
+                                   Eigen::Vector2d(1.25, 0.5),
+                                   Eigen::Vector2d(1.9, 0.7),
+                                   Eigen::Vector2d(-3.0, 9.0)}) {
     EXPECT_DOUBLE_EQ(BilinearSample(interleaved.data(), 3, 2, 3, 1, p), At(p.x(), p.y()));
     EXPECT_DOUBLE_EQ(BilinearSample(interleaved.data(), 3, 2, 3, 2, p), 200.0 - At(p.x(), p.y()));
   }
