@@ -717,8 +717,9 @@ std::optional<CircleTracker::PredictedPose> CircleTracker::AlignedByEdges(
   if (geometry.radii_m.size() < 2) return std::nullopt;
   const CircleDetector detector(*observation.marker, geometry, options_.detector);
   std::vector<CircleDetector::EdgeClearance> clearances;
-  for (size_t i = 0; i < geometry.radii_m.size(); ++i)
+  for (size_t i = 0; i < geometry.radii_m.size(); ++i) {
     clearances.push_back(detector.ClearanceOf(i));
+  }
   const std::optional<EdgeShiftAlignment> aligned = AlignByEdgeShifts(*observation.image,
                                                                       *observation.camera,
                                                                       *observation.marker,

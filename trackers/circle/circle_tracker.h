@@ -179,8 +179,9 @@ class CircleTracker final : public Tracker {
                             const PredictedPose& predicted,
                             const PixelFitFound& last);
   // The prediction moved onto this frame by its circles' edges (AlignByEdgeShifts, at the last
-  // fit's levels and blur), where the last prediction was off by more than
-  // kMaxLastPredictionErrorPx; nullopt where the edges do not show.
+  // fit's levels and blur), for a frame whose last prediction was off by more than
+  // kMaxLastPredictionErrorPx; nullopt where the edges do not show or leave the circle's other
+  // tilt open (EdgesLeaveTheOtherTilt; always for d's single circle).
   std::optional<PredictedPose> AlignedByEdges(const Observation& observation,
                                               const CircleGeometry& geometry,
                                               const PredictedPose& predicted,

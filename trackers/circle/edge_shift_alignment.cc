@@ -287,6 +287,11 @@ std::optional<EdgeShiftAlignment> AlignByEdgeShifts(
     double blur_sigma_px,
     const EdgeShiftOptions& options,
     std::string* why) {
+  // The last fit's levels may be another image's (a grey frame before an RGB one).
+  if (levels.size() < 2 * image.channels) {
+    if (why) *why = "the levels given are not the image's channels";
+    return std::nullopt;
+  }
   EdgeShiftAlignment aligned;
   aligned.cam_from_paper = predicted_cam_from_paper;
   std::vector<EdgePoint> points;

@@ -147,6 +147,18 @@ TEST(EdgeShiftAlignment, DoesNotMoveWhereTheEdgesDoNotShow) {
   Rigid3 far = truth;
   far.translation.x() += 0.05;
   EXPECT_FALSE(aligning.Align(frame, far, 0.5, &why));
+  // Levels of a grey image (one channel) for an RGB frame: declined, never read past their end.
+  EXPECT_FALSE(AlignByEdgeShifts(frame.image,
+                                 aligning.camera,
+                                 aligning.marker,
+                                 aligning.geometry,
+                                 aligning.clearances,
+                                 truth,
+                                 UnitGainLevels(7 + 2),
+                                 0.5,
+                                 {},
+                                 &why));
+  EXPECT_NE(why.find("channels"), std::string::npos) << why;
 }
 
 }  // namespace
