@@ -216,7 +216,9 @@ double EdgeRmsPx(const RefinementProblem& problem, const Rigid3& cam_from_paper)
 }  // namespace
 
 bool CircleTrackerOptions::IsValid(std::string* error) const {
-  if (!detector.IsValid(error) || !refinement.IsValid(error)) return false;
+  if (!detector.IsValid(error) || !refinement.IsValid(error) || !edge_shift.IsValid(error)) {
+    return false;
+  }
   std::ostringstream msg;
   if (!(roi_margin >= 0.0)) {
     msg << "roi_margin=" << roi_margin << " must be >= 0";
@@ -328,6 +330,19 @@ CircleTrackerOptions CircleTrackerOptions::FromYaml(const YamlMap& map) {
   o.design_refinement.band_px = map.GetOr<double>("design_band_px", o.design_refinement.band_px);
   o.design_refinement.max_first_round_log_ratio = map.GetOr<double>(
       "design_max_other_tilt_log_ratio", o.design_refinement.max_first_round_log_ratio);
+  EdgeShiftOptions& e = o.edge_shift;
+  e.enabled = map.GetOr<bool>("edge_shift_alignment", e.enabled);
+  e.rays_per_circle = map.GetOr<int>("edge_shift_rays", e.rays_per_circle);
+  e.max_shift_px = map.GetOr<double>("edge_shift_max_px", e.max_shift_px);
+  e.second_max_shift_px = map.GetOr<double>("edge_shift_second_max_px", e.second_max_shift_px);
+  e.sample_step_px = map.GetOr<double>("edge_shift_step_px", e.sample_step_px);
+  e.samples_across = map.GetOr<int>("edge_shift_samples_across", e.samples_across);
+  e.min_step_per_contrast =
+      map.GetOr<double>("edge_shift_min_step_per_contrast", e.min_step_per_contrast);
+  e.first_min_found_fraction =
+      map.GetOr<double>("edge_shift_first_min_found_fraction", e.first_min_found_fraction);
+  e.min_found_fraction = map.GetOr<double>("edge_shift_min_found_fraction", e.min_found_fraction);
+  e.max_rms_px = map.GetOr<double>("edge_shift_max_rms_px", e.max_rms_px);
   FinishOptions(map, o);
   return o;
 }
@@ -380,6 +395,16 @@ std::vector<std::pair<std::string, std::string>> CircleTracker::Parameters() con
       {"design_band_px", NumberText(o.design_refinement.band_px)},
       {"design_max_other_tilt_log_ratio",
        NumberText(o.design_refinement.max_first_round_log_ratio)},
+      {"edge_shift_alignment", BoolText(o.edge_shift.enabled)},
+      {"edge_shift_rays", std::to_string(o.edge_shift.rays_per_circle)},
+      {"edge_shift_max_px", NumberText(o.edge_shift.max_shift_px)},
+      {"edge_shift_second_max_px", NumberText(o.edge_shift.second_max_shift_px)},
+      {"edge_shift_step_px", NumberText(o.edge_shift.sample_step_px)},
+      {"edge_shift_samples_across", std::to_string(o.edge_shift.samples_across)},
+      {"edge_shift_min_step_per_contrast", NumberText(o.edge_shift.min_step_per_contrast)},
+      {"edge_shift_first_min_found_fraction", NumberText(o.edge_shift.first_min_found_fraction)},
+      {"edge_shift_min_found_fraction", NumberText(o.edge_shift.min_found_fraction)},
+      {"edge_shift_max_rms_px", NumberText(o.edge_shift.max_rms_px)},
   };
 }
 
@@ -714,7 +739,7 @@ std::optional<CircleTracker::PredictedPose> CircleTracker::AlignedByEdges(
     const PredictedPose& predicted,
     const PixelFitFound& last) const {
   // A single circle's edges fit both its tilts alike (§4.7): they never rule the other out.
-  if (geometry.radii_m.size() < 2) return std::nullopt;
+  if (!options_.edge_shift.enabled || geometry.radii_m.size() < 2) return std::nullopt;
   const CircleDetector detector(*observation.marker, geometry, options_.detector);
   std::vector<CircleDetector::EdgeClearance> clearances;
   for (size_t i = 0; i < geometry.radii_m.size(); ++i) {

@@ -94,8 +94,9 @@ struct CircleTrackerOptions {
   // max_carried_tilt_log_ratio;
   // pixel_band_sigmas and pixel_band_px, the disks' fit's band_sigmas and band_px;
   // design_band_sigmas, design_band_px and design_max_other_tilt_log_ratio, e's and f's
-  // band_sigmas, band_px and max_first_round_log_ratio: the keys of Parameters()); throws
-  // ConfigError naming the file and key.
+  // band_sigmas, band_px and max_first_round_log_ratio; the edge_shift_ keys of tracking mode's
+  // alignment (EdgeShiftOptions): the keys of Parameters()); throws ConfigError naming the file
+  // and key.
   static CircleTrackerOptions FromYaml(const YamlMap& map);
 };
 

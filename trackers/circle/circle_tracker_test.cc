@@ -461,6 +461,27 @@ TEST(CircleTracker, PredictsTheNextPoseByTheLastMotion) {
   }
 }
 
+// With the alignment by edge shifts off (edge_shift_alignment: false), the same video's frames
+// whose prediction is pixels off take the detector: the second the search of the region (the
+// last pose, 12 mm off), the third the predicted ellipses; from the fourth, once the last frame
+// lay where the motion predicted it, the fit on the pixels runs from the prediction itself.
+TEST(CircleTracker, TheAlignmentByEdgeShiftsCanBeTurnedOff) {
+  const MarkerSpec marker = Load("circles_a");
+  CircleTrackerOptions options;
+  options.edge_shift.enabled = false;
+  CircleTracker tracker(options);
+  for (int frame = 0; frame < 5; ++frame) {
+    Rigid3 truth = TiltedView(0.6, 25.0, 40.0);
+    truth.translation.x() += 0.012 * (frame - 2);
+    const TrackedFrame t = RenderAndTrack(&tracker, marker, truth, 0.02, 50 + frame);
+    ASSERT_EQ(t.result.status, TrackStatus::kOk) << frame;
+    EXPECT_FALSE(tracker.diagnostics().aligned_by_edge_shifts) << frame;
+    EXPECT_EQ(tracker.diagnostics().tracked_on_pixels, frame > 2) << frame;
+    EXPECT_EQ(tracker.diagnostics().used_predicted_ellipses, frame == 2) << frame;
+    EXPECT_LE(PositionError(t.result.hypotheses.front(), truth), kTiltedPositionFraction * 0.6);
+  }
+}
+
 // A smooth video (the camera moving 2 mm and turning 0.5° a frame): once a frame's pose came from
 // the fit on the pixels, the next is that fit again, without the detector, from the predicted
 // pose moved onto the edges (the second and third frames: the last prediction was off by more
@@ -981,7 +1002,12 @@ TEST(CircleTracker, OptionsFromYamlNameTheBadKey) {
                     " design_band_sigmas: 2, design_band_px: 0.5,"
                     " design_max_other_tilt_log_ratio: 50,"
                     " max_appearance_block_misfit: 0.3, appearance_blocks_per_side: 0,"
-                    " appearance_min_significance: 5}\n"
+                    " appearance_min_significance: 5,"
+                    " edge_shift_alignment: false, edge_shift_rays: 24, edge_shift_max_px: 12,"
+                    " edge_shift_second_max_px: 3, edge_shift_step_px: 0.5,"
+                    " edge_shift_samples_across: 3, edge_shift_min_step_per_contrast: 0.4,"
+                    " edge_shift_first_min_found_fraction: 0.3,"
+                    " edge_shift_min_found_fraction: 0.7, edge_shift_max_rms_px: 2}\n"
                     "bad_value: {huber_px: -1}\n"
                     "bad_cost: {cost: sampson}\n"
                     "unknown: {hubr_px: 1}\n"
@@ -1000,7 +1026,17 @@ TEST(CircleTracker, OptionsFromYamlNameTheBadKey) {
                     "bad_design_tilt: {design_max_other_tilt_log_ratio: -1}\n"
                     "bad_block_misfit: {max_appearance_block_misfit: 0}\n"
                     "bad_blocks: {appearance_blocks_per_side: -2}\n"
-                    "bad_significance: {appearance_min_significance: -1}\n");
+                    "bad_significance: {appearance_min_significance: -1}\n"
+                    "bad_rays: {edge_shift_rays: 2}\n"
+                    "bad_reach: {edge_shift_max_px: 0}\n"
+                    "bad_second_reach: {edge_shift_second_max_px: -1}\n"
+                    "bad_step: {edge_shift_step_px: 5}\n"
+                    "bad_across: {edge_shift_samples_across: 0}\n"
+                    "bad_contrast: {edge_shift_min_step_per_contrast: 1.5}\n"
+                    "bad_first_found: {edge_shift_first_min_found_fraction: 0}\n"
+                    "bad_found: {edge_shift_min_found_fraction: 1.2}\n"
+                    "bad_rms: {edge_shift_max_rms_px: 0}\n"
+                    "bad_alignment: {edge_shift_alignment: maybe}\n");
   const YamlMap root = YamlMap::LoadFile(path);
   const CircleTrackerOptions good = CircleTrackerOptions::FromYaml(root.GetMap("good"));
   EXPECT_EQ(good.refinement.cost, RefinementCost::kConics);
@@ -1023,25 +1059,25 @@ TEST(CircleTracker, OptionsFromYamlNameTheBadKey) {
   EXPECT_EQ(good.appearance.max_block_misfit, 0.3);
   EXPECT_EQ(good.appearance.blocks_per_side, 0);
   EXPECT_EQ(good.appearance.min_significance, 5.0);
-  for (const char* key : {"bad_value",
-                          "bad_cost",
-                          "unknown",
-                          "bad_branch",
-                          "bad_radius",
-                          "bad_ratio",
-                          "bad_carried",
-                          "bad_peak",
-                          "bad_dot",
-                          "bad_dot_area",
-                          "bad_dot_radius",
-                          "bad_band",
-                          "bad_margin",
-                          "bad_design_band",
-                          "bad_design_margin",
-                          "bad_design_tilt",
-                          "bad_block_misfit",
-                          "bad_blocks",
-                          "bad_significance"}) {
+  EXPECT_FALSE(good.edge_shift.enabled);
+  EXPECT_EQ(good.edge_shift.rays_per_circle, 24);
+  EXPECT_EQ(good.edge_shift.max_shift_px, 12.0);
+  EXPECT_EQ(good.edge_shift.second_max_shift_px, 3.0);
+  EXPECT_EQ(good.edge_shift.sample_step_px, 0.5);
+  EXPECT_EQ(good.edge_shift.samples_across, 3);
+  EXPECT_EQ(good.edge_shift.min_step_per_contrast, 0.4);
+  EXPECT_EQ(good.edge_shift.first_min_found_fraction, 0.3);
+  EXPECT_EQ(good.edge_shift.min_found_fraction, 0.7);
+  EXPECT_EQ(good.edge_shift.max_rms_px, 2.0);
+  for (const char* key :
+       {"bad_value",        "bad_cost",         "unknown",           "bad_branch",
+        "bad_radius",       "bad_ratio",        "bad_carried",       "bad_peak",
+        "bad_dot",          "bad_dot_area",     "bad_dot_radius",    "bad_band",
+        "bad_margin",       "bad_design_band",  "bad_design_margin", "bad_design_tilt",
+        "bad_block_misfit", "bad_blocks",       "bad_significance",  "bad_rays",
+        "bad_reach",        "bad_second_reach", "bad_step",          "bad_across",
+        "bad_contrast",     "bad_first_found",  "bad_found",         "bad_rms",
+        "bad_alignment"}) {
     try {
       CircleTrackerOptions::FromYaml(root.GetMap(key));
       ADD_FAILURE() << key << " was accepted";

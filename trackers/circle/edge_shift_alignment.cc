@@ -5,6 +5,7 @@
 #include <Eigen/Cholesky>
 #include <algorithm>
 #include <cmath>
+#include <sstream>
 
 #include "core/shapes.h"
 #include "trackers/bilinear_sample.h"
@@ -275,6 +276,35 @@ double RmsDistance(const Camera& camera,
 }
 
 }  // namespace
+
+bool EdgeShiftOptions::IsValid(std::string* error) const {
+  std::ostringstream msg;
+  const auto fraction = [](double f) { return f > 0.0 && f <= 1.0; };
+  if (!(rays_per_circle >= 3)) {
+    msg << "edge_shift_rays=" << rays_per_circle << " must be >= 3";
+  } else if (!(max_shift_px > 0.0)) {
+    msg << "edge_shift_max_px=" << max_shift_px << " must be > 0";
+  } else if (!(second_max_shift_px > 0.0)) {
+    msg << "edge_shift_second_max_px=" << second_max_shift_px << " must be > 0";
+  } else if (!(sample_step_px > 0.0 && sample_step_px <= 4.0)) {
+    msg << "edge_shift_step_px=" << sample_step_px << " must be in (0, 4]";
+  } else if (!(samples_across >= 1)) {
+    msg << "edge_shift_samples_across=" << samples_across << " must be >= 1";
+  } else if (!fraction(min_step_per_contrast)) {
+    msg << "edge_shift_min_step_per_contrast=" << min_step_per_contrast << " must be in (0, 1]";
+  } else if (!fraction(first_min_found_fraction)) {
+    msg << "edge_shift_first_min_found_fraction=" << first_min_found_fraction
+        << " must be in (0, 1]";
+  } else if (!fraction(min_found_fraction)) {
+    msg << "edge_shift_min_found_fraction=" << min_found_fraction << " must be in (0, 1]";
+  } else if (!(max_rms_px > 0.0)) {
+    msg << "edge_shift_max_rms_px=" << max_rms_px << " must be > 0";
+  } else {
+    return true;
+  }
+  if (error) *error = msg.str();
+  return false;
+}
 
 std::optional<EdgeShiftAlignment> AlignByEdgeShifts(
     const Image8& image,

@@ -27,7 +27,14 @@
 
 namespace markerbench {
 
+// Its YAML keys (CircleTrackerOptions::FromYaml) are edge_shift_ and the names below:
+// edge_shift_alignment (`enabled`), edge_shift_rays, edge_shift_max_px, edge_shift_second_max_px,
+// edge_shift_step_px, edge_shift_samples_across, edge_shift_min_step_per_contrast,
+// edge_shift_first_min_found_fraction, edge_shift_min_found_fraction, edge_shift_max_rms_px.
 struct EdgeShiftOptions {
+  // Off, a prediction more than half a pixel off takes the detector's edge pass from the
+  // predicted ellipses instead.
+  bool enabled = true;
   int rays_per_circle = 32;
   // The farthest an edge is looked for from its predicted place, in px (within the margins
   // that keep a ray clear of other ink), in the first round and in the second.
@@ -46,6 +53,9 @@ struct EdgeShiftOptions {
   // The alignment stands where the edge points' distances to its circles have an RMS of at
   // most this (a single profile's edge under σ² 0.3 and blur 2 px: about 1 px).
   double max_rms_px = 1.5;
+
+  // false with `error` naming the key, by its YAML name, where a value is out of its range.
+  bool IsValid(std::string* error) const;
 };
 
 struct EdgeShiftAlignment {
