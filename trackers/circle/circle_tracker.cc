@@ -336,6 +336,8 @@ CircleTrackerOptions CircleTrackerOptions::FromYaml(const YamlMap& map) {
   e.max_shift_px = map.GetOr<double>("edge_shift_max_px", e.max_shift_px);
   e.second_max_shift_px = map.GetOr<double>("edge_shift_second_max_px", e.second_max_shift_px);
   e.sample_step_px = map.GetOr<double>("edge_shift_step_px", e.sample_step_px);
+  e.first_samples_across =
+      map.GetOr<int>("edge_shift_first_samples_across", e.first_samples_across);
   e.samples_across = map.GetOr<int>("edge_shift_samples_across", e.samples_across);
   e.min_step_per_contrast =
       map.GetOr<double>("edge_shift_min_step_per_contrast", e.min_step_per_contrast);
@@ -400,6 +402,7 @@ std::vector<std::pair<std::string, std::string>> CircleTracker::Parameters() con
       {"edge_shift_max_px", NumberText(o.edge_shift.max_shift_px)},
       {"edge_shift_second_max_px", NumberText(o.edge_shift.second_max_shift_px)},
       {"edge_shift_step_px", NumberText(o.edge_shift.sample_step_px)},
+      {"edge_shift_first_samples_across", std::to_string(o.edge_shift.first_samples_across)},
       {"edge_shift_samples_across", std::to_string(o.edge_shift.samples_across)},
       {"edge_shift_min_step_per_contrast", NumberText(o.edge_shift.min_step_per_contrast)},
       {"edge_shift_first_min_found_fraction", NumberText(o.edge_shift.first_min_found_fraction)},

@@ -1005,7 +1005,8 @@ TEST(CircleTracker, OptionsFromYamlNameTheBadKey) {
                     " appearance_min_significance: 5,"
                     " edge_shift_alignment: false, edge_shift_rays: 24, edge_shift_max_px: 12,"
                     " edge_shift_second_max_px: 3, edge_shift_step_px: 0.5,"
-                    " edge_shift_samples_across: 3, edge_shift_min_step_per_contrast: 0.4,"
+                    " edge_shift_first_samples_across: 2, edge_shift_samples_across: 3,"
+                    " edge_shift_min_step_per_contrast: 0.4,"
                     " edge_shift_first_min_found_fraction: 0.3,"
                     " edge_shift_min_found_fraction: 0.7, edge_shift_max_rms_px: 2}\n"
                     "bad_value: {huber_px: -1}\n"
@@ -1031,6 +1032,7 @@ TEST(CircleTracker, OptionsFromYamlNameTheBadKey) {
                     "bad_reach: {edge_shift_max_px: 0}\n"
                     "bad_second_reach: {edge_shift_second_max_px: -1}\n"
                     "bad_step: {edge_shift_step_px: 5}\n"
+                    "bad_first_across: {edge_shift_first_samples_across: 0}\n"
                     "bad_across: {edge_shift_samples_across: 0}\n"
                     "bad_contrast: {edge_shift_min_step_per_contrast: 1.5}\n"
                     "bad_first_found: {edge_shift_first_min_found_fraction: 0}\n"
@@ -1064,6 +1066,7 @@ TEST(CircleTracker, OptionsFromYamlNameTheBadKey) {
   EXPECT_EQ(good.edge_shift.max_shift_px, 12.0);
   EXPECT_EQ(good.edge_shift.second_max_shift_px, 3.0);
   EXPECT_EQ(good.edge_shift.sample_step_px, 0.5);
+  EXPECT_EQ(good.edge_shift.first_samples_across, 2);
   EXPECT_EQ(good.edge_shift.samples_across, 3);
   EXPECT_EQ(good.edge_shift.min_step_per_contrast, 0.4);
   EXPECT_EQ(good.edge_shift.first_min_found_fraction, 0.3);
@@ -1075,9 +1078,9 @@ TEST(CircleTracker, OptionsFromYamlNameTheBadKey) {
         "bad_dot",          "bad_dot_area",     "bad_dot_radius",    "bad_band",
         "bad_margin",       "bad_design_band",  "bad_design_margin", "bad_design_tilt",
         "bad_block_misfit", "bad_blocks",       "bad_significance",  "bad_rays",
-        "bad_reach",        "bad_second_reach", "bad_step",          "bad_across",
-        "bad_contrast",     "bad_first_found",  "bad_found",         "bad_rms",
-        "bad_alignment"}) {
+        "bad_reach",        "bad_second_reach", "bad_step",          "bad_first_across",
+        "bad_across",       "bad_contrast",     "bad_first_found",   "bad_found",
+        "bad_rms",          "bad_alignment"}) {
     try {
       CircleTrackerOptions::FromYaml(root.GetMap(key));
       ADD_FAILURE() << key << " was accepted";

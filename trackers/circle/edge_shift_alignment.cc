@@ -98,11 +98,13 @@ std::vector<EdgeRay> RaysOf(size_t i,
 
 // The edge's offset along the ray's outward normal from its predicted place, in px: the best
 // step of the expected polarity between two levels, placed to a fraction of a sample by the
-// area under the profile about it. nullopt where the ray leaves the image or shows no step of
-// at least `min_step_per_contrast` of the contrast expected.
+// area under the profile about it (each sample the mean of `samples_across`). nullopt where the
+// ray leaves the image or shows no step of at least `min_step_per_contrast` of the contrast
+// expected.
 std::optional<double> EdgeShift(const Image8& image,
                                 const EdgeRay& ray,
                                 double blur_sigma_px,
+                                int samples_across,
                                 const EdgeShiftOptions& options) {
   const double h = options.sample_step_px;
   const int before = static_cast<int>(std::floor(ray.inward_px / h));
@@ -114,7 +116,7 @@ std::optional<double> EdgeShift(const Image8& image,
            p.y() <= image.height - 1.0;
   };
   const double s0 = -before * h;
-  const double side = 0.5 * (options.samples_across - 1);
+  const double side = 0.5 * (samples_across - 1);
   for (const double s : {s0, s0 + (n - 1) * h}) {
     for (const double a : {-side, side}) {
       if (!in_image(ray.px + s * ray.normal + a * across)) return std::nullopt;
@@ -125,10 +127,10 @@ std::optional<double> EdgeShift(const Image8& image,
   for (int j = 0; j < n; ++j) {
     const Eigen::Vector2d p = ray.px + (s0 + j * h) * ray.normal;
     profile[j] = 0.0;
-    for (int a = 0; a < options.samples_across; ++a) {
+    for (int a = 0; a < samples_across; ++a) {
       profile[j] += LevelAt(image, ray.channel, p + (a - side) * across);
     }
-    profile[j] /= options.samples_across;
+    profile[j] /= samples_across;
     sums[j + 1] = sums[j] + profile[j];
   }
   // The split maximising the step's share of the profile's variance, (mean_in - mean_out)² k
@@ -216,6 +218,23 @@ std::vector<Jet6> DistancesAt(const Camera& camera,
   return distances;
 }
 
+// The same distances' values alone, at `cam_from_paper`.
+std::vector<double> DistanceValuesAt(const Camera& camera,
+                                     const CircleGeometry& geometry,
+                                     const Rigid3& cam_from_paper,
+                                     const std::vector<EdgePoint>& points) {
+  const Eigen::Matrix3d H = camera.K() * RayFromPlane(cam_from_paper);
+  std::vector<Eigen::Matrix3d> conics;
+  for (size_t i = 0; i < geometry.radii_m.size(); ++i) {
+    conics.push_back(ImageOfCircle<double>(H, geometry.centers[i], geometry.radii_m[i]));
+  }
+  std::vector<double> distances;
+  for (const EdgePoint& p : points) {
+    distances.push_back(PndResidual<double>(conics[p.circle], p.ideal_px.x(), p.ideal_px.y()));
+  }
+  return distances;
+}
+
 // Gauss-Newton on the points' distances to their circles' images, from `cam_from_paper`
 // (points not `kept` left out). The move from `start` counts too, a turn of kPriorTurnRad or a
 // shift of kPriorShiftM as much as a pixel of one point's distance: directions the edges hardly
@@ -263,13 +282,12 @@ double RmsDistance(const Camera& camera,
                    const Rigid3& cam_from_paper,
                    const std::vector<EdgePoint>& points,
                    const std::vector<bool>& kept) {
-  const std::vector<Jet6> distances =
-      DistancesAt(camera, geometry, cam_from_paper, cam_from_paper.translation, points);
+  const std::vector<double> distances = DistanceValuesAt(camera, geometry, cam_from_paper, points);
   double sum2 = 0.0;
   int counted = 0;
   for (size_t k = 0; k < points.size(); ++k) {
     if (!kept[k]) continue;
-    sum2 += distances[k].a * distances[k].a;
+    sum2 += distances[k] * distances[k];
     ++counted;
   }
   return std::sqrt(sum2 / counted);
@@ -288,6 +306,8 @@ bool EdgeShiftOptions::IsValid(std::string* error) const {
     msg << "edge_shift_second_max_px=" << second_max_shift_px << " must be > 0";
   } else if (!(sample_step_px > 0.0 && sample_step_px <= 4.0)) {
     msg << "edge_shift_step_px=" << sample_step_px << " must be in (0, 4]";
+  } else if (!(first_samples_across >= 1)) {
+    msg << "edge_shift_first_samples_across=" << first_samples_across << " must be >= 1";
   } else if (!(samples_across >= 1)) {
     msg << "edge_shift_samples_across=" << samples_across << " must be >= 1";
   } else if (!fraction(min_step_per_contrast)) {
@@ -331,6 +351,7 @@ std::optional<EdgeShiftAlignment> AlignByEdgeShifts(
     const double max_shift_px = first ? options.max_shift_px : options.second_max_shift_px;
     const double min_found_fraction =
         first ? options.first_min_found_fraction : options.min_found_fraction;
+    const int samples_across = first ? options.first_samples_across : options.samples_across;
     points.clear();
     for (size_t i = 0; i < geometry.radii_m.size(); ++i) {
       const std::vector<EdgeRay> rays = RaysOf(i,
@@ -346,7 +367,8 @@ std::optional<EdgeShiftAlignment> AlignByEdgeShifts(
                                                options.rays_per_circle);
       int found = 0;
       for (const EdgeRay& ray : rays) {
-        const std::optional<double> shift = EdgeShift(image, ray, blur_sigma_px, options);
+        const std::optional<double> shift =
+            EdgeShift(image, ray, blur_sigma_px, samples_across, options);
         if (!shift) continue;
         ++found;
         const Eigen::Vector2d px = ray.px + *shift * ray.normal;
@@ -372,8 +394,8 @@ std::optional<EdgeShiftAlignment> AlignByEdgeShifts(
     Rigid3 fitted =
         FitToPoints(camera, geometry, aligned.cam_from_paper, center, points, kept, &moved);
     std::vector<double> sizes;
-    for (const Jet6& d : DistancesAt(camera, geometry, fitted, center, points)) {
-      sizes.push_back(std::abs(d.a));
+    for (const double d : DistanceValuesAt(camera, geometry, fitted, points)) {
+      sizes.push_back(std::abs(d));
     }
     const double limit = std::max(0.5, 3.0 * 1.4826 * Median(sizes));
     for (size_t k = 0; k < points.size(); ++k) kept[k] = sizes[k] <= limit;

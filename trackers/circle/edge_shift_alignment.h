@@ -27,9 +27,9 @@
 
 namespace markerbench {
 
-// Its YAML keys (CircleTrackerOptions::FromYaml) are edge_shift_ and the names below:
-// edge_shift_alignment (`enabled`), edge_shift_rays, edge_shift_max_px, edge_shift_second_max_px,
-// edge_shift_step_px, edge_shift_samples_across, edge_shift_min_step_per_contrast,
+// Its YAML keys (CircleTrackerOptions::FromYaml), in the order of the fields: edge_shift_alignment,
+// edge_shift_rays, edge_shift_max_px, edge_shift_second_max_px, edge_shift_step_px,
+// edge_shift_first_samples_across, edge_shift_samples_across, edge_shift_min_step_per_contrast,
 // edge_shift_first_min_found_fraction, edge_shift_min_found_fraction, edge_shift_max_rms_px.
 struct EdgeShiftOptions {
   // Off, a prediction more than half a pixel off takes the detector's edge pass from the
@@ -41,7 +41,14 @@ struct EdgeShiftOptions {
   double max_shift_px = 16.0;
   double second_max_shift_px = 4.0;
   double sample_step_px = 1.0;  // along a ray
-  int samples_across = 5;       // each sample the mean of this many, a pixel apart, across the ray
+  // Each sample the mean of this many, a pixel apart, across the ray, in the first round and in
+  // the second. The first only brings the edges within the second's reach: with 3 across
+  // instead of 5 the alignment took 15 % fewer instructions, and on 128 rendered frames of the
+  // four disk markers its result moved by at most 0.04 px at σ² 0.02 and 0.4 px at σ² 0.3, where
+  // 7 more frames declined and 3 fewer (1 across: 0.06 and 0.5 px, 10 more and 1 fewer;
+  // results/speed.md).
+  int first_samples_across = 3;
+  int samples_across = 5;
   // A ray's edge counts where its step between the two levels is at least this fraction of
   // the contrast expected there, and of the expected polarity.
   double min_step_per_contrast = 0.5;
