@@ -9,7 +9,8 @@ Each run invokes every benchmark once (a process each, `--benchmark_min_time`), 
 rotated by one from run to run, so that each benchmark takes each place in the order equally
 often. Per run, each benchmark's time over the reference's; over the runs, the median of those
 ratios and its 95 % interval from the order statistics (the ranks a binomial(n, 1/2) gives;
-6 runs at least).
+6 runs at least). The table's first line names the machine (the CPU model of /proc/cpuinfo and
+the CPUs seen): ratios to the same reference differ from one CPU model to another.
 
 Usage:
   speed_ratio.py --reference PROGRAM:BENCHMARK --measure PROGRAM:BENCHMARK [--measure ...]
@@ -73,6 +74,20 @@ def time_ms(program, benchmark, min_time):
     return run["real_time"] * MS_PER_UNIT[unit]
 
 
+def machine(cpuinfo="/proc/cpuinfo"):
+    """The CPU model (the first "model name" of `cpuinfo`) and how many CPUs it lists, e.g.
+    "AMD EPYC, 2 CPUs"; "an unknown CPU" where the file cannot be read or names none."""
+    try:
+        with open(cpuinfo) as f:
+            lines = f.read().splitlines()
+    except OSError:
+        return "an unknown CPU"
+    models = [line.partition(":")[2].strip() for line in lines if line.startswith("model name")]
+    if not models or not models[0]:
+        return "an unknown CPU"
+    return f"{models[0]}, {len(models)} CPU{'s' if len(models) > 1 else ''}"
+
+
 def median_interval(values, confidence=0.95):
     """The sample median and a distribution-free interval for the median: the order
     statistics x_(k), x_(n+1-k) (1-based) with k the largest rank whose binomial(n, 1/2)
@@ -103,7 +118,7 @@ def measure(reference, measured, runs, min_time, log=sys.stderr):
     return times, ratios
 
 
-def main(argv=None):
+def main(argv=None, cpuinfo="/proc/cpuinfo"):
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--reference", required=True, help="PROGRAM:BENCHMARK")
     parser.add_argument("--measure", action="append", required=True, help="PROGRAM:BENCHMARK")
@@ -121,7 +136,7 @@ def main(argv=None):
         times, ratios = measure(reference, measured, args.runs, args.min_time)
         specs = [reference] + measured
         print(f"{args.runs} runs, each benchmark {args.min_time} s a run, in rotated order; "
-              f"ratios to `{reference[1]}` in the same run")
+              f"ratios to `{reference[1]}` in the same run; on {machine(cpuinfo)}")
         print()
         print("| benchmark | median time (ms) | ratio to the reference: median | 95 % interval |")
         print("|---|---|---|---|")

@@ -53,10 +53,10 @@ class SpeedRatioTest(unittest.TestCase):
             json.dumps({"name": name, "times_ms": times_ms, "error": error}))
         return f"{path}:{name}"
 
-    def run_main(self, *args):
+    def run_main(self, *args, cpuinfo="/proc/cpuinfo"):
         out, err = io.StringIO(), io.StringIO()
         with contextlib.redirect_stdout(out), contextlib.redirect_stderr(err):
-            status = speed_ratio.main(list(args))
+            status = speed_ratio.main(list(args), cpuinfo=cpuinfo)
         return status, out.getvalue(), err.getvalue()
 
     def table_row(self, output, benchmark):
@@ -112,6 +112,23 @@ class SpeedRatioTest(unittest.TestCase):
         runs = [calls[i:i + 3] for i in range(0, len(calls), 3)]
         self.assertEqual(runs, [["BM_Ref", "BM_A", "BM_B"], ["BM_A", "BM_B", "BM_Ref"],
                                 ["BM_B", "BM_Ref", "BM_A"]] * 2)
+
+    def test_the_table_names_the_machine(self):
+        cpuinfo = self.dir / "cpuinfo"
+        cpuinfo.write_text("processor\t: 0\nmodel name\t: AMD EPYC\nflags\t: avx2\n\n"
+                           "processor\t: 1\nmodel name\t: AMD EPYC\nflags\t: avx2\n")
+        reference = self.fake("ref", "BM_Ref", [1.0])
+        measured = self.fake("m", "BM_M", [1.0])
+        args = ["--reference", reference, "--measure", measured, "--runs", "6",
+                "--min-time", "0.01"]
+        status, out, _ = self.run_main(*args, cpuinfo=str(cpuinfo))
+        self.assertEqual(status, 0)
+        self.assertTrue(out.splitlines()[0].endswith("; on AMD EPYC, 2 CPUs"), out)
+        # A file that cannot be read, or names no model: said so, not guessed.
+        for unreadable in (self.dir / "absent", self.dir / "m.json"):
+            status, out, _ = self.run_main(*args, cpuinfo=str(unreadable))
+            self.assertEqual(status, 0)
+            self.assertTrue(out.splitlines()[0].endswith("; on an unknown CPU"), out)
 
     def test_bad_input_exits_2_naming_the_program_and_benchmark(self):
         reference = self.fake("ref", "BM_Ref", [1.0])
