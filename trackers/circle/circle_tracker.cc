@@ -741,7 +741,8 @@ std::optional<CircleTracker::PredictedPose> CircleTracker::AlignedByEdges(
     const CircleGeometry& geometry,
     const PredictedPose& predicted,
     const PixelFitFound& last) const {
-  // A single circle's edges fit both its tilts alike (§4.7): they never rule the other out.
+  // None where the alignment is off, or for a single circle, whose edges fit both its tilts
+  // alike (§4.7) and so never rule the other out.
   if (!options_.edge_shift.enabled || geometry.radii_m.size() < 2) return std::nullopt;
   const CircleDetector detector(*observation.marker, geometry, options_.detector);
   std::vector<CircleDetector::EdgeClearance> clearances;
