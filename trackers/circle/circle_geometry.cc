@@ -2,6 +2,8 @@
 
 #include <cmath>
 
+#include "trackers/circle/conic.h"
+
 namespace markerbench {
 
 std::optional<CircleGeometry> CircleGeometryOf(const MarkerSpec& marker, std::string* error) {
@@ -69,6 +71,16 @@ std::optional<CircleGeometry> CircleGeometryOf(const MarkerSpec& marker, std::st
     return std::nullopt;
   }
   return geometry;
+}
+
+std::vector<Eigen::Matrix3d> ConicsImagedThrough(const CircleGeometry& geometry,
+                                                 const Eigen::Matrix3d& H) {
+  std::vector<Eigen::Matrix3d> conics_px;
+  for (size_t i = 0; i < geometry.centers.size(); ++i) {
+    conics_px.push_back(
+        CanonicalConic(ImageOfCircle<double>(H, geometry.centers[i], geometry.radii_m[i])));
+  }
+  return conics_px;
 }
 
 Rigid3 OtherTilt(const Rigid3& cam_from_plane) {

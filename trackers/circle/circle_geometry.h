@@ -40,6 +40,11 @@ struct CircleGeometry {
 // nullopt (with `error` set) for markers other than circles_a/b/c and circle_d/e/f.
 std::optional<CircleGeometry> CircleGeometryOf(const MarkerSpec& marker, std::string* error);
 
+// Its circles' images through H = K [r1 r2 t] (a pose's plane-to-pixel map), as canonical
+// conics (conic.h), in the order of `geometry.centers`.
+std::vector<Eigen::Matrix3d> ConicsImagedThrough(const CircleGeometry& geometry,
+                                                 const Eigen::Matrix3d& H);
+
 // The start of the other of the two tilts (§4.7) from which a circle about the plane's origin
 // looks nearly the same as from `cam_from_plane`: the plane's normal reflected about the ray
 // to the circle's centre, R' = (2uuᵀ - I) R Rz(π) for the unit ray u, the centre kept; the

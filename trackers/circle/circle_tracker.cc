@@ -30,16 +30,6 @@ struct MarkerImage {
   std::vector<Eigen::Matrix3d> conics_px;
   Eigen::Vector2d m1_px;
 };
-// Its circles alone, through H = K [r1 r2 t].
-std::vector<Eigen::Matrix3d> ConicsImagedThrough(const CircleGeometry& geometry,
-                                                 const Eigen::Matrix3d& H) {
-  std::vector<Eigen::Matrix3d> conics_px;
-  for (size_t i = 0; i < geometry.centers.size(); ++i) {
-    conics_px.push_back(
-        CanonicalConic(ImageOfCircle<double>(H, geometry.centers[i], geometry.radii_m[i])));
-  }
-  return conics_px;
-}
 MarkerImage MarkerImagedAt(const CircleGeometry& geometry,
                            const Camera& camera,
                            const Rigid3& cam_from_paper) {

@@ -223,11 +223,8 @@ std::vector<double> DistanceValuesAt(const Camera& camera,
                                      const CircleGeometry& geometry,
                                      const Rigid3& cam_from_paper,
                                      const std::vector<EdgePoint>& points) {
-  const Eigen::Matrix3d H = camera.K() * RayFromPlane(cam_from_paper);
-  std::vector<Eigen::Matrix3d> conics;
-  for (size_t i = 0; i < geometry.radii_m.size(); ++i) {
-    conics.push_back(ImageOfCircle<double>(H, geometry.centers[i], geometry.radii_m[i]));
-  }
+  const std::vector<Eigen::Matrix3d> conics =
+      ConicsImagedThrough(geometry, camera.K() * RayFromPlane(cam_from_paper));
   std::vector<double> distances;
   for (const EdgePoint& p : points) {
     distances.push_back(PndResidual<double>(conics[p.circle], p.ideal_px.x(), p.ideal_px.y()));
