@@ -6,16 +6,16 @@ comparison resolves; they stand for time only where the code is bound by its ins
 its memory, so a speed claim still takes `speed_ratio.py`.
 
 Runs COMMAND under Callgrind, then reads PER's inclusive count and calls (e.g. the tracker's
-Track call; `callgrind_annotate --inclusive=yes` and `--tree=caller`) and each stage's
-inclusive count, as shares of PER's. Counts are of the whole run (Callgrind counts no call into
-a function it is told to count inside, `--toggle-collect`, so PER's calls would be unknown):
-name stages that COMMAND runs inside PER alone, not in its set-up. A Google Benchmark program
-sets its iterations from the time, and so which of its frames are counted; a sweep
+Track call; `callgrind_annotate --inclusive=yes`, without and with `--tree=caller`) and each
+stage's inclusive count, as shares of PER's. Counts are of the whole run (Callgrind counts no
+call into a function it is told to count inside, `--toggle-collect`, so PER's calls would be
+unknown): name stages that COMMAND runs inside PER alone, not in its set-up. A Google Benchmark
+program sets its iterations from the time, and so which of its frames are counted; a sweep
 (`markerbench sweep`, one thread) counts the same frames in every build, for an A/B of two
 builds. A stage is the one function whose name begins with its pattern (else contains it),
-leaving out what is defined inside that function (its lambdas, whose counts its own includes);
-a pattern that matches none, or several, is an error. A function called inside another stage
-is counted in both.
+leaving out what is defined inside that function (its lambdas, whose counts its own includes); a
+pattern that matches none, or several, is an error. A function called inside another stage is
+counted in both.
 
 Usage:
   instruction_shares.py --per FUNCTION --stage LABEL=PATTERN [--stage ...] -- COMMAND [ARG ...]
@@ -71,7 +71,10 @@ def inclusive_counts(annotated):
 
 def calls_of(tree, function):
     """How many times `function` was called: its callers' call counts, the "<" lines of its
-    block in `callgrind_annotate --tree=caller` output."""
+    blocks in `callgrind_annotate --inclusive=yes --tree=caller` output. Inclusive: a build with
+    debug information lists a function once per source file its code comes from, and its callers
+    under an entry that may count no instruction of its own, which a tree of self counts leaves
+    out (so none of its calls were counted)."""
     calls, callers = 0, []
     for line in tree.splitlines():
         match = FUNCTION_LINE.match(line)
@@ -141,8 +144,8 @@ def shares(command, per, stages):
         counts = inclusive_counts(
             run(["callgrind_annotate", "--inclusive=yes", "--threshold=100", out],
                 "callgrind_annotate"))
-        tree = run(["callgrind_annotate", "--tree=caller", "--threshold=100", out],
-                   "callgrind_annotate")
+        tree = run(["callgrind_annotate", "--inclusive=yes", "--tree=caller", "--threshold=100",
+                    out], "callgrind_annotate")
     if per not in counts:
         raise InstructionSharesError(
             f"--per {per!r}: not called in {shown} (or not its exact name)")

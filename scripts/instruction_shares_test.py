@@ -53,10 +53,33 @@ Ir                 file:function
   600 (30.00%)  < ???:ns::Tracker::Track(ns::Frame const&) (4x) [/build/prog]
    20 ( 1.00%)  *  ???:ns::Fit(ns::Frame const&, double) [clone .constprop.0] [/build/prog]
 """
+# The same tree from a build with debug information: Track listed once per source file, its
+# callers under the entry of its own file's full path, which counts no instruction of its own.
+DEBUG_TREE = """--------------------------------------------------------------------------------
+Ir                 file:function
+--------------------------------------------------------------------------------
+1,000 (50.00%)  < ???:ns::Bench(benchmark::State&) (2x) [/build/prog]
+1,000 (50.00%)  *  /src/track.cc:ns::Tracker::Track(ns::Frame const&)
+
+1,000 (50.00%)  *  src/track.cc:ns::Tracker::Track(ns::Frame const&) [/build/prog]
+  600 (30.00%)  >   ???:ns::Fit(ns::Frame const&, double) [clone .constprop.0] (4x) [/build/prog]
+
+  600 (30.00%)  < src/track.cc:ns::Tracker::Track(ns::Frame const&) (4x) [/build/prog]
+  600 (30.00%)  *  ???:ns::Fit(ns::Frame const&, double) [clone .constprop.0] [/build/prog]
+"""
+# Its tree of self counts (without --inclusive=yes) leaves the entry with Track's callers out.
+DEBUG_SELF_TREE = """--------------------------------------------------------------------------------
+Ir                 file:function
+--------------------------------------------------------------------------------
+   20 ( 1.00%)  *  ???:ns::Fit(ns::Frame const&, double) [clone .constprop.0] [/build/prog]
+
+   10 ( 0.50%)  *  src/track.cc:ns::Tracker::Track(ns::Frame const&) [/build/prog]
+"""
 FAKE_ANNOTATE = """#!/bin/sh
 case "$*" in
+  *--inclusive=yes*--tree=caller*) cat "$(dirname "$0")/tree.txt";;
+  *--tree=caller*) cat "$(dirname "$0")/self_tree.txt";;
   *--inclusive=yes*) cat "$(dirname "$0")/inclusive.txt";;
-  *--tree=caller*) cat "$(dirname "$0")/tree.txt";;
 esac
 """
 
@@ -74,6 +97,7 @@ class InstructionSharesTest(unittest.TestCase):
             path.chmod(path.stat().st_mode | stat.S_IXUSR)
         (self.dir / "inclusive.txt").write_text(INCLUSIVE)
         (self.dir / "tree.txt").write_text(TREE)
+        (self.dir / "self_tree.txt").write_text(DEBUG_SELF_TREE)
         self.path = os.environ["PATH"]
         os.environ["PATH"] = f"{self.dir}{os.pathsep}{self.path}"
 
@@ -105,6 +129,12 @@ class InstructionSharesTest(unittest.TestCase):
         # handler of one's.
         self.assertIn("| detect | `ns::Detect(ns::Frame const&)` | 0.000 | 30.0% |", out)
         self.assertIn("| helper | `ns::Helper(int)` | 0.000 | 4.0% |", out)
+
+    def test_counts_the_calls_of_a_build_with_debug_information(self):
+        (self.dir / "tree.txt").write_text(DEBUG_TREE)
+        status, out, err = self.run_main("fit=ns::Fit(")
+        self.assertEqual(status, 0, err)
+        self.assertIn(f"2 calls of `{TRACK}`, 0.001 M instructions a call", out)
 
     def test_runs_the_command_under_callgrind(self):
         self.run_main("fit=ns::Fit(")
