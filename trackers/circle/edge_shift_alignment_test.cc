@@ -28,13 +28,13 @@ double FarthestEllipsePx(const CircleGeometry& geometry,
                          const Camera& camera,
                          const Rigid3& cam_from_paper,
                          const Rigid3& truth) {
-  const auto ellipse = [&](const Rigid3& pose, size_t i) {
-    const Eigen::Matrix3d H = camera.K() * RayFromPlane(pose);
-    return EllipseFromConic(ImageOfCircle<double>(H, geometry.centers[i], geometry.radii_m[i]));
+  const auto conics = [&](const Rigid3& pose) {
+    return ConicsImagedThrough(geometry, camera.K() * RayFromPlane(pose));
   };
+  const std::vector<Eigen::Matrix3d> at = conics(cam_from_paper), at_truth = conics(truth);
   double farthest = 0.0;
-  for (size_t i = 0; i < geometry.radii_m.size(); ++i) {
-    const Ellipse a = ellipse(cam_from_paper, i), b = ellipse(truth, i);
+  for (size_t i = 0; i < at.size(); ++i) {
+    const Ellipse a = EllipseFromConic(at[i]), b = EllipseFromConic(at_truth[i]);
     farthest = std::max({farthest,
                          (a.center - b.center).norm(),
                          std::abs(a.semi_major - b.semi_major),
