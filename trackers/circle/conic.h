@@ -82,9 +82,10 @@ Eigen::Matrix<T, 3, 3> ImageOfCircle(const Eigen::Matrix<T, 3, 3>& H,
 
 // Signed polar-n-direction distance of the point (x, y, 1) to C (§2.1; paper eqs. 15-18):
 // d1 on the set 𝒴, the Sampson distance on 𝒩, in the units of x and y. Invariant to the
-// scale and sign of C; the sign of the result is that of xᵀ C x. Templated for ceres::Jet.
-template <typename T>
-T PndResidual(const Eigen::Matrix<T, 3, 3>& C, const T& x, const T& y) {
+// scale and sign of C; the sign of the result is that of xᵀ C x. Templated for ceres::Jet; a
+// point that is data (S = double beside a Jet C) skips the products of its zero derivatives.
+template <typename T, typename S = T>
+T PndResidual(const Eigen::Matrix<T, 3, 3>& C, const S& x, const S& y) {
   using std::sqrt;
   const T n1 = C(0, 0) * x + C(0, 1) * y + C(0, 2);
   const T n2 = C(1, 0) * x + C(1, 1) * y + C(1, 2);

@@ -82,7 +82,7 @@ struct PndPointsCost {
     Eigen::Matrix<T, 3, 3> C;
     C << theta[0], theta[1], theta[3], theta[1], theta[2], theta[4], theta[3], theta[4], theta[5];
     for (size_t j = 0; j < q_.size(); ++j) {
-      residuals[j] = PndResidual<T>(C, T(q_[j].x()), T(q_[j].y())) * inverse_scale_;
+      residuals[j] = PndResidual(C, q_[j].x(), q_[j].y()) * inverse_scale_;
     }
     return true;
   }

@@ -1,8 +1,11 @@
+// PndResidual on Jets: a point given as plain numbers gives the value and derivatives of the
+// same point as Jets with no derivatives (the products with their zeros add nothing).
 // PndReach: no point beyond it from an ellipse's centre is within its distance of the
 // ellipse, whatever the ellipse's eccentricity, in every direction. PndBandScales: no point of
 // the ellipse scaled beyond its scales is.
 #include "trackers/circle/conic.h"
 
+#include <ceres/jet.h>
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -20,6 +23,24 @@ Ellipse RandomEllipse(Rng* rng) {
   e.semi_minor = e.semi_major / std::exp(rng->Uniform(0.0, std::log(50.0)));
   e.angle_rad = rng->Uniform(-M_PI, M_PI);
   return e;
+}
+
+TEST(PndResidual, APointOfPlainNumbersGivesTheSameJetAsAPointOfConstantJets) {
+  using Jet = ceres::Jet<double, 6>;
+  Rng rng(29);
+  for (int trial = 0; trial < 500; ++trial) {
+    const Eigen::Matrix3d C = ConicFromEllipse(RandomEllipse(&rng));
+    Eigen::Matrix<Jet, 3, 3> C_jet;
+    for (int k = 0; k < 9; ++k) {
+      C_jet(k) = Jet(C(k));
+      for (int i = 0; i < 6; ++i) C_jet(k).v[i] = rng.Uniform(-1.0, 1.0) * std::abs(C(k));
+    }
+    const double x = rng.Uniform(-500.0, 1500.0), y = rng.Uniform(-500.0, 1200.0);
+    const Jet plain = PndResidual(C_jet, x, y);
+    const Jet constant = PndResidual(C_jet, Jet(x), Jet(y));
+    ASSERT_EQ(plain.a, constant.a) << "trial " << trial;
+    for (int i = 0; i < 6; ++i) ASSERT_EQ(plain.v[i], constant.v[i]) << "trial " << trial;
+  }
 }
 
 TEST(PndReach, NoPointBeyondItIsWithinTheDistance) {

@@ -212,8 +212,7 @@ std::vector<Jet6> DistancesAt(const Camera& camera,
   }
   std::vector<Jet6> distances;
   for (const EdgePoint& p : points) {
-    distances.push_back(
-        PndResidual<Jet6>(conics[p.circle], Jet6(p.ideal_px.x()), Jet6(p.ideal_px.y())));
+    distances.push_back(PndResidual(conics[p.circle], p.ideal_px.x(), p.ideal_px.y()));
   }
   return distances;
 }

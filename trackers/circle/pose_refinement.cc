@@ -47,7 +47,7 @@ struct EdgeCost {
     C /= C.norm();
     for (size_t j = 0; j < circle_.edge_points_px.size(); ++j) {
       const Eigen::Vector2d& x = circle_.edge_points_px[j];
-      residuals[j] = Robust(PndResidual<T>(C, T(x.x()), T(x.y())), huber_);
+      residuals[j] = Robust(PndResidual(C, x.x(), x.y()), huber_);
     }
     return true;
   }
