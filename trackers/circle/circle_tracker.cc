@@ -322,6 +322,7 @@ CircleTrackerOptions CircleTrackerOptions::FromYaml(const YamlMap& map) {
       "design_max_other_tilt_log_ratio", o.design_refinement.max_first_round_log_ratio);
   EdgeShiftOptions& e = o.edge_shift;
   e.enabled = map.GetOr<bool>("edge_shift_alignment", e.enabled);
+  e.first_rays_per_circle = map.GetOr<int>("edge_shift_first_rays", e.first_rays_per_circle);
   e.rays_per_circle = map.GetOr<int>("edge_shift_rays", e.rays_per_circle);
   e.max_shift_px = map.GetOr<double>("edge_shift_max_px", e.max_shift_px);
   e.second_max_shift_px = map.GetOr<double>("edge_shift_second_max_px", e.second_max_shift_px);
@@ -388,6 +389,7 @@ std::vector<std::pair<std::string, std::string>> CircleTracker::Parameters() con
       {"design_max_other_tilt_log_ratio",
        NumberText(o.design_refinement.max_first_round_log_ratio)},
       {"edge_shift_alignment", BoolText(o.edge_shift.enabled)},
+      {"edge_shift_first_rays", std::to_string(o.edge_shift.first_rays_per_circle)},
       {"edge_shift_rays", std::to_string(o.edge_shift.rays_per_circle)},
       {"edge_shift_max_px", NumberText(o.edge_shift.max_shift_px)},
       {"edge_shift_second_max_px", NumberText(o.edge_shift.second_max_shift_px)},

@@ -1003,7 +1003,8 @@ TEST(CircleTracker, OptionsFromYamlNameTheBadKey) {
                     " design_max_other_tilt_log_ratio: 50,"
                     " max_appearance_block_misfit: 0.3, appearance_blocks_per_side: 0,"
                     " appearance_min_significance: 5,"
-                    " edge_shift_alignment: false, edge_shift_rays: 24, edge_shift_max_px: 12,"
+                    " edge_shift_alignment: false, edge_shift_first_rays: 8, edge_shift_rays: 24,"
+                    " edge_shift_max_px: 12,"
                     " edge_shift_second_max_px: 3, edge_shift_step_px: 0.5,"
                     " edge_shift_first_samples_across: 2, edge_shift_samples_across: 3,"
                     " edge_shift_min_step_per_contrast: 0.4,"
@@ -1028,6 +1029,7 @@ TEST(CircleTracker, OptionsFromYamlNameTheBadKey) {
                     "bad_block_misfit: {max_appearance_block_misfit: 0}\n"
                     "bad_blocks: {appearance_blocks_per_side: -2}\n"
                     "bad_significance: {appearance_min_significance: -1}\n"
+                    "bad_first_rays: {edge_shift_first_rays: 2}\n"
                     "bad_rays: {edge_shift_rays: 2}\n"
                     "bad_reach: {edge_shift_max_px: 0}\n"
                     "bad_second_reach: {edge_shift_second_max_px: -1}\n"
@@ -1062,6 +1064,7 @@ TEST(CircleTracker, OptionsFromYamlNameTheBadKey) {
   EXPECT_EQ(good.appearance.blocks_per_side, 0);
   EXPECT_EQ(good.appearance.min_significance, 5.0);
   EXPECT_FALSE(good.edge_shift.enabled);
+  EXPECT_EQ(good.edge_shift.first_rays_per_circle, 8);
   EXPECT_EQ(good.edge_shift.rays_per_circle, 24);
   EXPECT_EQ(good.edge_shift.max_shift_px, 12.0);
   EXPECT_EQ(good.edge_shift.second_max_shift_px, 3.0);
@@ -1073,14 +1076,14 @@ TEST(CircleTracker, OptionsFromYamlNameTheBadKey) {
   EXPECT_EQ(good.edge_shift.min_found_fraction, 0.7);
   EXPECT_EQ(good.edge_shift.max_rms_px, 2.0);
   for (const char* key :
-       {"bad_value",        "bad_cost",         "unknown",           "bad_branch",
-        "bad_radius",       "bad_ratio",        "bad_carried",       "bad_peak",
-        "bad_dot",          "bad_dot_area",     "bad_dot_radius",    "bad_band",
-        "bad_margin",       "bad_design_band",  "bad_design_margin", "bad_design_tilt",
-        "bad_block_misfit", "bad_blocks",       "bad_significance",  "bad_rays",
-        "bad_reach",        "bad_second_reach", "bad_step",          "bad_first_across",
-        "bad_across",       "bad_contrast",     "bad_first_found",   "bad_found",
-        "bad_rms",          "bad_alignment"}) {
+       {"bad_value",        "bad_cost",        "unknown",           "bad_branch",
+        "bad_radius",       "bad_ratio",       "bad_carried",       "bad_peak",
+        "bad_dot",          "bad_dot_area",    "bad_dot_radius",    "bad_band",
+        "bad_margin",       "bad_design_band", "bad_design_margin", "bad_design_tilt",
+        "bad_block_misfit", "bad_blocks",      "bad_significance",  "bad_first_rays",
+        "bad_rays",         "bad_reach",       "bad_second_reach",  "bad_step",
+        "bad_first_across", "bad_across",      "bad_contrast",      "bad_first_found",
+        "bad_found",        "bad_rms",         "bad_alignment"}) {
     try {
       CircleTrackerOptions::FromYaml(root.GetMap(key));
       ADD_FAILURE() << key << " was accepted";

@@ -294,7 +294,9 @@ double RmsDistance(const Camera& camera,
 bool EdgeShiftOptions::IsValid(std::string* error) const {
   std::ostringstream msg;
   const auto fraction = [](double f) { return f > 0.0 && f <= 1.0; };
-  if (!(rays_per_circle >= 3)) {
+  if (!(first_rays_per_circle >= 3)) {
+    msg << "edge_shift_first_rays=" << first_rays_per_circle << " must be >= 3";
+  } else if (!(rays_per_circle >= 3)) {
     msg << "edge_shift_rays=" << rays_per_circle << " must be >= 3";
   } else if (!(max_shift_px > 0.0)) {
     msg << "edge_shift_max_px=" << max_shift_px << " must be > 0";
@@ -348,6 +350,7 @@ std::optional<EdgeShiftAlignment> AlignByEdgeShifts(
     const double min_found_fraction =
         first ? options.first_min_found_fraction : options.min_found_fraction;
     const int samples_across = first ? options.first_samples_across : options.samples_across;
+    const int rays_per_circle = first ? options.first_rays_per_circle : options.rays_per_circle;
     points.clear();
     for (size_t i = 0; i < geometry.radii_m.size(); ++i) {
       const std::vector<EdgeRay> rays = RaysOf(i,
@@ -360,7 +363,7 @@ std::optional<EdgeShiftAlignment> AlignByEdgeShifts(
                                                levels,
                                                max_shift_px,
                                                blur_sigma_px,
-                                               options.rays_per_circle);
+                                               rays_per_circle);
       int found = 0;
       for (const EdgeRay& ray : rays) {
         const std::optional<double> shift =
@@ -370,10 +373,10 @@ std::optional<EdgeShiftAlignment> AlignByEdgeShifts(
         const Eigen::Vector2d px = ray.px + *shift * ray.normal;
         points.push_back({camera.HasDistortion() ? camera.IdealFromImg(px) : px, i});
       }
-      if (found < min_found_fraction * options.rays_per_circle) {
+      if (found < min_found_fraction * rays_per_circle) {
         if (why) {
           *why = "the edge of circle " + std::to_string(i) + " shifted on only " +
-                 std::to_string(found) + " of " + std::to_string(options.rays_per_circle) + " rays";
+                 std::to_string(found) + " of " + std::to_string(rays_per_circle) + " rays";
         }
         return std::nullopt;
       }
