@@ -37,8 +37,8 @@ struct EdgeShiftOptions {
   // predicted ellipses instead.
   bool enabled = true;
   // Rays per circle, in the first round and in the second. The first only brings the edges
-  // within the second's reach: 24 take 12 % off the alignment's instructions, and no sequence's
-  // results moved (16 fail edge_shift_alignment_test; results/speed.md).
+  // within the second's reach: 24 take 12 % off the alignment's instructions, and no sequence
+  // frame's success changed (16 fail edge_shift_alignment_test; results/speed.md).
   int first_rays_per_circle = 24;
   int rays_per_circle = 32;
   // The farthest an edge is looked for from its predicted place, in px (within the margins
