@@ -584,6 +584,9 @@ def circle_marker_phrases():
          rates("circle_d", "fig7_blur", [4.0, 5.0, 6.0]) +
          rates("circle_d", "fig7_blur", [4.0, 5.0, 6.0], "success_at_bound")),
         ("at σ 7-10, {}/{}/{}/{} %", rates("circle_d", "fig7_blur", [7.0, 8.0, 9.0, 10.0])),
+        ("At σ 7, where d is found on {} % of the frames, its median error is {}× the bound",
+         rates("circle_d", "fig7_blur", [7.0], "detection_rate") +
+         [f"{number(series['circle_d'][('fig7_blur', 7.0)]['efficiency']):.2f}"]),
         ("d is now found on {}-{} % of the frames at 2.5-3.5 m",
          [percent(min(found_far)), percent(max(found_far))]),
         ("and succeeds on {}/{}/{}/{}/{} % where `success_at_bound` says {}/{}/{}/{}/{} %; e on "

@@ -26,6 +26,7 @@ struct TiltChoiceCounts {
   int from_truth_wrong = 0;                            // the fit from the truth and its mirror
   int ours_wrong = 0;                                  // the tracker's
   int only_ours_wrong = 0, only_from_truth_wrong = 0;  // the discordant frames
+  int frames = 0;                                      // counted
 
   // McNemar's exact test on the discordant frames: the chance of the tracker being the wrong
   // one this often or more if both were wrong as often.
@@ -84,7 +85,9 @@ inline FitFromTruthAndMirror DesignFitFromTruthAndMirror(const Camera& camera,
 }
 
 // One frame counted, seen from `distance_m`: a pose is wrong beyond a tenth of it (the
-// benchmark's success criterion), or where the tracker (Reset first) finds none.
+// benchmark's success criterion), or where the tracker (Reset first) finds none; with
+// `found_only`, a frame it finds none in is not counted (a cell's errors are those of the frames
+// found).
 inline void CountTiltChoice(const Image8& image,
                             const Camera& camera,
                             const MarkerSpec& marker,
@@ -92,10 +95,13 @@ inline void CountTiltChoice(const Image8& image,
                             double distance_m,
                             Tracker& tracker,
                             const FitFromTruthAndMirror& fit_from_truth_and_mirror,
-                            TiltChoiceCounts* counts) {
+                            TiltChoiceCounts* counts,
+                            bool found_only = false) {
   const double wrong_m = 0.1 * distance_m;
   tracker.Reset();
   const TrackResult ours = tracker.Track({&image, &camera, &marker});
+  if (found_only && ours.status != TrackStatus::kOk) return;
+  ++counts->frames;
   const bool ours_wrong = ours.status != TrackStatus::kOk ||
                           !(PositionError(ours.hypotheses.front(), truth) <= wrong_m);
   const std::optional<Rigid3> kept = fit_from_truth_and_mirror(image, truth);

@@ -23,11 +23,13 @@ namespace markerbench {
 namespace {
 
 // The counts per sweep value of `kind`'s frames of the paper's `scenario_file` at values in
-// [min_value, max_value]; the fits from the truth start at each frame's blur and noise.
+// [min_value, max_value] (with `found_only`, those the tracker finds); the fits from the truth
+// start at each frame's blur and noise.
 std::map<double, TiltChoiceCounts> CountPaperFrames(const std::string& scenario_file,
                                                     MarkerKind kind,
                                                     double min_value,
-                                                    double max_value) {
+                                                    double max_value,
+                                                    bool found_only = false) {
   ScenarioOverrides circle_only;
   circle_only.trackers = {"circle"};
   const Scenario scenario = LoadScenario(scenario_file, circle_only);
@@ -59,7 +61,8 @@ std::map<double, TiltChoiceCounts> CountPaperFrames(const std::string& scenario_
                     DistanceToMarker(planned.cam_from_marker, *marker),
                     tracker,
                     from_truth,
-                    &cells[planned.sweep_value]);
+                    &cells[planned.sweep_value],
+                    found_only);
   }
   return cells;
 }
@@ -100,6 +103,23 @@ TEST(PaperBlurSweep, CircleDChoosesTheTiltAsOftenAsFromTheTruePoseAndItsMirror) 
       CountPaperFrames("scenarios/paper/fig7_blur.yaml", MarkerKind::kCircleD, 5.0, 6.0);
   ASSERT_EQ(cells.size(), 2u);
   ExpectAtTheLikelierFitsChoice(cells, 3, cells.size());
+}
+
+// circle_d at σ 7, the one cell of the blur sweep where a circle marker succeeds on more than
+// half of the frames with a median error above 1.5x its bound (1.51x, 54 % success,
+// results/paper/summary.csv): on the 76 frames the tracker finds, the likelier fit is wrong on
+// 22, the very frames the tracker is wrong on (measured: no discordant frame). Those are the
+// mirror's frames, which the local bound does not count.
+TEST(PaperBlurSweep, CircleDFoundAtSigma7ChoosesTheTiltAsFromTheTruePoseAndItsMirror) {
+  if (kSanitizedBuild) GTEST_SKIP() << "100 frames under heavy blur: the optimised build's";
+  const std::map<double, TiltChoiceCounts> cells = CountPaperFrames(
+      "scenarios/paper/fig7_blur.yaml", MarkerKind::kCircleD, 7.0, 7.0, /*found_only=*/true);
+  ASSERT_EQ(cells.size(), 1u);
+  const TiltChoiceCounts& counts = cells.begin()->second;
+  EXPECT_GT(counts.frames, 50);
+  // That fit wrong on more than a fifth of the frames found, where the bound's
+  // `success_at_bound` puts 14 % of the cell's frames beyond a tenth of the distance.
+  ExpectAtTheLikelierFitsChoice(cells, counts.frames / 5, 1);
 }
 
 // The markers of one circle, d, e and f, at 2.5 m and 3.5 m, where issue 21 asks for 90 % and
