@@ -71,7 +71,24 @@ struct AppearanceOptions {
   // tracker's `max_appearance_misfit` and `appearance_min_significance`).
   double max_misfit = 0.1;
   double min_significance = 4.0;
+  // From kDesignImageMinBlurPx of blur on, the design's blurred image over the pixels read
+  // instead of each pixel's colour by the 5x5 Gauss-Hermite rule (the circle tracker's
+  // `appearance_design_image`). Under heavy blur the rule's staircase over each edge, which
+  // neighbouring pixels share, misfits correct poses: circle_d's true pose at 1 m and σ 8-10 by
+  // 0.08-0.21 at 3.0-5.7 standard errors, the image by at most 0.06 at 2.4 (ctest
+  // `trackers/printed_appearance`, `UnderHeavyBlurTheDesignImageShowsTheTruePose`). Off by
+  // default, as the rule's error also rejects clutter (measured: with it on, the circle tracker
+  // on the paper's blur sweep at σ 5-10 succeeded on 26 of d's frames it had failed and failed on
+  // 3 it had succeeded, of 600, McNemar p 2e-5; on six fresh negative sets under that blur it
+  // found d in 43 of 3360 frames of clutter, not 19: 1.28 % (0.95-1.72 %), not 0.57 %, above the
+  // 1 % that CircleFalsePositives.RateOnFreshDraws allows; under the sets' own blur, in 5, not 3;
+  // no other marker's result moved).
+  bool design_image = false;
 };
+// From this blur σ of the edges on (px) AppearanceOptions::design_image takes effect (below it
+// the rule's staircase is a few pixels wide; on the paper's blur sweep at σ 3 and 4 the image
+// changed no result).
+constexpr double kDesignImageMinBlurPx = 3.0;
 
 struct AppearanceFit {
   int grid = 0;           // the grid used

@@ -288,6 +288,7 @@ CircleTrackerOptions CircleTrackerOptions::FromYaml(const YamlMap& map) {
       map.GetOr<int>("appearance_blocks_per_side", o.appearance.blocks_per_side);
   o.appearance.min_significance =
       map.GetOr<double>("appearance_min_significance", o.appearance.min_significance);
+  o.appearance.design_image = map.GetOr<bool>("appearance_design_image", o.appearance.design_image);
   o.detector.min_contrast = map.GetOr<double>("min_contrast", o.detector.min_contrast);
   o.detector.edge_passes = map.GetOr<int>("edge_passes", o.detector.edge_passes);
   o.detector.edges.max_rays = map.GetOr<int>("max_rays", o.detector.edges.max_rays);
@@ -368,6 +369,7 @@ std::vector<std::pair<std::string, std::string>> CircleTracker::Parameters() con
       {"max_appearance_block_misfit", NumberText(o.appearance.max_block_misfit)},
       {"appearance_blocks_per_side", std::to_string(o.appearance.blocks_per_side)},
       {"appearance_min_significance", NumberText(o.appearance.min_significance)},
+      {"appearance_design_image", BoolText(o.appearance.design_image)},
       {"min_contrast", NumberText(o.detector.min_contrast)},
       {"edge_passes", std::to_string(o.detector.edge_passes)},
       {"max_rays", std::to_string(o.detector.edges.max_rays)},

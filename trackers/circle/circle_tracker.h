@@ -86,17 +86,16 @@ struct CircleTrackerOptions {
   // Reads flat keys (cost, huber_px, point_weight, max_iterations, k_normal, depth, refine,
   // photometric, tracking, predict_motion, roi_margin, max_prediction_error, max_edge_rms_px,
   // max_appearance_misfit, max_appearance_block_misfit, appearance_blocks_per_side,
-  // appearance_min_significance (the design check's max_misfit, max_block_misfit,
-  // blocks_per_side and min_significance), min_contrast, edge_passes, max_rays,
-  // max_blurred_dot_disks, max_blurred_dot_peak, min_dot_area_px, min_blurred_dot_radius_px,
-  // min_dot_radius_px, blurred_dot_min_significance, min_branch_angle_rad,
-  // max_other_tilt_log_ratio, min_design_radius_per_blur, max_second_hypothesis_log_ratio,
-  // max_carried_tilt_log_ratio;
-  // pixel_band_sigmas and pixel_band_px, the disks' fit's band_sigmas and band_px;
-  // design_band_sigmas, design_band_px and design_max_other_tilt_log_ratio, e's and f's
-  // band_sigmas, band_px and max_first_round_log_ratio; the edge_shift_ keys of tracking mode's
-  // alignment (EdgeShiftOptions): the keys of Parameters()); throws ConfigError naming the file
-  // and key.
+  // appearance_min_significance, appearance_design_image (the design check's max_misfit,
+  // max_block_misfit, blocks_per_side, min_significance and design_image), min_contrast,
+  // edge_passes, max_rays, max_blurred_dot_disks, max_blurred_dot_peak, min_dot_area_px,
+  // min_blurred_dot_radius_px, min_dot_radius_px, blurred_dot_min_significance,
+  // min_branch_angle_rad, max_other_tilt_log_ratio, min_design_radius_per_blur,
+  // max_second_hypothesis_log_ratio, max_carried_tilt_log_ratio; pixel_band_sigmas and
+  // pixel_band_px, the disks' fit's band_sigmas and band_px; design_band_sigmas, design_band_px and
+  // design_max_other_tilt_log_ratio, e's and f's band_sigmas, band_px and
+  // max_first_round_log_ratio; the edge_shift_ keys of tracking mode's alignment
+  // (EdgeShiftOptions): the keys of Parameters()); throws ConfigError naming the file and key.
   static CircleTrackerOptions FromYaml(const YamlMap& map);
 };
 
