@@ -10,7 +10,7 @@
 #include <optional>
 #include <vector>
 
-#include "trackers/circle/blurred_disk_profile.h"
+#include "trackers/pixel_area_blur.h"
 
 namespace markerbench {
 namespace {

@@ -16,8 +16,6 @@
 #pragma once
 
 #include <Eigen/Core>
-#include <algorithm>
-#include <cmath>
 
 namespace markerbench {
 
@@ -36,16 +34,9 @@ struct PixelProfileValue {
   double d_dlog_width = 0.0;
 };
 
-// The blur σ of a model that averages over each pixel (as OverPixel does) from the σ of the
-// image's edges, which holds the pixel's area too (variance 1/12).
-inline double BlurSigmaOfEdges(double edge_sigma_px) {
-  return std::sqrt(std::max(0.0, edge_sigma_px * edge_sigma_px - 1.0 / 12.0));
-}
-// Its inverse: the σ of the edges of an image of blur σ.
-inline double EdgeSigmaOfBlur(double blur_sigma_px) {
-  return std::sqrt(blur_sigma_px * blur_sigma_px + 1.0 / 12.0);
-}
-// Such a model's least σ: a sharp image takes it to 0; not quite, for z = -d/σ.
+// The least σ of a model that averages over each pixel (as OverPixel does; its σ is
+// BlurSigmaOfEdges of the edges', pixel_area_blur.h): a sharp image takes it to 0; not quite,
+// for z = -d/σ.
 constexpr double kMinBlurSigmaPx = 0.02;
 
 // G for one disk radius s, evaluated at many z (one table row interpolation per disk).

@@ -12,6 +12,8 @@
 #include <tuple>
 #include <vector>
 
+#include "trackers/pixel_area_blur.h"
+
 namespace markerbench {
 namespace {
 

@@ -11,6 +11,7 @@
 #include "trackers/circle/conic_fit.h"
 #include "trackers/circle/photometric_refinement.h"
 #include "trackers/circle/roll_feature.h"
+#include "trackers/pixel_area_blur.h"
 #include "trackers/printed_appearance.h"
 
 namespace markerbench {

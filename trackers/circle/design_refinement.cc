@@ -13,6 +13,7 @@
 #include "trackers/circle/blurred_disk_profile.h"
 #include "trackers/circle/clipped_noise.h"
 #include "trackers/circle/plane_view.h"
+#include "trackers/pixel_area_blur.h"
 
 namespace markerbench {
 namespace {

@@ -16,6 +16,7 @@
 #include "trackers/circle/conic.h"
 #include "trackers/circle/pixel_chord_term.h"
 #include "trackers/circle/pixel_fit.h"
+#include "trackers/pixel_area_blur.h"
 
 namespace markerbench {
 namespace {

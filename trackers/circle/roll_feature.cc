@@ -10,6 +10,7 @@
 #include "core/shapes.h"
 #include "trackers/circle/blurred_disk_profile.h"
 #include "trackers/circle/plane_view.h"
+#include "trackers/pixel_area_blur.h"
 #include "trackers/printed_appearance.h"
 #include "trackers/upper_median.h"
 
