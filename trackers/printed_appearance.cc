@@ -121,7 +121,7 @@ class BlurredDesignImage {
     for (cv::Mat& plane : planes_) plane = cv::Mat::zeros(size.y(), size.x(), CV_64F);
     // A pixel's ray meets the plane at X = λ Rᵀ ray - Rᵀ t, z = 0.
     const Eigen::Matrix3d marker_from_cam = cam_from_marker.rotation.transpose();
-    const Eigen::Vector3d camera_in_marker = -(marker_from_cam * cam_from_marker.translation);
+    const Eigen::Vector3d camera_in_marker = CameraCenterInMarker(cam_from_marker);
     for (int y = 0; y < size.y(); ++y) {
       for (int x = 0; x < size.x(); ++x) {
         for (const double dy : {-0.25, 0.25}) {

@@ -12,17 +12,13 @@
 #include "core/marker_yaml.h"
 #include "renderer/test_scenes.h"
 #include "testing/square_tracker_testing.h"
+#include "trackers/pixel_area_blur.h"
 
 namespace markerbench {
 namespace {
 
 MarkerSpec Load(const std::string& kind) {
   return LoadMarkerYaml("scenarios/markers/" + kind + ".yaml");
-}
-
-// The image's edge σ: optics and the pixel's area (a box of variance 1/12).
-double EdgeSigma(double blur_sigma_px) {
-  return std::sqrt(blur_sigma_px * blur_sigma_px + 1.0 / 12.0);
 }
 
 TEST(PrintedAppearance, TheTruePoseShowsTheDesignUnderNoiseAndBlur) {
@@ -36,7 +32,7 @@ TEST(PrintedAppearance, TheTruePoseShowsTheDesignUnderNoiseAndBlur) {
       const Rigid3 pose = TiltedView(0.6, 35.0, 20.0);
       const RenderedFrame frame = RenderMarker(marker, pose, noise_var, blur, 5);
       const AppearanceFit fit =
-          CheckPrintedAppearance(frame.image, camera, marker, pose, EdgeSigma(blur));
+          CheckPrintedAppearance(frame.image, camera, marker, pose, EdgeSigmaOfBlur(blur));
       EXPECT_TRUE(fit.ShowsMarker()) << fit.misfit << " " << fit.significance;
       // At σ² = 0.3 the estimate of a small part's misfit is noisy, but not significant.
       if (noise_var <= 0.02) {
@@ -66,21 +62,21 @@ TEST(PrintedAppearance, UnderHeavyBlurTheDesignImageShowsTheTruePose) {
                      std::to_string(tilt));
         const Rigid3 pose = TiltedView(1.0, tilt, 20.0);
         const RenderedFrame frame = RenderMarker(marker, pose, 0.02, blur, 5);
-        const AppearanceFit fit =
-            CheckPrintedAppearance(frame.image, camera, marker, pose, EdgeSigma(blur), with_image);
+        const AppearanceFit fit = CheckPrintedAppearance(
+            frame.image, camera, marker, pose, EdgeSigmaOfBlur(blur), with_image);
         EXPECT_TRUE(fit.ShowsMarker()) << fit.misfit << " " << fit.significance;
         EXPECT_LT(fit.misfit, 0.06);
         EXPECT_LT(fit.significance, 3.0) << fit.misfit;
         if (marker.kind == MarkerKind::kCircleD && blur >= 8.0) {
           const AppearanceFit by_rule =
-              CheckPrintedAppearance(frame.image, camera, marker, pose, EdgeSigma(blur));
+              CheckPrintedAppearance(frame.image, camera, marker, pose, EdgeSigmaOfBlur(blur));
           EXPECT_GT(by_rule.misfit, 2.0 * fit.misfit);
         }
         if (marker.kind == MarkerKind::kCirclesA) {
           const RenderedFrame other = RenderMarker(swapped, pose, 0.02, blur, 5);
-          EXPECT_FALSE(
-              CheckPrintedAppearance(other.image, camera, marker, pose, EdgeSigma(blur), with_image)
-                  .ShowsMarker());
+          EXPECT_FALSE(CheckPrintedAppearance(
+                           other.image, camera, marker, pose, EdgeSigmaOfBlur(blur), with_image)
+                           .ShowsMarker());
         }
       }
     }
@@ -103,13 +99,13 @@ TEST(PrintedAppearance, TheDesignImageLooksThroughTheLens) {
     request.scene.camera = camera;
     const RenderedFrame frame = RenderFrame(request);
     const AppearanceFit fit =
-        CheckPrintedAppearance(frame.image, camera, marker, pose, EdgeSigma(6.0), with_image);
+        CheckPrintedAppearance(frame.image, camera, marker, pose, EdgeSigmaOfBlur(6.0), with_image);
     EXPECT_TRUE(fit.ShowsMarker()) << fit.misfit << " " << fit.significance;
     EXPECT_LT(fit.significance, 3.0) << fit.misfit;
     Rigid3 moved = pose;
     moved.translation.y() += 3.0 * pose.translation.z() / camera.fy;
-    const AppearanceFit off =
-        CheckPrintedAppearance(frame.image, camera, marker, moved, EdgeSigma(6.0), with_image);
+    const AppearanceFit off = CheckPrintedAppearance(
+        frame.image, camera, marker, moved, EdgeSigmaOfBlur(6.0), with_image);
     EXPECT_GT(off.significance, 4.0) << off.misfit;
   }
 }
@@ -129,7 +125,7 @@ TEST(PrintedAppearance, TheTruePoseShowsNoMisfitWhereSamplesAreDenseAndNoiseHeav
         const Rigid3 pose = TiltedView(distance, 30.0, 20.0);
         const RenderedFrame frame = RenderMarker(marker, pose, noise_var, 1.0, seed);
         const AppearanceFit fit =
-            CheckPrintedAppearance(frame.image, camera, marker, pose, EdgeSigma(1.0));
+            CheckPrintedAppearance(frame.image, camera, marker, pose, EdgeSigmaOfBlur(1.0));
         EXPECT_LT(fit.significance, 3.0) << fit.misfit;
       }
     }
@@ -150,7 +146,7 @@ TEST(PrintedAppearance, AnotherDesignWithTheSameEdgesDoesNotShow) {
     for (double noise_var : {0.0, 0.1}) {
       const RenderedFrame frame = RenderMarker(printed, pose, noise_var, 0.0, 5);
       const AppearanceFit fit =
-          CheckPrintedAppearance(frame.image, camera, expected, pose, EdgeSigma(0.0));
+          CheckPrintedAppearance(frame.image, camera, expected, pose, EdgeSigmaOfBlur(0.0));
       EXPECT_FALSE(fit.ShowsMarker()) << expected.name << " " << noise_var << ": " << fit.misfit;
       EXPECT_GT(fit.misfit, 0.15);
     }
@@ -165,10 +161,10 @@ TEST(PrintedAppearance, TheDesignMovedByAFewPixelsDoesNotShow) {
   Rigid3 moved = pose;
   moved.translation.x() += 3.0 * 0.6 / camera.fx;
   const RenderedFrame frame = RenderMarker(marker, pose, 0.02, 0.0, 5);
-  EXPECT_TRUE(
-      CheckPrintedAppearance(frame.image, camera, marker, pose, EdgeSigma(0.0)).ShowsMarker());
+  EXPECT_TRUE(CheckPrintedAppearance(frame.image, camera, marker, pose, EdgeSigmaOfBlur(0.0))
+                  .ShowsMarker());
   const AppearanceFit fit =
-      CheckPrintedAppearance(frame.image, camera, marker, moved, EdgeSigma(0.0));
+      CheckPrintedAppearance(frame.image, camera, marker, moved, EdgeSigmaOfBlur(0.0));
   EXPECT_FALSE(fit.ShowsMarker()) << fit.misfit;
 }
 
@@ -235,7 +231,7 @@ TEST(PrintedAppearance, FitsTheLevelOfAnIntermediateColour) {
     printed.layers.back().color = Rgb::Constant(printing.grey);
     Image8 image = RenderMarker(printed, pose, 1e-4, 1.0, 5).image;
     ApplyGammaCurve(1.0 / printing.gamma, &image);
-    const AppearanceFit fit = CheckPrintedAppearance(image, camera, f, pose, EdgeSigma(1.0));
+    const AppearanceFit fit = CheckPrintedAppearance(image, camera, f, pose, EdgeSigmaOfBlur(1.0));
     ASSERT_EQ(fit.intermediate_levels.size(), 1u);
     EXPECT_NEAR(fit.intermediate_levels[0], printing.level, 0.02);
     EXPECT_EQ(fit.ShowsMarker(), printing.shows) << fit.misfit << " " << fit.significance;
@@ -249,7 +245,7 @@ TEST(PrintedAppearance, AMarkerOutsideTheImageCannotBeChecked) {
   const RenderedFrame frame = RenderMarker(marker, pose, 0.0, 0.0, 5);
   pose.translation.x() += 1.0;  // 1000 px to the right
   const AppearanceFit fit =
-      CheckPrintedAppearance(frame.image, camera, marker, pose, EdgeSigma(0.0));
+      CheckPrintedAppearance(frame.image, camera, marker, pose, EdgeSigmaOfBlur(0.0));
   EXPECT_EQ(fit.samples, 0);
   EXPECT_TRUE(std::isinf(fit.misfit));
   EXPECT_FALSE(fit.ShowsMarker());

@@ -237,7 +237,7 @@ class PixelModel {
     // The layers modelled whole: each disk's image as the chords of its ellipse, and that
     // ellipse blurred, with the pixel's area as a blur of its variance (1/12: beside a blur of
     // a good part of the disk's size, all it changes).
-    const double whole_sigma = std::sqrt(sigma.a * sigma.a + 1.0 / 12.0);
+    const double whole_sigma = EdgeSigmaOfBlur(sigma.a);
     std::vector<EllipseChords<Jet>> whole(layers_.size());
     std::vector<std::optional<BlurredEllipse>> blurred(layers_.size());
     for (size_t l = 0; l < layers_.size(); ++l) {
