@@ -503,17 +503,21 @@ std::optional<std::vector<EdgeLayer>> EdgeLayers(const MarkerSpec& marker,
   return layers;
 }
 
-// The bin of `layer`'s edge point nearest a pixel at `ideal_px` at the start pose (the foot of
-// its perpendicular), searched from the one at the pixel's angle about the disk, `on_plane`.
-int NearestBin(const EdgeLayer& layer,
-               const Eigen::Vector2d& ideal_px,
-               const Eigen::Vector2d& on_plane) {
+// The bin at a point's angle about the disk's centre, `on_plane` (the marker's plane): where
+// the search for a pixel's nearest bin starts when no pixel beside it has one.
+int BinAtAngle(const EdgeLayer& layer, const Eigen::Vector2d& on_plane) {
   const Eigen::Vector2d radial = on_plane - layer.disk.center;
   // atan2's range puts the turn in [-bins/2, bins/2]; wrapped without a division (the two of
   // a remainder's wrap took a tenth of choosing the pixels).
   const int turn =
       static_cast<int>(std::lround(std::atan2(radial.y(), radial.x()) / (2.0 * M_PI) * layer.bins));
-  int bin = std::clamp(turn < 0 ? turn + layer.bins : turn, 0, layer.bins - 1);
+  return std::clamp(turn < 0 ? turn + layer.bins : turn, 0, layer.bins - 1);
+}
+
+// The bin of `layer`'s edge point nearest a pixel at `ideal_px` at the start pose (the foot of
+// its perpendicular), searched downhill from bin `start`.
+int NearestBin(const EdgeLayer& layer, const Eigen::Vector2d& ideal_px, int start) {
+  int bin = start;
   // A neighbour's bin, wrapped without a division (two of them a step took 17 % of the
   // search's time).
   const auto beside = [&](int from, int step) {
@@ -674,6 +678,11 @@ PixelSet PixelsNearEdges(const Image8& image,
   std::vector<uint8_t> taken(
       static_cast<size_t>(std::max(0, all_width)) * std::max(0, all.v1 - all.v0 + 1), 0);
   std::vector<double> distances(layers.size());
+  // Per layer, the pixel last tied to its edge, and its bin.
+  struct LastBin {
+    int u = -2, v = -1, bin = 0;
+  };
+  std::vector<LastBin> last_bins(layers.size());
   const bool ideal_is_pixel = !camera.HasDistortion();
   // Without distortion a pixel's ideal x depends on its column alone and its y on its row
   // alone: taken once per column and row of the box (the divisions of one per pixel took a
@@ -782,7 +791,6 @@ PixelSet PixelsNearEdges(const Image8& image,
     for (int c = 0; c < image.channels; ++c) p.value[c] = kUnitOfGreyLevel[image.at(u, v, c)];
     p.base = background;
     p.first_edge = static_cast<int>(set.near_edges.size());
-    const Eigen::Vector2d on_plane = (plane_from_px * ideal.homogeneous()).hnormalized();
     bool modelled = true;
     for (size_t m = 0; m < layers.size(); ++m) {
       if (layers[m].whole) {
@@ -791,7 +799,20 @@ PixelSet PixelsNearEdges(const Image8& image,
           ++p.edges;
         }
       } else if (std::abs(distances[m]) <= band) {
-        const int bin = NearestBin(layers[m], ideal, on_plane);
+        // The search starts from the bin of the pixel to the left where it was tied to this
+        // edge (its foot a bin or two away) and this pixel lies within a quarter of the edge's
+        // radius of curvature of it; else at the pixel's angle on the plane. Deeper inside a
+        // disk of a few pixels, bins far apart are nearly as near, and from the pixel beside
+        // the search ended at another (on the CI suite's frames, 119 of 13.6 million pixels
+        // with no bound; none with it, nor on the paper sweeps').
+        LastBin& last = last_bins[m];
+        const int start =
+            last.v == v && last.u == u - 1 &&
+                    std::abs(distances[m]) < 0.25 * layers[m].start_curvature_radius_px[last.bin]
+                ? last.bin
+                : BinAtAngle(layers[m], (plane_from_px * ideal.homogeneous()).hnormalized());
+        const int bin = NearestBin(layers[m], ideal, start);
+        last = {u, v, bin};
         set.near_edges.push_back({static_cast<int>(m), bin});
         ++p.edges;
         modelled = modelled && distances[m] >= -max_depth_per_curvature *
