@@ -536,7 +536,8 @@ AppearanceFit CheckPrintedAppearance(const Image8& image,
                                      const AppearanceOptions& options) {
   AppearanceFit fit = FitOnGrid(
       image, camera, marker, cam_from_marker, blur_sigma_px, options, options.coarse_grid);
-  if (!(fit.misfit_upper <= options.max_misfit) && !fit.surely_misfits) {
+  if (options.grid != options.coarse_grid && !(fit.misfit_upper <= options.max_misfit) &&
+      !fit.surely_misfits) {
     fit = FitOnGrid(image, camera, marker, cam_from_marker, blur_sigma_px, options, options.grid);
   }
   return fit;

@@ -47,7 +47,7 @@ double PrintedLevel(const MarkerSpec& marker, const Rgb& color);
 
 struct AppearanceOptions {
   int coarse_grid = 24;      // samples per side of the sampled box, first
-  int grid = 48;             // and where the coarse grid cannot decide
+  int grid = 48;             // and where the coarse grid cannot decide (if another)
   double quiet_zone = 0.25;  // box: ink bounds grown by this fraction of their short side
   // Pixel pairs x channels for a part of the design to be judged; fewer over the whole
   // design, and it cannot be checked.

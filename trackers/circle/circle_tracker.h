@@ -130,6 +130,7 @@ struct CircleDiagnostics {
   // (max_carried_tilt_log_ratio).
   std::optional<double> second_tilt_log_ratio;
   double appearance_misfit = 0.0;  // of the printed design at the final pose
+  int appearance_grid = 0;         // the lattice that check decided on (AppearanceFit::grid)
 };
 
 class CircleTracker final : public Tracker {
@@ -154,6 +155,7 @@ class CircleTracker final : public Tracker {
     double edge_sigma_px = 0.0;  // the blur with the pixel's area, as edge points measure it
     double noise_sigma = 0.0;    // 0-1
     Eigen::VectorXd levels;      // offset and gain per channel (PixelFit::levels)
+    int appearance_grid = 0;     // the lattice the check of the printed design decided on
   };
   // Tracking mode: the pose predicted for the frame, and the evidence the frames before left for
   // the tilt of the last pose, the plane's normal `tracked_normal` (2 ln of the odds against the
@@ -188,11 +190,13 @@ class CircleTracker final : public Tracker {
                                               const PixelFitFound& last) const;
   // The check of the printed design at a pose (CheckPrintedAppearance), and the result: found,
   // with `second_hypothesis` after the pose where given, and the pose kept for the next frame's
-  // prediction, or not detected.
+  // prediction, or not detected. The check starts at `first_grid` where that is finer than the
+  // options' coarse grid.
   TrackResult Accept(const Observation& observation,
                      const Rigid3& cam_from_paper,
                      const Rigid3& cam_from_marker,
-                     const std::optional<Rigid3>& second_hypothesis = std::nullopt);
+                     const std::optional<Rigid3>& second_hypothesis = std::nullopt,
+                     int first_grid = 0);
   // The detection in `region` (from the predicted ellipses where given; in tracking mode the
   // predicted pose starts the refinement and weighs the tilts); the fit on the disks' pixels
   // there starts from the levels and noise the last frame's found (`last_on_pixels`) where given.

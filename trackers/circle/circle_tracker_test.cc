@@ -522,6 +522,33 @@ TEST(CircleTracker, TracksOnThePixelsFromThePrediction) {
   }
 }
 
+// A tracked frame's check of the printed design starts at the lattice the last frame's decided on,
+// and decides on the one a detection of the frame does: the coarse one without noise, the fine one
+// where the noise leaves the coarse one undecided.
+TEST(CircleTracker, TheTrackedDesignCheckStartsWhereTheLastDecided) {
+  const MarkerSpec marker = Load("circles_a");
+  const Camera camera = FrameRequest().scene.camera;  // RenderAndTrack's
+  const AppearanceOptions appearance;
+  for (const double noise_var : {0.0, 0.1}) {
+    SCOPED_TRACE(noise_var);
+    CircleTracker tracker, detection;
+    for (int frame = 0; frame < 4; ++frame) {
+      Rigid3 truth = TiltedView(0.6, 25.0 + 0.5 * frame, 40.0 + 0.5 * frame);
+      truth.translation.x() += 0.002 * frame;
+      const TrackedFrame t = RenderAndTrack(&tracker, marker, truth, noise_var, 90 + frame);
+      ASSERT_EQ(t.result.status, TrackStatus::kOk) << frame << t.result.message;
+      EXPECT_EQ(tracker.diagnostics().tracked_on_pixels, frame > 0) << frame;
+      EXPECT_EQ(tracker.diagnostics().appearance_grid,
+                noise_var == 0.0 ? appearance.coarse_grid : appearance.grid)
+          << frame;
+      ASSERT_EQ(detection.Track({&t.frame.image, &camera, &marker}).status, TrackStatus::kOk);
+      EXPECT_EQ(tracker.diagnostics().appearance_grid, detection.diagnostics().appearance_grid)
+          << frame;
+      detection.Reset();
+    }
+  }
+}
+
 // Tracking on the pixels gives way where its checks fail, and the frame gets the search around
 // the prediction or full detection: on a frame without the marker the fit takes the gains to 0
 // (not detected, as a detection of the frame says), a frame far noisier than the last shows that
