@@ -8,14 +8,17 @@
 
 namespace markerbench {
 
+// A pixel's variance along any direction (px², its side 1 px).
+constexpr double kPixelAreaVariance = 1.0 / 12.0;
+
 // The blur σ of a model that averages over each pixel from the σ of the image's edges, which
-// holds the pixel's area too (variance 1/12).
+// holds the pixel's area too.
 inline double BlurSigmaOfEdges(double edge_sigma_px) {
-  return std::sqrt(std::max(0.0, edge_sigma_px * edge_sigma_px - 1.0 / 12.0));
+  return std::sqrt(std::max(0.0, edge_sigma_px * edge_sigma_px - kPixelAreaVariance));
 }
 // Its inverse: the σ of the edges of an image of blur σ.
 inline double EdgeSigmaOfBlur(double blur_sigma_px) {
-  return std::sqrt(blur_sigma_px * blur_sigma_px + 1.0 / 12.0);
+  return std::sqrt(blur_sigma_px * blur_sigma_px + kPixelAreaVariance);
 }
 
 }  // namespace markerbench

@@ -7,6 +7,8 @@
 #include <limits>
 #include <utility>
 
+#include "trackers/pixel_area_blur.h"
+
 namespace markerbench {
 namespace {
 
@@ -25,11 +27,6 @@ constexpr std::array<double, 5> kWeights = {0.2955242247147529,
 // Edges nearer than this (in σc, below) to a point make a corner with its nearest edge.
 constexpr double kCornerSigmas = 5.0;
 constexpr double kSharpSigmas = 9.0;
-// A pixel's variance along any direction (its side 1 px).
-constexpr double kPixelVariance = 1.0 / 12.0;
-
-// The σ of the Gaussian the corners take: the blur's and the pixel's variance, σc² = σ² + 1/12.
-double CornerSigma(double sigma_px) { return std::sqrt(sigma_px * sigma_px + kPixelVariance); }
 
 // One edge of a layer at a point: its distance in σ (positive outside), d(that)/dp and
 // d(that)/dσ.
@@ -80,7 +77,7 @@ Cover BlurredCover(const BoundaryDistances& b,
     const double curvature_px =
         term.curvature_per_m * area_px / (tangent_norm * tangent_norm * tangent_norm);
     const double distance = term.metres * per_metre;
-    const double area_per_sigma = kPixelVariance / sigma_px;
+    const double area_per_sigma = kPixelAreaVariance / sigma_px;
     edges[i] = {distance + 0.5 * (sigma_px + area_per_sigma) * curvature_px,
                 per_metre * term.gradient,
                 -distance / sigma_px + 0.5 * (1.0 - area_per_sigma / sigma_px) * curvature_px,
@@ -119,11 +116,12 @@ Cover BlurredCover(const BoundaryDistances& b,
   // A corner over a pixel: the product of its two edges' covers, which is exact where the
   // edges are far apart (and for two edges along the pixel's sides), plus what the corner of
   // the two half-planes adds to the product of their steps under a Gaussian of the blur and the
-  // pixel's variance, σc (the pixel taken as Gaussian in that small part):
+  // pixel's variance, σc² = σ² + 1/12 (EdgeSigmaOfBlur; the pixel taken as Gaussian in that
+  // small part):
   // Φ2(h, k; ρ) - Φ(h) Φ(k), h = -a1 σ/σc, k = -a2 σ/σc, ρ the cosine between their normals in
   // pixels (exact for two straight edges at a blur much wider than the pixel; a product alone
   // would bias a sector's apex). Beyond kCornerSigmas σc of the second edge that is below 3e-7.
-  const double corner_sigma = CornerSigma(sigma_px);
+  const double corner_sigma = EdgeSigmaOfBlur(sigma_px);
   const double to_corner = sigma_px / corner_sigma;
   size_t first_straight = 0;
   if (b.count >= 2 && std::abs(edges[1].a) * to_corner < kCornerSigmas) {
@@ -139,7 +137,7 @@ Cover BlurredCover(const BoundaryDistances& b,
     const double d_k = NormalDensity(k) * (NormalCdf((h - rho * k) / root) - NormalCdf(h));
     const double excess = BivariateNormalCdf(h, k, rho) - NormalCdf(h) * NormalCdf(k);
     // d(σ/σc)/dσ = (1/12)/σc³.
-    const double d_to_corner = kPixelVariance / (corner_sigma * corner_sigma * corner_sigma);
+    const double d_to_corner = kPixelAreaVariance / (corner_sigma * corner_sigma * corner_sigma);
     multiply(
         c1.value * c2.value + excess,
         c1.d_a * c2.value - d_h * to_corner,
@@ -228,7 +226,7 @@ BlurredLuma BlurredDesign::At(const Eigen::Vector2d& p,
   // image (the map's Frobenius norm bounds the metres a pixel spans; the 1 σc covers the
   // curvature's shift of a circle's blurred edge, σc/2ρ σc for ρ ≥ σc).
   const double sharp_beyond_m =
-      ((kSharpSigmas + 1.0) * CornerSigma(sigma_px) + 1.0) * marker_from_px.norm();
+      ((kSharpSigmas + 1.0) * EdgeSigmaOfBlur(sigma_px) + 1.0) * marker_from_px.norm();
   for (size_t l = 0; l < marker_.layers.size(); ++l) {
     const PaintedShape& layer = marker_.layers[l];
     const BoundaryDistances b = DistancesTo(layer.shape, p);
