@@ -7,6 +7,7 @@
 #include <opencv2/imgproc.hpp>
 
 #include "trackers/noise_estimate.h"
+#include "trackers/pixel_area_blur.h"
 #include "trackers/upper_median.h"
 
 namespace markerbench {
@@ -89,9 +90,9 @@ std::optional<ImagedDot> MeasureDot(const cv::Mat& image,
   const Eigen::Vector2d center = m1 / m0;
   const Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> eig(m2 / m0 - center * center.transpose());
   // A uniform ellipse with semi-axes a, b has variances a^2/4 and b^2/4; pixel sampling of a
-  // box-filtered image adds 1/12.
-  const double minor_var = std::max(eig.eigenvalues()(0) - 1.0 / 12.0, 1e-6);
-  const double major_var = std::max(eig.eigenvalues()(1) - 1.0 / 12.0, 1e-6);
+  // box-filtered image adds the pixel's area.
+  const double minor_var = std::max(eig.eigenvalues()(0) - kPixelAreaVariance, 1e-6);
+  const double major_var = std::max(eig.eigenvalues()(1) - kPixelAreaVariance, 1e-6);
   const ImagedDot dot{center, area, 2.0 * std::sqrt(major_var), 2.0 * std::sqrt(minor_var)};
   if (dot.semi_minor_px < options.min_axis_ratio * dot.semi_major_px) {
     *misshapen = true;
