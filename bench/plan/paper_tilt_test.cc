@@ -18,6 +18,7 @@
 #include "testing/sanitized_build.h"
 #include "testing/tilt_choice.h"
 #include "trackers/circle/circle_tracker.h"
+#include "trackers/pixel_area_blur.h"
 
 namespace markerbench {
 namespace {
@@ -48,8 +49,7 @@ std::map<double, TiltChoiceCounts> CountPaperFrames(const std::string& scenario_
     }
     const RenderedFrame frame = RenderFrame(RequestFor(scenario, planned));
     // The edges' σ the fits start from: the blur with the pixel's area.
-    const double edge_sigma_px =
-        std::hypot(planned.degradations.blur_sigma_px, std::sqrt(1.0 / 12.0));
+    const double edge_sigma_px = EdgeSigmaOfBlur(planned.degradations.blur_sigma_px);
     const double noise_sigma = std::sqrt(planned.degradations.noise_var);
     const FitFromTruthAndMirror from_truth =
         design ? DesignFitFromTruthAndMirror(scenario.camera, *marker, edge_sigma_px, noise_sigma)
