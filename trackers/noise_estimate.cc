@@ -1,10 +1,11 @@
 #include "trackers/noise_estimate.h"
 
 #include <algorithm>
-#include <array>
 #include <cmath>
 #include <cstdint>
 #include <vector>
+
+#include "trackers/byte_histogram.h"
 
 namespace markerbench {
 namespace {
@@ -23,39 +24,16 @@ void RowDifferences(const uint8_t* row, std::vector<uint8_t>* differences) {
   for (int x = 0; x < n; ++x) out[x] = AbsoluteDifference(row[x], row[x + 1]);
 }
 
-struct Histogram {
-  std::array<int, 256> counts{};
-  int total = 0;
-  // The median (the lower one of an even count).
-  int Median() const {
-    int seen = 0, median = 0;
-    while (median < 255 && (seen += counts[median]) < (total + 1) / 2) ++median;
-    return median;
-  }
-};
-
-// The histogram of the differences on every `row_step`-th row, counted in four histograms in
-// turn and summed at the end: neighbouring differences mostly fall in the same few bins, and
-// one histogram's increments would wait on each other.
-Histogram HistogramOfRows(const cv::Mat& channel, int row_step, std::vector<uint8_t>* differences) {
-  constexpr int kHistograms = 4;
-  std::array<std::array<int, 256>, kHistograms> histograms{};
-  const int n = static_cast<int>(differences->size());
-  Histogram out;
+// The histogram of the differences on every `row_step`-th row.
+ByteHistogram HistogramOfRows(const cv::Mat& channel,
+                              int row_step,
+                              std::vector<uint8_t>* differences) {
+  ByteHistogram histogram;
   for (int y = 0; y < channel.rows; y += row_step) {
     RowDifferences(channel.ptr<uint8_t>(y), differences);
-    const uint8_t* d = differences->data();
-    int x = 0;
-    for (; x + kHistograms <= n; x += kHistograms) {
-      for (int h = 0; h < kHistograms; ++h) ++histograms[h][d[x + h]];
-    }
-    for (; x < n; ++x) ++histograms[0][d[x]];
-    out.total += n;
+    histogram.Add(differences->data(), static_cast<int>(differences->size()));
   }
-  for (const std::array<int, 256>& h : histograms) {
-    for (int d = 0; d < 256; ++d) out.counts[d] += h[d];
-  }
-  return out;
+  return histogram;
 }
 
 // How many differences on every kRowStep-th row lie below `level` and how many at most at it.

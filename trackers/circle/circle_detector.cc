@@ -8,6 +8,7 @@
 #include <opencv2/imgproc.hpp>
 #include <sstream>
 
+#include "trackers/byte_histogram.h"
 #include "trackers/circle/conic.h"
 #include "trackers/noise_estimate.h"
 
@@ -49,14 +50,10 @@ struct Threshold {
 
 // `fraction`: how far from the paper's level towards the most extreme ink's the level sits.
 Threshold FindThreshold(const cv::Mat& smoothed, bool ink_dark, double fraction) {
-  std::array<int, 256> histogram{};
-  for (int y = 0; y < smoothed.rows; ++y) {
-    const uint8_t* row = smoothed.ptr<uint8_t>(y);
-    for (int x = 0; x < smoothed.cols; ++x) ++histogram[row[x]];
-  }
-  const int total = smoothed.rows * smoothed.cols;
-  int seen = 0, median = 0;
-  while (median < 255 && (seen += histogram[median]) < (total + 1) / 2) ++median;
+  ByteHistogram levels;
+  for (int y = 0; y < smoothed.rows; ++y) levels.Add(smoothed.ptr<uint8_t>(y), smoothed.cols);
+  const std::array<int, 256> histogram = levels.Counts();
+  const int median = levels.Median();
   int extreme = ink_dark ? 0 : 255;
   while (histogram[extreme] == 0 && extreme != median) extreme += ink_dark ? 1 : -1;
   Threshold t;
