@@ -3,7 +3,7 @@
 # the CPU is and with glibc's AVX2, FMA and AVX-512 variants masked (GLIBC_TUNABLES), and per
 # scenario the rows of frames.csv that differ. glibc picks the code of its maths functions (exp,
 # sin, atan2, ...) by the CPU, and the variants can differ in the last bit; a frame whose result
-# turns on such bits moves (README, "Reproducibility across machines"). Arguments after `--` go
+# turns on such bits moves (README, "Across machines"). Arguments after `--` go
 # to both sweeps (e.g. --trackers circle). Needs a build (scripts/build.sh).
 # Usage: scripts/cpu_dispatch_check.sh OUT_DIR SCENARIO.yaml... [-- SWEEP_ARGS...]
 set -euo pipefail
