@@ -6,9 +6,7 @@
 #include <utility>
 #include <vector>
 
-#if defined(__x86_64__)
-#include <immintrin.h>
-#endif
+#include "trackers/circle/avx2_lanes.h"
 
 namespace markerbench {
 namespace {
@@ -186,34 +184,17 @@ PixelProfileValue BlurredDiskProfile::FromCorners(const Integral (&corner)[4], d
   return out;
 }
 
-#if defined(__x86_64__)
-namespace {
-// Read once at load, so that OverPixel, called per pixel and edge, tests a plain bool (a
-// function's static tests its guard at every call).
-const bool kCpuHasAvx2 = [] {
-  __builtin_cpu_init();  // a static initializer may run before the one that reads the CPU
-  return __builtin_cpu_supports("avx2") != 0;
-}();
-}  // namespace
-
 bool BlurredDiskProfile::HasAvx2() { return kCpuHasAvx2; }
 
+#if defined(__x86_64__)
 namespace {
 
-// Helpers of OverPixelAvx2, in its target (a lambda would not inherit it).
-#define MARKERBENCH_AVX2 __attribute__((target("avx2")))
-
-MARKERBENCH_AVX2 __m256d All(double value) { return _mm256_set1_pd(value); }
-
-MARKERBENCH_AVX2 __m256d Gather(const double* row, __m128i node) {
-  const __m256d every_lane = _mm256_castsi256_pd(_mm256_set1_epi64x(-1));
-  return _mm256_mask_i32gather_pd(_mm256_setzero_pd(), row, node, every_lane, 8);
-}
+using avx2::All;
+using avx2::Gather;
 
 // The cubic Hermite basis at four points, about the table nodes below them.
-struct HermiteLanes {
+struct HermiteLanes : avx2::HermiteBasisLanes {
   __m128i node;
-  __m256d value0, slope0, value1, slope1;
   __m256d d_value0, d_slope0, d_value1, d_slope1;
   __m256d beyond, half_beyond_squared;  // past kMaxZ, where G = 1
 };
@@ -264,13 +245,8 @@ MARKERBENCH_AVX2 PixelProfileValue BlurredDiskProfile::OverPixelAvx2(double z,
       _mm_min_epi32(_mm256_cvttpd_epi32(xj), _mm_set1_epi32(kZSteps - 1)), _mm_setzero_si128());
   at.node = node;
   const __m256d f = _mm256_sub_pd(xj, _mm256_cvtepi32_pd(node));
-  const __m256d f2 = _mm256_mul_pd(f, f), f3 = _mm256_mul_pd(f2, f);
-  at.value0 = _mm256_add_pd(_mm256_sub_pd(_mm256_mul_pd(All(2.0), f3), _mm256_mul_pd(All(3.0), f2)),
-                            All(1.0));
-  at.value1 = _mm256_sub_pd(All(1.0), at.value0);
-  at.slope0 =
-      _mm256_mul_pd(_mm256_add_pd(_mm256_sub_pd(f3, _mm256_mul_pd(All(2.0), f2)), f), All(kZStep));
-  at.slope1 = _mm256_mul_pd(_mm256_sub_pd(f3, f2), All(kZStep));
+  static_cast<avx2::HermiteBasisLanes&>(at) = avx2::HermiteBasis(f, kZStep);
+  const __m256d f2 = _mm256_mul_pd(f, f);
   at.d_value0 = _mm256_mul_pd(
       _mm256_sub_pd(_mm256_mul_pd(All(6.0), f2), _mm256_mul_pd(All(6.0), f)), All(kPerZStep));
   at.d_value1 = _mm256_xor_pd(at.d_value0, All(-0.0));
@@ -306,10 +282,7 @@ MARKERBENCH_AVX2 PixelProfileValue BlurredDiskProfile::OverPixelAvx2(double z,
   for (int k = 0; k < 4; ++k) corner[k] = {returned[0][k], returned[1][k], returned[2][k]};
   return FromCorners(corner, a, b);
 }
-#undef MARKERBENCH_AVX2
 #else
-bool BlurredDiskProfile::HasAvx2() { return false; }
-
 PixelProfileValue BlurredDiskProfile::OverPixelAvx2(double z, double a, double b) const {
   return OverPixel(z, a, b, Corners::kOneByOne);
 }

@@ -54,12 +54,11 @@ BlurredEllipse::BlurredEllipse(const EllipseChords<double>& e, double sigma, int
   nodes_used_ = rule->nodes;
   for (int i = 0; i < nodes_used_; ++i) {
     const double theta = M_PI * (rule->x[i] - 0.5);
-    Node& node = nodes_[i];
-    node.sin_theta = std::sin(theta);
-    node.cos_theta = std::cos(theta);
-    node.weight = M_PI * rule->w[i];  // the rule's on [0, 1] taken to θ in [-π/2, π/2]
-    node.chord_middle = e.slope * e.half_height * node.sin_theta;
-    node.chord_half = e.half_width * node.cos_theta;
+    nodes_.sin_theta[i] = std::sin(theta);
+    nodes_.cos_theta[i] = std::cos(theta);
+    nodes_.weight[i] = M_PI * rule->w[i];  // the rule's on [0, 1] taken to θ in [-π/2, π/2]
+    nodes_.chord_middle[i] = e.slope * e.half_height * nodes_.sin_theta[i];
+    nodes_.chord_half[i] = e.half_width * nodes_.cos_theta[i];
   }
 }
 
@@ -69,53 +68,114 @@ void BlurredEllipse::TakeRow(double y) {
   const double h = e_.half_height, per_sigma = 1.0 / sigma_;
   const double Y = e_.y0 - y;
   for (int i = 0; i < nodes_used_; ++i) {
-    Node& node = nodes_[i];
-    node.z_row = (Y + h * node.sin_theta) * per_sigma;
-    node.row =
-        node.weight * (h * node.cos_theta * per_sigma) * kNormalCdfTable.At(node.z_row).density;
+    nodes_.z_row[i] = (Y + h * nodes_.sin_theta[i]) * per_sigma;
+    nodes_.row[i] = nodes_.weight[i] * (h * nodes_.cos_theta[i] * per_sigma) *
+                    kNormalCdfTable.At(nodes_.z_row[i]).density;
   }
 }
 
+void BlurredEllipse::TermsOneByOne(double X, bool with_gradient, NodeTerms* terms) const {
+  const double per_sigma = 1.0 / sigma_;
+  for (int i = 0; i < nodes_used_; ++i) {
+    const double row = nodes_.row[i];
+    if (row == 0.0) continue;  // |z| beyond the table's end: φ < 1e-17
+    const double z_right = (X + nodes_.chord_middle[i] + nodes_.chord_half[i]) * per_sigma;
+    const double z_left = (X + nodes_.chord_middle[i] - nodes_.chord_half[i]) * per_sigma;
+    if (!with_gradient) {
+      terms->f[i] = row * (kNormalCdfTable.Cdf(z_right) - kNormalCdfTable.Cdf(z_left));
+      continue;
+    }
+    const NormalCdfTable::Values right = kNormalCdfTable.At(z_right);
+    const NormalCdfTable::Values left = kNormalCdfTable.At(z_left);
+    terms->f[i] = row * (right.cdf - left.cdf);
+    terms->across_x[i] = row * (right.density - left.density);  // σ ∂f/∂X
+    terms->width[i] = row * (right.density + left.density) * nodes_.cos_theta[i];
+    terms->ends[i] = row * (right.density * z_right - left.density * z_left);
+  }
+}
+
+#if defined(__x86_64__)
+void BlurredEllipse::TermsInLanes(double X, bool with_gradient, NodeTerms* terms) const {
+  static_assert(kMaxNodes % 4 == 0, "the rules' nodes fill whole vectors");
+  using avx2::All;
+  const __m256d per_sigma = All(1.0 / sigma_);
+  for (int i = 0; i < nodes_used_; i += 4) {
+    const __m256d row = _mm256_loadu_pd(&nodes_.row[i]);
+    const __m256d middle = _mm256_add_pd(All(X), _mm256_loadu_pd(&nodes_.chord_middle[i]));
+    const __m256d half = _mm256_loadu_pd(&nodes_.chord_half[i]);
+    const __m256d z_right = _mm256_mul_pd(_mm256_add_pd(middle, half), per_sigma);
+    const __m256d z_left = _mm256_mul_pd(_mm256_sub_pd(middle, half), per_sigma);
+    if (!with_gradient) {
+      const __m256d across =
+          _mm256_sub_pd(kNormalCdfTable.CdfLanes(z_right), kNormalCdfTable.CdfLanes(z_left));
+      _mm256_storeu_pd(&terms->f[i], _mm256_mul_pd(row, across));
+      continue;
+    }
+    const NormalCdfTable::Lanes right = kNormalCdfTable.AtLanes(z_right);
+    const NormalCdfTable::Lanes left = kNormalCdfTable.AtLanes(z_left);
+    _mm256_storeu_pd(&terms->f[i], _mm256_mul_pd(row, _mm256_sub_pd(right.cdf, left.cdf)));
+    _mm256_storeu_pd(&terms->across_x[i],
+                     _mm256_mul_pd(row, _mm256_sub_pd(right.density, left.density)));
+    _mm256_storeu_pd(&terms->width[i],
+                     _mm256_mul_pd(_mm256_mul_pd(row, _mm256_add_pd(right.density, left.density)),
+                                   _mm256_loadu_pd(&nodes_.cos_theta[i])));
+    _mm256_storeu_pd(&terms->ends[i],
+                     _mm256_mul_pd(row,
+                                   _mm256_sub_pd(_mm256_mul_pd(right.density, z_right),
+                                                 _mm256_mul_pd(left.density, z_left))));
+  }
+}
+#endif
+
 double BlurredEllipse::ValueAt(const Eigen::Vector2d& pixel) {
+  return ValueAt(pixel, kCpuHasAvx2 ? NodeLanes::kAvx2 : NodeLanes::kOneByOne);
+}
+
+void BlurredEllipse::TermsAt(const Eigen::Vector2d& pixel,
+                             NodeLanes lanes,
+                             bool with_gradient,
+                             NodeTerms* terms) {
   TakeRow(pixel.y());
-  const double X = e_.x0 - pixel.x(), per_sigma = 1.0 / sigma_;
+  const double X = e_.x0 - pixel.x();
+#if defined(__x86_64__)
+  if (lanes == NodeLanes::kAvx2 && kCpuHasAvx2) return TermsInLanes(X, with_gradient, terms);
+#endif
+  TermsOneByOne(X, with_gradient, terms);
+}
+
+double BlurredEllipse::ValueAt(const Eigen::Vector2d& pixel, NodeLanes lanes) {
+  NodeTerms terms;
+  TermsAt(pixel, lanes, false, &terms);
   double value = 0.0;
   for (int i = 0; i < nodes_used_; ++i) {
-    const Node& node = nodes_[i];
-    if (node.row == 0.0) continue;
-    const double z_right = (X + node.chord_middle + node.chord_half) * per_sigma;
-    const double z_left = (X + node.chord_middle - node.chord_half) * per_sigma;
-    value += node.row * (kNormalCdfTable.Cdf(z_right) - kNormalCdfTable.Cdf(z_left));
+    if (nodes_.row[i] != 0.0) value += terms.f[i];
   }
   return value;
 }
 
 BlurredEllipseValue BlurredEllipse::At(const Eigen::Vector2d& pixel) {
-  TakeRow(pixel.y());
+  return At(pixel, kCpuHasAvx2 ? NodeLanes::kAvx2 : NodeLanes::kOneByOne);
+}
+
+BlurredEllipseValue BlurredEllipse::At(const Eigen::Vector2d& pixel, NodeLanes lanes) {
+  NodeTerms terms;
+  TermsAt(pixel, lanes, true, &terms);
   const double h = e_.half_height, k = e_.slope, per_sigma = 1.0 / sigma_;
-  const double X = e_.x0 - pixel.x();
-  // Σ over the nodes of w f = w (h c / σ) φ(z_row) across and of the parts of its
-  // derivatives; the gradient is assembled from these sums.
+  // Σ over the nodes of w f and of the parts of its derivatives; the gradient is assembled
+  // from these sums.
   double value = 0.0, d_x = 0.0, d_x_s = 0.0, d_y = 0.0, d_y_s = 0.0, d_y_z = 0.0;
   double d_width = 0.0, d_ends = 0.0;
   for (int i = 0; i < nodes_used_; ++i) {
-    const Node& node = nodes_[i];
-    if (node.row == 0.0) continue;  // |z| beyond the table's end: φ < 1e-17
-    const double z_right = (X + node.chord_middle + node.chord_half) * per_sigma;
-    const double z_left = (X + node.chord_middle - node.chord_half) * per_sigma;
-    const NormalCdfTable::Values right = kNormalCdfTable.At(z_right);
-    const NormalCdfTable::Values left = kNormalCdfTable.At(z_left);
-    const double f = node.row * (right.cdf - left.cdf);
-    const double across_x = node.row * (right.density - left.density);  // σ ∂f/∂X
-    const double across_y = -f * node.z_row;                            // σ ∂f/∂Y
-    value += f;
-    d_x += across_x;
-    d_x_s += across_x * node.sin_theta;
+    if (nodes_.row[i] == 0.0) continue;
+    const double across_y = -terms.f[i] * nodes_.z_row[i];  // σ ∂f/∂Y
+    value += terms.f[i];
+    d_x += terms.across_x[i];
+    d_x_s += terms.across_x[i] * nodes_.sin_theta[i];
     d_y += across_y;
-    d_y_s += across_y * node.sin_theta;
-    d_y_z += across_y * node.z_row;
-    d_width += node.row * (right.density + left.density) * node.cos_theta;
-    d_ends += node.row * (right.density * z_right - left.density * z_left);
+    d_y_s += across_y * nodes_.sin_theta[i];
+    d_y_z += across_y * nodes_.z_row[i];
+    d_width += terms.width[i];
+    d_ends += terms.ends[i];
   }
   BlurredEllipseValue out;
   out.value = value;

@@ -20,6 +20,8 @@
 #include <cmath>
 #include <optional>
 
+#include "trackers/circle/avx2_lanes.h"
+
 namespace markerbench {
 
 template <class T>
@@ -77,21 +79,44 @@ class BlurredEllipse {
   // equations (Φ alone at each chord end, not φ too, and none of the gradient's sums).
   double ValueAt(const Eigen::Vector2d& pixel);
 
+  // How At and ValueAt read the tables at the nodes' chord ends: one node at a time, or four
+  // nodes in the lanes of AVX2 vectors, with the same operations lane by lane and the sums over
+  // the nodes in their order, so the same bits (tested). They take the lanes where the CPU has
+  // AVX2 (kCpuHasAvx2).
+  enum class NodeLanes { kOneByOne, kAvx2 };
+  BlurredEllipseValue At(const Eigen::Vector2d& pixel, NodeLanes lanes);
+  double ValueAt(const Eigen::Vector2d& pixel, NodeLanes lanes);
+
  private:
   // The row's factors for pixels at height y, unless they are already y's.
   void TakeRow(double y);
 
-  // A node θ with its weight w: the middle of its chord (k h sin θ) and half its length
-  // (W cos θ), and in the row last asked for, the chord's height in σ,
-  // z = (y0 + h sin θ - y)/σ, and its weight w (h cos θ / σ) φ(z).
-  struct Node {
-    double sin_theta, cos_theta, weight, chord_middle, chord_half, z_row, row;
+  // The nodes θ with their weights w: the middle of each one's chord (k h sin θ) and half its
+  // length (W cos θ), and in the row last asked for, the chord's height in σ,
+  // z = (y0 + h sin θ - y)/σ, and its weight w (h cos θ / σ) φ(z). A quantity a row, so that
+  // four nodes fill an AVX2 vector.
+  struct Nodes {
+    std::array<double, kMaxNodes> sin_theta, cos_theta, weight, chord_middle, chord_half, z_row,
+        row;
   };
+  // At a pixel, each node's terms of G and of its gradient's sums, f = w (h c / σ) φ(z_row)
+  // across, and the parts of its derivatives At sums; set where the node's row is not 0.
+  struct NodeTerms {
+    std::array<double, kMaxNodes> f, across_x, width, ends;
+  };
+  // The terms at a pixel, for At (with_gradient) or ValueAt (f alone), its row's factors taken;
+  // one by one or in lanes, at its X = x0 - x.
+  void TermsAt(const Eigen::Vector2d& pixel, NodeLanes lanes, bool with_gradient, NodeTerms* terms);
+  void TermsOneByOne(double X, bool with_gradient, NodeTerms* terms) const;
+#if defined(__x86_64__)
+  MARKERBENCH_AVX2 void TermsInLanes(double X, bool with_gradient, NodeTerms* terms) const;
+#endif
+
   EllipseChords<double> e_;
   double sigma_;
   double row_y_;
   int nodes_used_;
-  std::array<Node, kMaxNodes> nodes_;
+  Nodes nodes_;
 };
 
 }  // namespace markerbench

@@ -5,6 +5,10 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
+#include <cstring>
+#include <vector>
+
 #include "trackers/circle/blurred_disk_profile.h"
 #include "trackers/circle/conic.h"
 
@@ -191,6 +195,46 @@ TEST(BlurredEllipse, ValueAloneIsAtsValue) {
       }
     }
   }
+}
+
+// The nodes read four at a time in AVX2 lanes give the bits of reading them one by one, for
+// every rule, blurs from a fraction of a pixel to far beyond the ellipse (where rows' factors
+// vanish and chord ends leave the tables), at pixels inside, on, beyond and far from the edge,
+// and at NaN and infinite pixels.
+TEST(BlurredEllipse, NodesInLanesGiveTheSameBitsAsOneByOne) {
+  if (!kCpuHasAvx2) GTEST_SKIP() << "no AVX2 on this CPU";
+  const EllipseChords<double> e = *ChordsOfConic<double>(ConicFromEllipse(TiltedEllipse()));
+  std::vector<Eigen::Vector2d> pixels = {{std::nan(""), 25.0},
+                                         {40.0, std::nan("")},
+                                         {HUGE_VAL, 25.0},
+                                         {-HUGE_VAL, 30.0},
+                                         {40.0, HUGE_VAL},
+                                         {1e9, -1e9}};
+  for (double y = -40.0; y <= 90.0; y += 2.5) {
+    for (double x = -60.0; x <= 140.0; x += 3.7) pixels.emplace_back(x, y);
+  }
+  using Lanes = BlurredEllipse::NodeLanes;
+  int compared = 0;
+  for (const int nodes : {12, 16, 24, 32, 48, 64}) {
+    for (const double sigma : {0.3, 0.7, 3.0, 9.0, 40.0}) {
+      BlurredEllipse one_by_one(e, sigma, nodes), in_lanes(e, sigma, nodes);
+      for (const Eigen::Vector2d& x : pixels) {
+        const BlurredEllipseValue a = one_by_one.At(x, Lanes::kOneByOne);
+        const BlurredEllipseValue b = in_lanes.At(x, Lanes::kAvx2);
+        ASSERT_EQ(std::memcmp(&a.value, &b.value, sizeof(double)), 0)
+            << nodes << " nodes, σ " << sigma << " at " << x.transpose() << ": " << a.value
+            << " against " << b.value;
+        ASSERT_EQ(std::memcmp(a.gradient.data(), b.gradient.data(), sizeof(double) * 6), 0)
+            << nodes << " nodes, σ " << sigma << " at " << x.transpose();
+        const double value_a = one_by_one.ValueAt(x, Lanes::kOneByOne);
+        const double value_b = in_lanes.ValueAt(x, Lanes::kAvx2);
+        ASSERT_EQ(std::memcmp(&value_a, &value_b, sizeof(double)), 0)
+            << nodes << " nodes, σ " << sigma << " at " << x.transpose();
+        ++compared;
+      }
+    }
+  }
+  EXPECT_EQ(compared, 6 * 5 * static_cast<int>(pixels.size()));
 }
 
 // The distance from a curved edge near its point: on a circle through that point, with its

@@ -7,6 +7,8 @@
 #include <array>
 #include <cmath>
 
+#include "trackers/circle/avx2_lanes.h"
+
 namespace markerbench {
 
 // The cubic Hermite basis at z for nodes `per_unit` to the unit from -end: the node below z
@@ -98,6 +100,16 @@ class NormalCdfTable {
     if (!(z < kEnd)) return 1.0;
     return HermiteWeights(z, kEnd, kPerUnit, kNodes).Of(cdf_, density_);
   }
+
+#if defined(__x86_64__)
+  // At and Cdf of the four z in the lanes of an AVX2 vector (kCpuHasAvx2 only), each lane the
+  // same operations in the same order as theirs, so the same bits (tested).
+  struct Lanes {
+    __m256d cdf, density;
+  };
+  MARKERBENCH_AVX2 Lanes AtLanes(__m256d z) const;
+  MARKERBENCH_AVX2 __m256d CdfLanes(__m256d z) const;
+#endif
 
  private:
   std::array<double, kNodes> cdf_{}, density_{}, density_slope_{};
