@@ -127,20 +127,22 @@ void BlurredEllipse::TermsInLanes(double X, bool with_gradient, NodeTerms* terms
 }
 #endif
 
-double BlurredEllipse::ValueAt(const Eigen::Vector2d& pixel) {
-  return ValueAt(pixel, kCpuHasAvx2 ? NodeLanes::kAvx2 : NodeLanes::kOneByOne);
-}
-
 void BlurredEllipse::TermsAt(const Eigen::Vector2d& pixel,
                              NodeLanes lanes,
                              bool with_gradient,
                              NodeTerms* terms) {
   TakeRow(pixel.y());
   const double X = e_.x0 - pixel.x();
+  if (lanes == NodeLanes::kAvx2 && kCpuHasAvx2) {
 #if defined(__x86_64__)
-  if (lanes == NodeLanes::kAvx2 && kCpuHasAvx2) return TermsInLanes(X, with_gradient, terms);
+    return TermsInLanes(X, with_gradient, terms);
 #endif
+  }
   TermsOneByOne(X, with_gradient, terms);
+}
+
+double BlurredEllipse::ValueAt(const Eigen::Vector2d& pixel) {
+  return ValueAt(pixel, kCpuHasAvx2 ? NodeLanes::kAvx2 : NodeLanes::kOneByOne);
 }
 
 double BlurredEllipse::ValueAt(const Eigen::Vector2d& pixel, NodeLanes lanes) {
