@@ -24,6 +24,21 @@ constexpr std::array<double, 5> kWeights = {0.2955242247147529,
                                             0.1494513491505806,
                                             0.0666713443086881};
 
+// Φ2(h, k; ρ) - Φ(h) Φ(k) = 1/(2π) ∫_0^asin ρ exp(-(h² - 2hk sin θ + k²) / (2 cos² θ)) dθ, by
+// Gauss-Legendre on both halves.
+double CornerIntegral(double h, double k, double rho) {
+  const double end = std::asin(std::clamp(rho, -1.0, 1.0));
+  double integral = 0.0;
+  for (size_t i = 0; i < kNodes.size(); ++i) {
+    for (double sign : {-1.0, 1.0}) {
+      const double theta = 0.5 * end * (1.0 + sign * kNodes[i]);
+      const double s = std::sin(theta), c2 = 1.0 - s * s;
+      integral += kWeights[i] * std::exp(-(h * h - 2.0 * h * k * s + k * k) / (2.0 * c2));
+    }
+  }
+  return 0.5 * end * integral / (2.0 * M_PI);
+}
+
 // Edges nearer than this (in σc, below) to a point make a corner with its nearest edge.
 constexpr double kCornerSigmas = 5.0;
 constexpr double kSharpSigmas = 9.0;
@@ -133,9 +148,11 @@ Cover BlurredCover(const BoundaryDistances& b,
     const double root = std::sqrt(1.0 - rho * rho);
     const double h = -e1.a * to_corner, k = -e2.a * to_corner;
     // d Φ2(h, k) / dh = φ(h) Φ((k - ρ h) / √(1 - ρ²)); less the product's φ(h) Φ(k).
-    const double d_h = NormalDensity(h) * (NormalCdf((k - rho * h) / root) - NormalCdf(k));
-    const double d_k = NormalDensity(k) * (NormalCdf((h - rho * k) / root) - NormalCdf(h));
-    const double excess = BivariateNormalCdf(h, k, rho) - NormalCdf(h) * NormalCdf(k);
+    const double cdf_h = NormalCdf(h), cdf_k = NormalCdf(k);
+    const double d_h = NormalDensity(h) * (NormalCdf((k - rho * h) / root) - cdf_k);
+    const double d_k = NormalDensity(k) * (NormalCdf((h - rho * k) / root) - cdf_h);
+    const double product = cdf_h * cdf_k;
+    const double excess = (product + CornerIntegral(h, k, rho)) - product;
     // d(σ/σc)/dσ = (1/12)/σc³.
     const double d_to_corner = kPixelAreaVariance / (corner_sigma * corner_sigma * corner_sigma);
     multiply(
@@ -157,18 +174,7 @@ double NormalCdf(double x) { return 0.5 * std::erfc(-x / std::sqrt(2.0)); }
 double NormalDensity(double x) { return std::exp(-0.5 * x * x) / std::sqrt(2.0 * M_PI); }
 
 double BivariateNormalCdf(double h, double k, double rho) {
-  rho = std::clamp(rho, -1.0, 1.0);
-  // Φ2 = Φ(h) Φ(k) + 1/(2π) ∫_0^asin ρ exp(-(h² - 2hk sin θ + k²) / (2 cos² θ)) dθ.
-  const double end = std::asin(rho);
-  double integral = 0.0;
-  for (size_t i = 0; i < kNodes.size(); ++i) {
-    for (double sign : {-1.0, 1.0}) {
-      const double theta = 0.5 * end * (1.0 + sign * kNodes[i]);
-      const double s = std::sin(theta), c2 = 1.0 - s * s;
-      integral += kWeights[i] * std::exp(-(h * h - 2.0 * h * k * s + k * k) / (2.0 * c2));
-    }
-  }
-  return NormalCdf(h) * NormalCdf(k) + 0.5 * end * integral / (2.0 * M_PI);
+  return NormalCdf(h) * NormalCdf(k) + CornerIntegral(h, k, rho);
 }
 
 BlurredDesign::BlurredDesign(const MarkerSpec& marker)
