@@ -184,8 +184,6 @@ PixelProfileValue BlurredDiskProfile::FromCorners(const Integral (&corner)[4], d
   return out;
 }
 
-bool BlurredDiskProfile::HasAvx2() { return kCpuHasAvx2; }
-
 #if defined(__x86_64__)
 namespace {
 
@@ -289,7 +287,7 @@ PixelProfileValue BlurredDiskProfile::OverPixelAvx2(double z, double a, double b
 #endif
 
 PixelProfileValue BlurredDiskProfile::OverPixel(double z, double a, double b) const {
-  return OverPixel(z, a, b, HasAvx2() ? Corners::kAvx2 : Corners::kOneByOne);
+  return OverPixel(z, a, b, kCpuHasAvx2 ? Corners::kAvx2 : Corners::kOneByOne);
 }
 
 PixelProfileValue BlurredDiskProfile::OverPixel(double z,
@@ -298,7 +296,7 @@ PixelProfileValue BlurredDiskProfile::OverPixel(double z,
                                                 Corners corners) const {
   a = std::max(a, 1e-3);
   b = std::max(b, 1e-3);
-  if (corners == Corners::kAvx2 && HasAvx2()) return OverPixelAvx2(z, a, b);
+  if (corners == Corners::kAvx2 && kCpuHasAvx2) return OverPixelAvx2(z, a, b);
   // The four corners of the second difference: z ± A ± B, signs + - - +.
   const Integral corner[4] = {SecondIntegralAt(z + a + b),
                               SecondIntegralAt(z + a - b),

@@ -57,7 +57,6 @@ class BlurredDiskProfile {
   // the same bits (tested). OverPixel takes the vector where the CPU has AVX2: about 40 % less
   // time a call, the fit on the pixels 7 % less, full detection 4 % (results/speed.md).
   enum class Corners { kOneByOne, kAvx2 };
-  static bool HasAvx2();
   PixelProfileValue OverPixel(double z, double a, double b, Corners corners) const;
 
  private:
@@ -67,7 +66,7 @@ class BlurredDiskProfile {
     double value = 0.0, d_dx = 0.0, d_ds = 0.0;
   };
   Integral SecondIntegralAt(double x) const;
-  // OverPixel with its corners in AVX2 lanes (HasAvx2() only; A and B at their floor).
+  // OverPixel with its corners in AVX2 lanes (kCpuHasAvx2 only; A and B at their floor).
   PixelProfileValue OverPixelAvx2(double z, double a, double b) const;
   static PixelProfileValue FromCorners(const Integral (&corner)[4], double a, double b);
 

@@ -12,6 +12,7 @@
 #include <tuple>
 #include <vector>
 
+#include "trackers/circle/avx2_lanes.h"
 #include "trackers/pixel_area_blur.h"
 
 namespace markerbench {
@@ -143,7 +144,7 @@ TEST(BlurredDiskProfile, ANanPointGivesNan) {
 // the table's rows (one row beyond s = 80, two below, s on a row and clamped below 0.5), inside
 // and past both ends of z, at NaN and infinite points, and at half-widths from the floor up.
 TEST(BlurredDiskProfile, CornersInAVectorGiveTheSameBitsAsOneByOne) {
-  if (!BlurredDiskProfile::HasAvx2()) GTEST_SKIP() << "no AVX2 on this CPU";
+  if (!kCpuHasAvx2) GTEST_SKIP() << "no AVX2 on this CPU";
   const double nan = std::nan(""), infinity = HUGE_VAL;
   const std::vector<double> radii = {0.1, 0.5, 0.8, 1.0, 2.0, 3.7, 12.0, 80.0, 81.0, 1e3, 1e6, nan};
   std::vector<double> points = {
