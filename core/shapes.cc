@@ -148,11 +148,12 @@ bool IsNearOutline(const Shape& shape, const Eigen::Vector2d& p, double reach_m)
     return GridPaint(*grid, Rgb::Zero(), p).clearance_m <= reach_m;
   }
   // The outline lies on the edges' circles and lines: a point beyond reach of all of them is
-  // beyond reach of the outline, which settles most points without finding the feet.
-  const BoundaryDistances b = DistancesTo(shape, p);
+  // beyond reach of the outline, which settles most points on the distances alone, without
+  // their gradients or the feet.
+  const BoundaryDistances b = DistancesOf<false>(shape, p);
   bool near_an_edge = false;
   for (size_t i = 0; i < b.count; ++i) near_an_edge |= std::abs(b.terms[i].metres) <= reach_m;
-  return near_an_edge && OutlineDistance(shape, p, b) <= reach_m;
+  return near_an_edge && OutlineDistance(shape, p, DistancesTo(shape, p)) <= reach_m;
 }
 
 PaintSample PaintAt(const PaintedShape& painted, const Eigen::Vector2d& p) {
@@ -196,6 +197,22 @@ Eigen::AlignedBox2d ShapeBounds(const Shape& shape) {
     }
   };
   return std::visit(Visitor{}, shape);
+}
+
+Eigen::AlignedBox2d OutlineBox(const Shape& shape) {
+  // ShapeBounds samples a sector's arc, which bulges past the samples between them.
+  if (const auto* sector = std::get_if<SectorShape>(&shape)) {
+    return DiskBounds({sector->center(), sector->radius()});
+  }
+  return ShapeBounds(shape);
+}
+
+bool IsBeyondOutlineBox(const Eigen::AlignedBox2d& outline_box,
+                        const Eigen::Vector2d& p,
+                        double reach_m) {
+  // By a millionth of the reach and a picometre more, far beyond the distances' rounding.
+  const double margin = reach_m * (1.0 + 1e-6) + 1e-12;
+  return outline_box.squaredExteriorDistance(p) > margin * margin;
 }
 
 std::vector<Eigen::Vector2d> BoxOutline(const Eigen::AlignedBox2d& box, int steps_per_side) {

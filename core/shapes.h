@@ -120,6 +120,13 @@ bool IsNearOutline(const Shape& shape, const Eigen::Vector2d& p, double reach_m)
 
 // Axis-aligned bounds of a shape in the marker plane.
 Eigen::AlignedBox2d ShapeBounds(const Shape& shape);
+// A box that holds a shape's outline: its bounds, but a sector's whole circle's. A point
+// beyond reach of it (IsBeyondOutlineBox) is beyond reach of the outline, which sets most
+// points aside before IsNearOutline where many are tested against a small shape.
+Eigen::AlignedBox2d OutlineBox(const Shape& shape);
+bool IsBeyondOutlineBox(const Eigen::AlignedBox2d& outline_box,
+                        const Eigen::Vector2d& p,
+                        double reach_m);
 
 // Points along the outline of `box`, counter-clockwise from its bottom-left corner,
 // steps_per_side per side (each corner once). steps_per_side = 1 gives the four corners.

@@ -195,6 +195,45 @@ TEST(Shapes, DistanceToOutlineIsTheDistanceToTheDrawnEdges) {
   }
 }
 
+// OutlineBox holds every point of the outline, a sector's arc between ShapeBounds' samples too;
+// so a point IsBeyondOutlineBox sets aside is never near the outline, even at the box's edge.
+TEST(Shapes, APointBeyondTheOutlineBoxIsNotNearTheOutline) {
+  GridShape grid;
+  grid.cell_m = 0.01;
+  grid.rows = grid.cols = 2;
+  grid.ink = {1, 0, 0, 1};
+  // The sector's arc from 0.05 to 0.05 + 3π/4 crosses π/2 between ShapeBounds' 64 samples,
+  // where the arc rises above them.
+  const std::vector<Shape> shapes = {DiskShape{{0.01, -0.01}, 0.03},
+                                     CrescentFromTips({0.03, 0.0}, {0.0, -0.03}, 0.012, 0.005),
+                                     SectorShape{{0.0, 0.01}, 0.04, 0.05, 0.05 + 0.75 * M_PI},
+                                     grid};
+  const SectorShape& sector = std::get<SectorShape>(shapes[2]);
+  const Eigen::Vector2d top = sector.center() + Eigen::Vector2d(0.0, sector.radius());
+  EXPECT_GT(top.y(), ShapeBounds(sector).max().y());
+  EXPECT_TRUE(OutlineBox(sector).contains(top));
+  EXPECT_FALSE(IsBeyondOutlineBox(OutlineBox(sector), top, 0.0));
+  Rng rng(21);
+  for (size_t k = 0; k < shapes.size(); ++k) {
+    const Eigen::AlignedBox2d box = OutlineBox(shapes[k]);
+    int beyond = 0;
+    for (int n = 0; n < 4000; ++n) {
+      const double y = rng.Uniform(-0.08, 0.08);  // before x: g++'s order as arguments
+      const Eigen::Vector2d p(rng.Uniform(-0.08, 0.08), y);
+      const double reach = rng.Uniform(0.0, 0.02);
+      if (!IsBeyondOutlineBox(box, p, reach)) continue;
+      ++beyond;
+      ASSERT_FALSE(IsNearOutline(shapes[k], p, reach)) << k << " at " << p.transpose();
+      ASSERT_GT(DistanceToOutline(shapes[k], p), reach) << k << " at " << p.transpose();
+    }
+    EXPECT_GT(beyond, 1000) << k;
+    // On the box's edge, at reach 0, a point is not beyond it.
+    EXPECT_FALSE(IsBeyondOutlineBox(box, box.min(), 0.0)) << k;
+    EXPECT_TRUE(IsBeyondOutlineBox(box, box.max() + Eigen::Vector2d(0.011, 0.0), 0.01)) << k;
+    EXPECT_FALSE(IsBeyondOutlineBox(box, box.max() + Eigen::Vector2d(0.01, 0.0), 0.01)) << k;
+  }
+}
+
 // A point that is not a number (from a degenerate pose) is painted by no shape, and never read
 // from outside a grid's cells.
 TEST(Shapes, ANanPointIsPaintedByNoShape) {

@@ -73,6 +73,8 @@ std::vector<DesignPixel> PixelsNearDesignEdges(const Image8& image,
   const int v0 = clamped(std::floor(y0 - pad), image.height);
   const int v1 = clamped(std::ceil(y1 + pad), image.height);
   const PlaneView view(camera, cam_from_marker);
+  std::vector<Eigen::AlignedBox2d> outline_boxes;
+  for (const PaintedShape& layer : marker.layers) outline_boxes.push_back(OutlineBox(layer.shape));
   std::vector<DesignPixel> pixels;
   for (int v = v0; v <= v1; ++v) {
     for (int u = u0; u <= u1; ++u) {
@@ -80,11 +82,12 @@ std::vector<DesignPixel> PixelsNearDesignEdges(const Image8& image,
       const PlaneLook look = view.LookAlong(ray);
       if (!(look.homogeneous > 0.0)) continue;
       const double reach_m = reach_px * LargestStretch(look.plane_from_px);
-      if (std::any_of(marker.layers.begin(), marker.layers.end(), [&](const PaintedShape& layer) {
-            return IsNearOutline(layer.shape, look.point, reach_m);
-          })) {
-        pixels.push_back({u, v, ray, LumaAt(image, u, v) / 255.0});
+      bool near = false;
+      for (size_t k = 0; k < marker.layers.size() && !near; ++k) {
+        near = !IsBeyondOutlineBox(outline_boxes[k], look.point, reach_m) &&
+               IsNearOutline(marker.layers[k].shape, look.point, reach_m);
       }
+      if (near) pixels.push_back({u, v, ray, LumaAt(image, u, v) / 255.0});
     }
   }
   return pixels;
