@@ -58,7 +58,7 @@ inline FitFromTruthAndMirror PixelFitFromTruthAndMirror(const Camera& camera,
                                                         double noise_sigma) {
   return [&camera, &marker, edge_sigma_px, noise_sigma](
              const Image8& image, const Rigid3& truth) -> std::optional<Rigid3> {
-    const std::vector<RankedFit<PhotometricResult>> fits = RefinePhotometricFromStarts(
+    const std::vector<RankedFit<PixelRefinement>> fits = RefinePhotometricFromStarts(
         image, camera, marker, {truth, OtherTilt(truth)}, edge_sigma_px, noise_sigma);
     if (fits.empty()) return std::nullopt;
     return fits[0].result.fit.cam_from_marker;
@@ -77,7 +77,7 @@ inline FitFromTruthAndMirror DesignFitFromTruthAndMirror(const Camera& camera,
   to_the_end.max_first_round_log_ratio = std::numeric_limits<double>::infinity();
   return [&camera, &marker, edge_sigma_px, noise_sigma, to_the_end](
              const Image8& image, const Rigid3& truth) -> std::optional<Rigid3> {
-    const std::vector<RankedFit<DesignRefinement>> fits = RefineDesignFromStarts(
+    const std::vector<RankedFit<PixelRefinement>> fits = RefineDesignFromStarts(
         image, camera, marker, {truth, OtherTilt(truth)}, edge_sigma_px, noise_sigma, to_the_end);
     if (fits.empty()) return std::nullopt;
     return fits[0].result.fit.cam_from_marker;

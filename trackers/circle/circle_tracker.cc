@@ -324,19 +324,20 @@ CircleTrackerOptions CircleTrackerOptions::FromYaml(const YamlMap& map) {
       "design_max_other_tilt_log_ratio", o.design_refinement.max_first_round_log_ratio);
   EdgeShiftOptions& e = o.edge_shift;
   e.enabled = map.GetOr<bool>("edge_shift_alignment", e.enabled);
-  e.first_rays_per_circle = map.GetOr<int>("edge_shift_first_rays", e.first_rays_per_circle);
-  e.rays_per_circle = map.GetOr<int>("edge_shift_rays", e.rays_per_circle);
-  e.max_shift_px = map.GetOr<double>("edge_shift_max_px", e.max_shift_px);
-  e.second_max_shift_px = map.GetOr<double>("edge_shift_second_max_px", e.second_max_shift_px);
+  e.first.rays_per_circle = map.GetOr<int>("edge_shift_first_rays", e.first.rays_per_circle);
+  e.second.rays_per_circle = map.GetOr<int>("edge_shift_rays", e.second.rays_per_circle);
+  e.first.max_shift_px = map.GetOr<double>("edge_shift_max_px", e.first.max_shift_px);
+  e.second.max_shift_px = map.GetOr<double>("edge_shift_second_max_px", e.second.max_shift_px);
   e.sample_step_px = map.GetOr<double>("edge_shift_step_px", e.sample_step_px);
-  e.first_samples_across =
-      map.GetOr<int>("edge_shift_first_samples_across", e.first_samples_across);
-  e.samples_across = map.GetOr<int>("edge_shift_samples_across", e.samples_across);
+  e.first.samples_across =
+      map.GetOr<int>("edge_shift_first_samples_across", e.first.samples_across);
+  e.second.samples_across = map.GetOr<int>("edge_shift_samples_across", e.second.samples_across);
   e.min_step_per_contrast =
       map.GetOr<double>("edge_shift_min_step_per_contrast", e.min_step_per_contrast);
-  e.first_min_found_fraction =
-      map.GetOr<double>("edge_shift_first_min_found_fraction", e.first_min_found_fraction);
-  e.min_found_fraction = map.GetOr<double>("edge_shift_min_found_fraction", e.min_found_fraction);
+  e.first.min_found_fraction =
+      map.GetOr<double>("edge_shift_first_min_found_fraction", e.first.min_found_fraction);
+  e.second.min_found_fraction =
+      map.GetOr<double>("edge_shift_min_found_fraction", e.second.min_found_fraction);
   e.max_rms_px = map.GetOr<double>("edge_shift_max_rms_px", e.max_rms_px);
   FinishOptions(map, o);
   return o;
@@ -392,16 +393,16 @@ std::vector<std::pair<std::string, std::string>> CircleTracker::Parameters() con
       {"design_max_other_tilt_log_ratio",
        NumberText(o.design_refinement.max_first_round_log_ratio)},
       {"edge_shift_alignment", BoolText(o.edge_shift.enabled)},
-      {"edge_shift_first_rays", std::to_string(o.edge_shift.first_rays_per_circle)},
-      {"edge_shift_rays", std::to_string(o.edge_shift.rays_per_circle)},
-      {"edge_shift_max_px", NumberText(o.edge_shift.max_shift_px)},
-      {"edge_shift_second_max_px", NumberText(o.edge_shift.second_max_shift_px)},
+      {"edge_shift_first_rays", std::to_string(o.edge_shift.first.rays_per_circle)},
+      {"edge_shift_rays", std::to_string(o.edge_shift.second.rays_per_circle)},
+      {"edge_shift_max_px", NumberText(o.edge_shift.first.max_shift_px)},
+      {"edge_shift_second_max_px", NumberText(o.edge_shift.second.max_shift_px)},
       {"edge_shift_step_px", NumberText(o.edge_shift.sample_step_px)},
-      {"edge_shift_first_samples_across", std::to_string(o.edge_shift.first_samples_across)},
-      {"edge_shift_samples_across", std::to_string(o.edge_shift.samples_across)},
+      {"edge_shift_first_samples_across", std::to_string(o.edge_shift.first.samples_across)},
+      {"edge_shift_samples_across", std::to_string(o.edge_shift.second.samples_across)},
       {"edge_shift_min_step_per_contrast", NumberText(o.edge_shift.min_step_per_contrast)},
-      {"edge_shift_first_min_found_fraction", NumberText(o.edge_shift.first_min_found_fraction)},
-      {"edge_shift_min_found_fraction", NumberText(o.edge_shift.min_found_fraction)},
+      {"edge_shift_first_min_found_fraction", NumberText(o.edge_shift.first.min_found_fraction)},
+      {"edge_shift_min_found_fraction", NumberText(o.edge_shift.second.min_found_fraction)},
       {"edge_shift_max_rms_px", NumberText(o.edge_shift.max_rms_px)},
   };
 }
@@ -726,8 +727,7 @@ TrackResult CircleTracker::TrackIn(const Observation& observation,
   if (result.status == TrackStatus::kOk) tilt_log_ratio_ = tilt_evidence;
   if (result.status == TrackStatus::kOk && diagnostics_.photometric_used &&
       !geometry.roll_from_design) {
-    previous_on_pixels_ = on_pixels;
-    previous_on_pixels_->appearance_grid = diagnostics_.appearance_grid;
+    KeepPixelFit(on_pixels);
   }
   return result;
 }
@@ -793,7 +793,7 @@ TrackResult CircleTracker::TrackOnPixels(const Observation& observation,
   }
   const Camera& camera = *observation.camera;
   const Rigid3 paper_from_marker = geometry.marker_from_paper.Inverse();
-  const std::optional<PhotometricResult> fit =
+  const std::optional<PixelRefinement> fit =
       RefinePhotometric(*observation.image,
                         camera,
                         *observation.marker,
@@ -856,11 +856,13 @@ TrackResult CircleTracker::TrackOnPixels(const Observation& observation,
   // the coarse one undecided, it would again (the orbit's tracked frames at σ² 0.1: each of
   // them, which took 0.89 of their time before; at σ² 0.02 the coarse one decides).
   result = Accept(observation, cam_from_paper, cam_from_marker, std::nullopt, last.appearance_grid);
-  if (result.status == TrackStatus::kOk) {
-    previous_on_pixels_ = found;
-    previous_on_pixels_->appearance_grid = diagnostics_.appearance_grid;
-  }
+  if (result.status == TrackStatus::kOk) KeepPixelFit(found);
   return result;
+}
+
+void CircleTracker::KeepPixelFit(PixelFitFound found) {
+  found.appearance_grid = diagnostics_.appearance_grid;
+  previous_on_pixels_ = std::move(found);
 }
 
 TrackResult CircleTracker::Accept(const Observation& observation,
@@ -944,10 +946,10 @@ bool CircleTracker::EdgesLeaveTheOtherTilt(const Rigid3& cam_from_paper,
   return TiltsApart(other_fitted, cam_from_paper) && log_ratio < options_.max_other_tilt_log_ratio;
 }
 
-template <class Result>
-CircleTracker::FitOnPixels CircleTracker::ChooseTilt(const Rigid3& marker_from_paper,
-                                                     const PredictedPose* predicted,
-                                                     std::vector<RankedFit<Result>>* fits) const {
+CircleTracker::FitOnPixels CircleTracker::ChooseTilt(
+    const Rigid3& marker_from_paper,
+    const PredictedPose* predicted,
+    std::vector<RankedFit<PixelRefinement>>* fits) const {
   const auto pose = [&](size_t i) -> const Rigid3& {
     return (*fits)[i].result.fit.cam_from_marker;
   };
@@ -999,7 +1001,7 @@ std::optional<CircleTracker::FitOnPixels> CircleTracker::OnPixels(
   for (const Rigid3& start : cam_from_paper_starts) starts.push_back(start * paper_from_marker);
   if (whole_design) {
     const DesignRefinementOptions& options = options_.design_refinement;
-    std::vector<RankedFit<DesignRefinement>> fits = RefineDesignFromStarts(
+    std::vector<RankedFit<PixelRefinement>> fits = RefineDesignFromStarts(
         image, camera, marker, starts, sigma_px, diagnostics_.noise_sigma, options);
     if (fits.empty()) return std::nullopt;
     return ChooseTilt(marker_from_paper, predicted, &fits);
@@ -1008,7 +1010,7 @@ std::optional<CircleTracker::FitOnPixels> CircleTracker::OnPixels(
   const double noise_sigma = last ? last->noise_sigma : diagnostics_.noise_sigma;
   std::optional<Eigen::VectorXd> levels;
   if (last) levels = last->levels;
-  std::vector<RankedFit<PhotometricResult>> fits =
+  std::vector<RankedFit<PixelRefinement>> fits =
       RefinePhotometricFromStarts(image,
                                   camera,
                                   marker,
@@ -1019,7 +1021,7 @@ std::optional<CircleTracker::FitOnPixels> CircleTracker::OnPixels(
                                   levels);
   if (fits.empty()) return std::nullopt;
   const FitOnPixels chosen = ChooseTilt(marker_from_paper, predicted, &fits);
-  const PhotometricResult& fit = fits[0].result;
+  const PixelRefinement& fit = fits[0].result;
   *found = {EdgeSigmaOfBlur(fit.fit.sigma_px), fit.noise_sigma, fit.fit.levels};
   return chosen;
 }

@@ -188,6 +188,9 @@ class CircleTracker final : public Tracker {
                                               const CircleGeometry& geometry,
                                               const PredictedPose& predicted,
                                               const PixelFitFound& last) const;
+  // The next frame's fit on the pixels starts from `found`, and its design check at the lattice
+  // this frame's decided on.
+  void KeepPixelFit(PixelFitFound found);
   // The check of the printed design at a pose (CheckPrintedAppearance), and the result: found,
   // with `second_hypothesis` after the pose where given, and the pose kept for the next frame's
   // prediction, or not detected. The check starts at `first_grid` where that is finer than the
@@ -249,10 +252,9 @@ class CircleTracker final : public Tracker {
   // it is added, and the fit the sum favours goes first; where no fit lies on the tilt the evidence
   // favours, the one fit left keeps that evidence against it (a fit from the tracked tilt slid
   // to the other by a likelihood unknown), negative.
-  template <class Result>
   FitOnPixels ChooseTilt(const Rigid3& marker_from_paper,
                          const PredictedPose* predicted,
-                         std::vector<RankedFit<Result>>* fits) const;
+                         std::vector<RankedFit<PixelRefinement>>* fits) const;
   std::optional<FitOnPixels> OnPixels(const Observation& observation,
                                       bool whole_design,
                                       const std::vector<Rigid3>& cam_from_paper_starts,

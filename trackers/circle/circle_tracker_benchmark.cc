@@ -207,12 +207,12 @@ void BM_CirclePixelFit(benchmark::State& state) {
   size_t i = 0, fitted = 0, iterations = 0, pixels = 0;
   for (auto _ : state) {
     const Found& start = starts[i++ % starts.size()];
-    const std::optional<PhotometricResult> fit = RefinePhotometric(*start.frame,
-                                                                   camera,
-                                                                   marker,
-                                                                   start.cam_from_marker,
-                                                                   start.blur_sigma_px,
-                                                                   start.noise_sigma);
+    const std::optional<PixelRefinement> fit = RefinePhotometric(*start.frame,
+                                                                 camera,
+                                                                 marker,
+                                                                 start.cam_from_marker,
+                                                                 start.blur_sigma_px,
+                                                                 start.noise_sigma);
     if (!fit) continue;
     ++fitted;
     iterations += fit->fit.iterations;

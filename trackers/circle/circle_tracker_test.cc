@@ -1091,16 +1091,16 @@ TEST(CircleTracker, OptionsFromYamlNameTheBadKey) {
   EXPECT_EQ(good.appearance.blocks_per_side, 0);
   EXPECT_EQ(good.appearance.min_significance, 5.0);
   EXPECT_FALSE(good.edge_shift.enabled);
-  EXPECT_EQ(good.edge_shift.first_rays_per_circle, 8);
-  EXPECT_EQ(good.edge_shift.rays_per_circle, 24);
-  EXPECT_EQ(good.edge_shift.max_shift_px, 12.0);
-  EXPECT_EQ(good.edge_shift.second_max_shift_px, 3.0);
+  EXPECT_EQ(good.edge_shift.first.rays_per_circle, 8);
+  EXPECT_EQ(good.edge_shift.second.rays_per_circle, 24);
+  EXPECT_EQ(good.edge_shift.first.max_shift_px, 12.0);
+  EXPECT_EQ(good.edge_shift.second.max_shift_px, 3.0);
   EXPECT_EQ(good.edge_shift.sample_step_px, 0.5);
-  EXPECT_EQ(good.edge_shift.first_samples_across, 2);
-  EXPECT_EQ(good.edge_shift.samples_across, 3);
+  EXPECT_EQ(good.edge_shift.first.samples_across, 2);
+  EXPECT_EQ(good.edge_shift.second.samples_across, 3);
   EXPECT_EQ(good.edge_shift.min_step_per_contrast, 0.4);
-  EXPECT_EQ(good.edge_shift.first_min_found_fraction, 0.3);
-  EXPECT_EQ(good.edge_shift.min_found_fraction, 0.7);
+  EXPECT_EQ(good.edge_shift.first.min_found_fraction, 0.3);
+  EXPECT_EQ(good.edge_shift.second.min_found_fraction, 0.7);
   EXPECT_EQ(good.edge_shift.max_rms_px, 2.0);
   for (const char* key :
        {"bad_value",        "bad_cost",        "unknown",           "bad_branch",

@@ -135,12 +135,9 @@ class DesignModel {
   double noise_sigma() const { return noise_sigma_; }
   void set_noise_sigma(double noise_sigma) { noise_sigma_ = noise_sigma; }
 
-  double Evaluate(const Eigen::VectorXd& theta, Eigen::MatrixXd* jtj, Eigen::VectorXd* jtr) const {
-    return Evaluate(theta, jtj, jtr, nullptr);
-  }
-
-  // The same, and each pixel's residual and modelled mean if `modelled` is given. θ may hold
-  // fewer fitted levels than Parameters() (a fit's without them, compared with others).
+  // The cost at θ (each pixel's ClippedPixelTerm); with jtj and jtr, also JᵀJ and Jᵀr; and each
+  // pixel's residual and modelled mean if `modelled` is given. θ may hold fewer fitted levels
+  // than Parameters() (a fit's without them, compared with others).
   double Evaluate(const Eigen::VectorXd& theta,
                   Eigen::MatrixXd* jtj,
                   Eigen::VectorXd* jtr,
@@ -230,10 +227,10 @@ struct DesignCosts {
 DesignCosts CostsOnSharedPixels(const Image8& image,
                                 const Camera& camera,
                                 const MarkerSpec& marker,
-                                const std::vector<DesignRefinement>& fits,
+                                const std::vector<PixelRefinement>& fits,
                                 const DesignRefinementOptions& options) {
   std::vector<DesignPixel> pixels;
-  for (const DesignRefinement& refinement : fits) {
+  for (const PixelRefinement& refinement : fits) {
     const std::vector<DesignPixel> near =
         PixelsNearDesignEdges(image,
                               camera,
@@ -252,27 +249,30 @@ DesignCosts CostsOnSharedPixels(const Image8& image,
   DesignCosts costs;
   costs.noise_sigma = std::min_element(fits.begin(),
                                        fits.end(),
-                                       [](const DesignRefinement& a, const DesignRefinement& b) {
+                                       [](const PixelRefinement& a, const PixelRefinement& b) {
                                          return a.noise_sigma < b.noise_sigma;
                                        })
                           ->noise_sigma;
   const DesignModel model(camera, marker, pixels, costs.noise_sigma, true);
-  for (const DesignRefinement& refinement : fits) {
+  for (const PixelRefinement& refinement : fits) {
     const PixelFit& fit = refinement.fit;
-    costs.costs.push_back(model.Evaluate(
-        PixelFitParameters(fit.cam_from_marker, fit.sigma_px, fit.levels), nullptr, nullptr));
+    costs.costs.push_back(
+        model.Evaluate(PixelFitParameters(fit.cam_from_marker, fit.sigma_px, fit.levels),
+                       nullptr,
+                       nullptr,
+                       nullptr));
   }
   return costs;
 }
 
-std::optional<DesignRefinement> RefineOnce(const Image8& image,
-                                           const Camera& camera,
-                                           const MarkerSpec& marker,
-                                           const Rigid3& cam_from_marker,
-                                           double sigma_px,
-                                           double noise_sigma,
-                                           const FitRound& round,
-                                           const DesignRefinementOptions& options) {
+std::optional<PixelRefinement> RefineOnce(const Image8& image,
+                                          const Camera& camera,
+                                          const MarkerSpec& marker,
+                                          const Rigid3& cam_from_marker,
+                                          double sigma_px,
+                                          double noise_sigma,
+                                          const FitRound& round,
+                                          const DesignRefinementOptions& options) {
   const std::vector<DesignPixel> pixels =
       PixelsNearDesignEdges(image, camera, marker, cam_from_marker, ReachPx(sigma_px, options));
   if (pixels.size() < 20) return std::nullopt;
@@ -288,12 +288,12 @@ std::optional<DesignRefinement> RefineOnce(const Image8& image,
   const std::optional<PixelFit> fit = FitPixelsAtTheirNoise(
       model, cam_from_marker, std::max(sigma_px, 0.3), options.max_iterations, measured_at_start);
   if (!fit) return std::nullopt;
-  return DesignRefinement{*fit, static_cast<int>(pixels.size()), model.noise_sigma()};
+  return PixelRefinement{*fit, static_cast<int>(pixels.size()), model.noise_sigma()};
 }
 
 }  // namespace
 
-std::optional<DesignRefinement> RefineDesign(
+std::optional<PixelRefinement> RefineDesign(
     const Image8& image,
     const Camera& camera,
     const MarkerSpec& marker,
@@ -301,10 +301,10 @@ std::optional<DesignRefinement> RefineDesign(
     double sigma_px,
     double noise_sigma,
     const DesignRefinementOptions& options,
-    const std::function<bool(const DesignRefinement&)>& abandons) {
+    const std::function<bool(const PixelRefinement&)>& abandons) {
   // A solve's pixels are those near the edges at its start; from a start a few pixels off,
   // some of the result's are missing.
-  return FitInRoundsAtTheirNoise<DesignRefinement>(
+  return FitInRoundsAtTheirNoise<PixelRefinement>(
       cam_from_marker,
       BlurSigmaOfEdges(sigma_px),
       noise_sigma,
@@ -320,7 +320,7 @@ std::optional<DesignRefinement> RefineDesign(
 std::vector<double> DesignLogRatios(const Image8& image,
                                     const Camera& camera,
                                     const MarkerSpec& marker,
-                                    const std::vector<DesignRefinement>& fits,
+                                    const std::vector<PixelRefinement>& fits,
                                     const DesignRefinementOptions& options) {
   const DesignCosts shared = CostsOnSharedPixels(image, camera, marker, fits, options);
   const double least = *std::min_element(shared.costs.begin(), shared.costs.end());
@@ -331,7 +331,7 @@ std::vector<double> DesignLogRatios(const Image8& image,
   return ratios;
 }
 
-std::vector<RankedFit<DesignRefinement>> RefineDesignFromStarts(
+std::vector<RankedFit<PixelRefinement>> RefineDesignFromStarts(
     const Image8& image,
     const Camera& camera,
     const MarkerSpec& marker,
@@ -339,15 +339,15 @@ std::vector<RankedFit<DesignRefinement>> RefineDesignFromStarts(
     double sigma_px,
     double noise_sigma,
     const DesignRefinementOptions& options) {
-  const auto log_ratios = [&](const std::vector<DesignRefinement>& fits) {
+  const auto log_ratios = [&](const std::vector<PixelRefinement>& fits) {
     return DesignLogRatios(image, camera, marker, fits, options);
   };
-  return RankedFitsFromStarts<DesignRefinement>(
+  return RankedFitsFromStarts<PixelRefinement>(
       starts,
-      [&](const Rigid3& start, const std::vector<DesignRefinement>& earlier) {
-        const auto far_less_likely = [&](const DesignRefinement& first_round) {
+      [&](const Rigid3& start, const std::vector<PixelRefinement>& earlier) {
+        const auto far_less_likely = [&](const PixelRefinement& first_round) {
           if (earlier.empty()) return false;
-          std::vector<DesignRefinement> compared = earlier;
+          std::vector<PixelRefinement> compared = earlier;
           compared.push_back(first_round);
           return log_ratios(compared).back() > options.max_first_round_log_ratio;
         };

@@ -42,20 +42,13 @@ struct DesignRefinementOptions {
   double max_first_round_log_ratio = 100.0;
 };
 
-struct DesignRefinement {
-  // On a grey image: levels = (offset, gain) of the design's luma, 0-1, then each fitted
-  // colour's luma less the design's (BlurredDesign::FittedLevels).
-  PixelFit fit;
-  int pixels = 0;
-  double noise_sigma = 0.0;  // the image's, 0-1, as its residuals show (the model's clipping)
-};
-
 // `sigma_px`: the edges' σ at the start (the blur with the pixel's area, as edge points measure
 // it; the fit's, PixelFit::sigma_px, is the blur alone, the model averaging over each pixel).
 // `noise_sigma`: a first estimate of the image's, 0-1 units. nullopt when too few pixels near the
 // design's edges are in front of the camera and in the image, or where `abandons` says so of
-// the first round's result.
-std::optional<DesignRefinement> RefineDesign(
+// the first round's result. On a grey image the fit's levels are (offset, gain) of the design's
+// luma, 0-1, then each fitted colour's luma less the design's (BlurredDesign::FittedLevels).
+std::optional<PixelRefinement> RefineDesign(
     const Image8& image,
     const Camera& camera,
     const MarkerSpec& marker,
@@ -63,13 +56,13 @@ std::optional<DesignRefinement> RefineDesign(
     double sigma_px,
     double noise_sigma,
     const DesignRefinementOptions& options = {},
-    const std::function<bool(const DesignRefinement&)>& abandons = nullptr);
+    const std::function<bool(const PixelRefinement&)>& abandons = nullptr);
 
 // The refinement from each start (RefineDesign), best first (DesignLogRatios), each with its
 // 2 ln Λ against the first on the pixels all share; a start after the first is given up after
 // its first round where that round's result is far less likely than an earlier start's
 // (max_first_round_log_ratio). Empty when no start gives a refinement.
-std::vector<RankedFit<DesignRefinement>> RefineDesignFromStarts(
+std::vector<RankedFit<PixelRefinement>> RefineDesignFromStarts(
     const Image8& image,
     const Camera& camera,
     const MarkerSpec& marker,
@@ -85,7 +78,7 @@ std::vector<RankedFit<DesignRefinement>> RefineDesignFromStarts(
 std::vector<double> DesignLogRatios(const Image8& image,
                                     const Camera& camera,
                                     const MarkerSpec& marker,
-                                    const std::vector<DesignRefinement>& fits,
+                                    const std::vector<PixelRefinement>& fits,
                                     const DesignRefinementOptions& options = {});
 
 }  // namespace markerbench

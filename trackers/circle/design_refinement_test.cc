@@ -46,7 +46,7 @@ TEST(DesignRefinement, RecoversThePoseAndTheBlurFromAPerturbedStart) {
       SCOPED_TRACE(std::string(kind) + " blur " + std::to_string(blur));
       const Rigid3 truth = TiltedView(0.6, 30.0, 40.0);
       const RenderedFrame frame = RenderMarker(marker, truth, 0.005, blur, 7);
-      const std::optional<DesignRefinement> refined = RefineDesign(
+      const std::optional<PixelRefinement> refined = RefineDesign(
           frame.image, camera, marker, SlightlyPerturbed(truth, &rng), 1.0, std::sqrt(0.005));
       ASSERT_TRUE(refined);
       const Rigid3& pose = refined->fit.cam_from_marker;
@@ -78,12 +78,12 @@ TEST(DesignRefinement, FitsASharpDesignThroughAWideLens) {
       FrameRequest request = SeededFrameRequest(marker, truth, 0.001, 0.0, 9, 3);
       request.scene.camera = camera;
       const RenderedFrame frame = RenderFrame(request);
-      const std::optional<DesignRefinement> refined = RefineDesign(frame.image,
-                                                                   camera,
-                                                                   marker,
-                                                                   SlightlyPerturbed(truth, &rng),
-                                                                   std::sqrt(1.0 / 12.0),
-                                                                   std::sqrt(0.001));
+      const std::optional<PixelRefinement> refined = RefineDesign(frame.image,
+                                                                  camera,
+                                                                  marker,
+                                                                  SlightlyPerturbed(truth, &rng),
+                                                                  std::sqrt(1.0 / 12.0),
+                                                                  std::sqrt(0.001));
       ASSERT_TRUE(refined);
       // Measured: σ 0.020 px (the model's least) and 0.08-0.32 mm; with the pinhole's pixel
       // footprint, σ 0.21-0.26 px and 0.13-0.77 mm.
@@ -114,7 +114,7 @@ TEST(DesignRefinement, FitsTheGreyThePrintShows) {
     std::vector<double> errors;
     for (const MarkerSpec* print : {&printed, &marker}) {
       const RenderedFrame frame = RenderMarker(*print, truth, 0.005, 1.0, 60 + i);
-      const std::optional<DesignRefinement> refined =
+      const std::optional<PixelRefinement> refined =
           RefineDesign(frame.image, camera, marker, start, 1.0, std::sqrt(0.005));
       ASSERT_TRUE(refined);
       // The levels: offset, gain, and the grey's luma less the design's.
@@ -155,9 +155,9 @@ TEST(DesignRefinement, KeepsTheTiltTheDesignShows) {
     SCOPED_TRACE("tilt " + std::to_string(tilt) + " roll " + std::to_string(roll));
     const Rigid3 truth = TiltedView(0.6, tilt, roll);
     const RenderedFrame frame = RenderMarker(marker, truth, 0.02, 1.0, 40 + i);
-    std::vector<DesignRefinement> fits;
+    std::vector<PixelRefinement> fits;
     for (const double start_tilt : {-tilt, tilt}) {
-      const std::optional<DesignRefinement> refined = RefineDesign(
+      const std::optional<PixelRefinement> refined = RefineDesign(
           frame.image, camera, marker, TiltedView(0.6, start_tilt, roll), 1.0, std::sqrt(0.02));
       ASSERT_TRUE(refined);
       fits.push_back(*refined);
@@ -179,7 +179,7 @@ TEST(DesignRefinement, KeepsTheTiltTheDesignShows) {
         const Rigid3 other_tilt = TiltedView(0.6, -tilt, roll);
         const std::vector<Rigid3> starts = true_first ? std::vector<Rigid3>{truth, other_tilt}
                                                       : std::vector<Rigid3>{other_tilt, truth};
-        const std::vector<RankedFit<DesignRefinement>> ranked = RefineDesignFromStarts(
+        const std::vector<RankedFit<PixelRefinement>> ranked = RefineDesignFromStarts(
             frame.image, camera, marker, starts, 1.0, std::sqrt(0.02), options);
         ASSERT_FALSE(ranked.empty());
         EXPECT_EQ(ranked[0].result.fit.cam_from_marker.translation,
@@ -211,9 +211,9 @@ TEST(DesignRefinement, KeepsTheTrueTiltWithoutNoise) {
   for (int i = 0; i < 12; ++i) {
     const Rigid3 truth = RandomTiltedView(0.6, 0.0, 40.0, &rng);
     const RenderedFrame frame = RenderMarker(marker, truth, 0.0, 0.0, 1);
-    std::vector<DesignRefinement> fits;
+    std::vector<PixelRefinement> fits;
     for (const Rigid3& start : {OtherTilt(truth), truth}) {
-      const std::optional<DesignRefinement> refined =
+      const std::optional<PixelRefinement> refined =
           RefineDesign(frame.image, camera, marker, start, std::sqrt(1.0 / 12.0), 0.0);
       ASSERT_TRUE(refined);
       fits.push_back(*refined);

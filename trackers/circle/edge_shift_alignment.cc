@@ -304,27 +304,27 @@ double RmsDistance(const Camera& camera,
 bool EdgeShiftOptions::IsValid(std::string* error) const {
   std::ostringstream msg;
   const auto fraction = [](double f) { return f > 0.0 && f <= 1.0; };
-  if (!(first_rays_per_circle >= 3)) {
-    msg << "edge_shift_first_rays=" << first_rays_per_circle << " must be >= 3";
-  } else if (!(rays_per_circle >= 3)) {
-    msg << "edge_shift_rays=" << rays_per_circle << " must be >= 3";
-  } else if (!(max_shift_px > 0.0)) {
-    msg << "edge_shift_max_px=" << max_shift_px << " must be > 0";
-  } else if (!(second_max_shift_px > 0.0)) {
-    msg << "edge_shift_second_max_px=" << second_max_shift_px << " must be > 0";
+  if (!(first.rays_per_circle >= 3)) {
+    msg << "edge_shift_first_rays=" << first.rays_per_circle << " must be >= 3";
+  } else if (!(second.rays_per_circle >= 3)) {
+    msg << "edge_shift_rays=" << second.rays_per_circle << " must be >= 3";
+  } else if (!(first.max_shift_px > 0.0)) {
+    msg << "edge_shift_max_px=" << first.max_shift_px << " must be > 0";
+  } else if (!(second.max_shift_px > 0.0)) {
+    msg << "edge_shift_second_max_px=" << second.max_shift_px << " must be > 0";
   } else if (!(sample_step_px > 0.0 && sample_step_px <= 4.0)) {
     msg << "edge_shift_step_px=" << sample_step_px << " must be in (0, 4]";
-  } else if (!(first_samples_across >= 1)) {
-    msg << "edge_shift_first_samples_across=" << first_samples_across << " must be >= 1";
-  } else if (!(samples_across >= 1)) {
-    msg << "edge_shift_samples_across=" << samples_across << " must be >= 1";
+  } else if (!(first.samples_across >= 1)) {
+    msg << "edge_shift_first_samples_across=" << first.samples_across << " must be >= 1";
+  } else if (!(second.samples_across >= 1)) {
+    msg << "edge_shift_samples_across=" << second.samples_across << " must be >= 1";
   } else if (!fraction(min_step_per_contrast)) {
     msg << "edge_shift_min_step_per_contrast=" << min_step_per_contrast << " must be in (0, 1]";
-  } else if (!fraction(first_min_found_fraction)) {
-    msg << "edge_shift_first_min_found_fraction=" << first_min_found_fraction
+  } else if (!fraction(first.min_found_fraction)) {
+    msg << "edge_shift_first_min_found_fraction=" << first.min_found_fraction
         << " must be in (0, 1]";
-  } else if (!fraction(min_found_fraction)) {
-    msg << "edge_shift_min_found_fraction=" << min_found_fraction << " must be in (0, 1]";
+  } else if (!fraction(second.min_found_fraction)) {
+    msg << "edge_shift_min_found_fraction=" << second.min_found_fraction << " must be in (0, 1]";
   } else if (!(max_rms_px > 0.0)) {
     msg << "edge_shift_max_rms_px=" << max_rms_px << " must be > 0";
   } else {
@@ -355,12 +355,7 @@ std::optional<EdgeShiftAlignment> AlignByEdgeShifts(
   std::vector<EdgePoint> points;
   std::vector<bool> kept;
   Eigen::Vector3d center = Eigen::Vector3d::Zero();
-  for (const bool first : {true, false}) {
-    const double max_shift_px = first ? options.max_shift_px : options.second_max_shift_px;
-    const double min_found_fraction =
-        first ? options.first_min_found_fraction : options.min_found_fraction;
-    const int samples_across = first ? options.first_samples_across : options.samples_across;
-    const int rays_per_circle = first ? options.first_rays_per_circle : options.rays_per_circle;
+  for (const EdgeShiftRound& round : {options.first, options.second}) {
     points.clear();
     for (size_t i = 0; i < geometry.radii_m.size(); ++i) {
       const std::vector<EdgeRay> rays = RaysOf(i,
@@ -371,22 +366,22 @@ std::optional<EdgeShiftAlignment> AlignByEdgeShifts(
                                                clearances[i],
                                                aligned.cam_from_paper,
                                                levels,
-                                               max_shift_px,
+                                               round.max_shift_px,
                                                blur_sigma_px,
-                                               rays_per_circle);
+                                               round.rays_per_circle);
       int found = 0;
       for (const EdgeRay& ray : rays) {
         const std::optional<double> shift =
-            EdgeShift(image, ray, blur_sigma_px, samples_across, options);
+            EdgeShift(image, ray, blur_sigma_px, round.samples_across, options);
         if (!shift) continue;
         ++found;
         const Eigen::Vector2d px = ray.px + *shift * ray.normal;
         points.push_back({camera.HasDistortion() ? camera.IdealFromImg(px) : px, i});
       }
-      if (found < min_found_fraction * rays_per_circle) {
+      if (found < round.min_found_fraction * round.rays_per_circle) {
         if (why) {
           *why = "the edge of circle " + std::to_string(i) + " shifted on only " +
-                 std::to_string(found) + " of " + std::to_string(rays_per_circle) + " rays";
+                 std::to_string(found) + " of " + std::to_string(round.rays_per_circle) + " rays";
         }
         return std::nullopt;
       }

@@ -27,41 +27,40 @@
 
 namespace markerbench {
 
-// Its YAML keys (CircleTrackerOptions::FromYaml), in the order of the fields: edge_shift_alignment,
-// edge_shift_first_rays, edge_shift_rays, edge_shift_max_px, edge_shift_second_max_px,
-// edge_shift_step_px, edge_shift_first_samples_across, edge_shift_samples_across,
-// edge_shift_min_step_per_contrast, edge_shift_first_min_found_fraction,
-// edge_shift_min_found_fraction, edge_shift_max_rms_px.
+// One round of the alignment's search for the edges.
+struct EdgeShiftRound {
+  int rays_per_circle;
+  // The farthest an edge is looked for from its predicted place, in px (within the margins
+  // that keep a ray clear of other ink).
+  double max_shift_px;
+  int samples_across;  // each sample the mean of this many, a pixel apart, across the ray
+  // Of each circle's rays, the fraction that must find their edge. A ray's reach inward stops
+  // short of other ink (b's feature dot, c's inner circle, d's centre dot), and an edge moved
+  // beyond it is missed in the first round.
+  double min_found_fraction;
+};
+
+// Its YAML keys (CircleTrackerOptions::FromYaml): edge_shift_alignment; the first round's
+// edge_shift_first_rays, edge_shift_max_px, edge_shift_first_samples_across and
+// edge_shift_first_min_found_fraction; the second's edge_shift_rays, edge_shift_second_max_px,
+// edge_shift_samples_across and edge_shift_min_found_fraction; edge_shift_step_px,
+// edge_shift_min_step_per_contrast and edge_shift_max_rms_px.
 struct EdgeShiftOptions {
   // Off, a prediction more than half a pixel off takes the detector's edge pass from the
   // predicted ellipses instead.
   bool enabled = true;
-  // Rays per circle, in the first round and in the second. The first only brings the edges
-  // within the second's reach: 24 take 12 % off the alignment's instructions, and no sequence
-  // frame's success changed (16 fail edge_shift_alignment_test; results/speed.md).
-  int first_rays_per_circle = 24;
-  int rays_per_circle = 32;
-  // The farthest an edge is looked for from its predicted place, in px (within the margins
-  // that keep a ray clear of other ink), in the first round and in the second.
-  double max_shift_px = 16.0;
-  double second_max_shift_px = 4.0;
+  // The first round only brings the edges within the second's reach, which places them. In it,
+  // 24 rays per circle instead of 32 took 12 % off the alignment's instructions, and no sequence
+  // frame's success changed (16 fail edge_shift_alignment_test); 3 samples across instead of 5
+  // took 15 % fewer, and on 128 rendered frames of the four disk markers its result moved by at
+  // most 0.04 px at σ² 0.02 and 0.4 px at σ² 0.3, where 7 more frames declined and 3 fewer (1
+  // across: 0.06 and 0.5 px, 10 more and 1 fewer; results/speed.md).
+  EdgeShiftRound first{24, 16.0, 3, 0.4};
+  EdgeShiftRound second{32, 4.0, 5, 0.6};
   double sample_step_px = 1.0;  // along a ray
-  // Each sample the mean of this many, a pixel apart, across the ray, in the first round and in
-  // the second. The first only brings the edges within the second's reach: with 3 across
-  // instead of 5 the alignment took 15 % fewer instructions, and on 128 rendered frames of the
-  // four disk markers its result moved by at most 0.04 px at σ² 0.02 and 0.4 px at σ² 0.3, where
-  // 7 more frames declined and 3 fewer (1 across: 0.06 and 0.5 px, 10 more and 1 fewer;
-  // results/speed.md).
-  int first_samples_across = 3;
-  int samples_across = 5;
   // A ray's edge counts where its step between the two levels is at least this fraction of
   // the contrast expected there, and of the expected polarity.
   double min_step_per_contrast = 0.5;
-  // Of each circle's rays, in the first round and in the second. A ray's reach inward stops
-  // short of other ink (b's feature dot, c's inner circle, d's centre dot), and an edge moved
-  // beyond it is missed in the first round.
-  double first_min_found_fraction = 0.4;
-  double min_found_fraction = 0.6;
   // The alignment stands where the edge points' distances to its circles have an RMS of at
   // most this (a single profile's edge under σ² 0.3 and blur 2 px: about 1 px).
   double max_rms_px = 1.5;

@@ -193,12 +193,7 @@ class PixelModel {
   void set_noise_sigma(double noise_sigma) { noise_sigma_ = noise_sigma; }
 
   // The cost at θ (each pixel's and channel's ClippedPixelTerm); with jtj and jtr, also JᵀJ
-  // and Jᵀr.
-  double Evaluate(const Eigen::VectorXd& theta, Eigen::MatrixXd* jtj, Eigen::VectorXd* jtr) const {
-    return Evaluate(theta, jtj, jtr, nullptr);
-  }
-
-  // The same, and each pixel's and channel's residual and modelled mean if `modelled` is given.
+  // and Jᵀr; and each pixel's and channel's residual and modelled mean if `modelled` is given.
   double Evaluate(const Eigen::VectorXd& theta,
                   Eigen::MatrixXd* jtj,
                   Eigen::VectorXd* jtr,
@@ -897,15 +892,15 @@ std::optional<ModelledPixels> PixelsAt(const Image8& image,
 // One solve on the pixels near the edges at `cam_from_marker`, each tied to its edges' points,
 // at the noise they show, as `round` of a fit in rounds (pixel_fit.h); a first round from
 // `start_levels` if given (FitPixelsAtTheirNoise).
-std::optional<PhotometricResult> RefineOnce(const Image8& image,
-                                            const Camera& camera,
-                                            const MarkerSpec& marker,
-                                            const Rigid3& cam_from_marker,
-                                            double sigma_px,
-                                            double noise_sigma,
-                                            const FitRound& round,
-                                            const PhotometricOptions& options,
-                                            const Eigen::VectorXd* start_levels) {
+std::optional<PixelRefinement> RefineOnce(const Image8& image,
+                                          const Camera& camera,
+                                          const MarkerSpec& marker,
+                                          const Rigid3& cam_from_marker,
+                                          double sigma_px,
+                                          double noise_sigma,
+                                          const FitRound& round,
+                                          const PhotometricOptions& options,
+                                          const Eigen::VectorXd* start_levels) {
   PhotometricOptions round_options = options;
   if (round.first_of_several) round_options.band_sigmas = options.first_round_band_sigmas;
   const std::optional<ModelledPixels> at =
@@ -920,7 +915,7 @@ std::optional<PhotometricResult> RefineOnce(const Image8& image,
   const std::optional<PixelFit> fit = FitPixelsAtTheirNoise(
       model, cam_from_marker, at->sigma_px, options.max_iterations, round, start_levels);
   if (!fit) return std::nullopt;
-  return PhotometricResult{*fit, static_cast<int>(at->pixels.pixels.size()), model.noise_sigma()};
+  return PixelRefinement{*fit, static_cast<int>(at->pixels.pixels.size()), model.noise_sigma()};
 }
 
 // How much less likely each of several fits is than the best: the cost (the clipped pixels'
@@ -931,12 +926,12 @@ std::optional<PhotometricResult> RefineOnce(const Image8& image,
 std::vector<double> PhotometricLogRatios(const Image8& image,
                                          const Camera& camera,
                                          const MarkerSpec& marker,
-                                         const std::vector<PhotometricResult>& fits,
+                                         const std::vector<PixelRefinement>& fits,
                                          const PhotometricOptions& options) {
   double noise = 0.0;
-  for (const PhotometricResult& fit : fits) noise += fit.noise_sigma / fits.size();
+  for (const PixelRefinement& fit : fits) noise += fit.noise_sigma / fits.size();
   std::vector<double> costs(fits.size(), 0.0);
-  for (const PhotometricResult& at_fit : fits) {
+  for (const PixelRefinement& at_fit : fits) {
     const std::optional<ModelledPixels> at =
         PixelsAt(image, camera, marker, at_fit.fit.cam_from_marker, at_fit.fit.sigma_px, options);
     if (!at) continue;  // no fit's pixels: the same for all
@@ -944,8 +939,10 @@ std::vector<double> PhotometricLogRatios(const Image8& image,
         camera.K(), at->layers, at->pixels, image.channels, noise, options.chords_below_noise);
     for (size_t i = 0; i < fits.size(); ++i) {
       const PixelFit& fit = fits[i].fit;
-      costs[i] += model.Evaluate(
-          PixelFitParameters(fit.cam_from_marker, fit.sigma_px, fit.levels), nullptr, nullptr);
+      costs[i] += model.Evaluate(PixelFitParameters(fit.cam_from_marker, fit.sigma_px, fit.levels),
+                                 nullptr,
+                                 nullptr,
+                                 nullptr);
     }
   }
   const double least = *std::min_element(costs.begin(), costs.end());
@@ -959,25 +956,25 @@ std::vector<double> PhotometricLogRatios(const Image8& image,
 
 }  // namespace
 
-std::optional<PhotometricResult> RefinePhotometric(const Image8& image,
-                                                   const Camera& camera,
-                                                   const MarkerSpec& marker,
-                                                   const Rigid3& cam_from_marker,
-                                                   double sigma_px,
-                                                   double noise_sigma,
-                                                   const PhotometricOptions& options,
-                                                   const std::optional<Eigen::VectorXd>& levels) {
+std::optional<PixelRefinement> RefinePhotometric(const Image8& image,
+                                                 const Camera& camera,
+                                                 const MarkerSpec& marker,
+                                                 const Rigid3& cam_from_marker,
+                                                 double sigma_px,
+                                                 double noise_sigma,
+                                                 const PhotometricOptions& options,
+                                                 const std::optional<Eigen::VectorXd>& levels) {
   // Whether a round moved the pose by less than `standard_errors` from its start.
   const auto moved_less_than = [](double standard_errors) {
-    return [standard_errors](const Rigid3& start, const PhotometricResult& round) {
+    return [standard_errors](const Rigid3& start, const PixelRefinement& round) {
       return PoseMoveInStandardErrors(round.fit, start, round.noise_sigma) < standard_errors;
     };
   };
-  RoundSettles<PhotometricResult> first_settles;
+  RoundSettles<PixelRefinement> first_settles;
   if (sigma_px < options.settle_below_sigma_px) {
     first_settles = moved_less_than(options.settle_within_standard_errors);
   }
-  return FitInRoundsAtTheirNoise<PhotometricResult>(
+  return FitInRoundsAtTheirNoise<PixelRefinement>(
       cam_from_marker,
       BlurSigmaOfEdges(sigma_px),
       noise_sigma,
@@ -997,7 +994,7 @@ std::optional<PhotometricResult> RefinePhotometric(const Image8& image,
       moved_less_than(options.later_round_settles_within_standard_errors));
 }
 
-std::vector<RankedFit<PhotometricResult>> RefinePhotometricFromStarts(
+std::vector<RankedFit<PixelRefinement>> RefinePhotometricFromStarts(
     const Image8& image,
     const Camera& camera,
     const MarkerSpec& marker,
@@ -1006,13 +1003,13 @@ std::vector<RankedFit<PhotometricResult>> RefinePhotometricFromStarts(
     double noise_sigma,
     const PhotometricOptions& options,
     const std::optional<Eigen::VectorXd>& levels) {
-  return RankedFitsFromStarts<PhotometricResult>(
+  return RankedFitsFromStarts<PixelRefinement>(
       starts,
-      [&](const Rigid3& start, const std::vector<PhotometricResult>&) {
+      [&](const Rigid3& start, const std::vector<PixelRefinement>&) {
         return RefinePhotometric(
             image, camera, marker, start, sigma_px, noise_sigma, options, levels);
       },
-      [&](const std::vector<PhotometricResult>& fits) {
+      [&](const std::vector<PixelRefinement>& fits) {
         return PhotometricLogRatios(image, camera, marker, fits, options);
       });
 }
@@ -1036,7 +1033,7 @@ std::optional<PhotometricNormalEquations> PhotometricNormalEquationsAt(
                          ModelNoiseSigma(noise_sigma),
                          options.chords_below_noise);
   PhotometricNormalEquations equations;
-  equations.cost = model.Evaluate(theta, &equations.jtj, &equations.jtr);
+  equations.cost = model.Evaluate(theta, &equations.jtj, &equations.jtr, nullptr);
   return equations;
 }
 

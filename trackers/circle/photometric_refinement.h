@@ -104,12 +104,6 @@ struct PhotometricOptions {
   double chords_below_noise = 2.0 / 255.0;
 };
 
-struct PhotometricResult {
-  PixelFit fit;  // iterations over all rounds
-  int pixels = 0;
-  double noise_sigma = 0.0;  // the image's, 0-1, as its residuals show (the model's clipping)
-};
-
 // `sigma_px`: the edges' σ at the start (the blur with the pixel's area, as edge points measure
 // it; the fit's, PixelFit::sigma_px, is the blur alone). `noise_sigma`: a first estimate of the
 // image's, 0-1 units. `levels`: the offset and gain per channel to start from where they are
@@ -117,7 +111,7 @@ struct PhotometricResult {
 // no pixels at the start to fit them and measure the noise (one evaluation of the model less).
 // nullopt for designs with layers other than disks, blur beyond max_blur_per_radius, or too few
 // pixels.
-std::optional<PhotometricResult> RefinePhotometric(
+std::optional<PixelRefinement> RefinePhotometric(
     const Image8& image,
     const Camera& camera,
     const MarkerSpec& marker,
@@ -133,7 +127,7 @@ std::optional<PhotometricResult> RefinePhotometric(
 // whose images nearly coincide far away or under heavy blur), each with its 2 ln Λ against the
 // first (averaged over those sets of pixels); empty when no start gives one. Each from `levels`
 // where given, as RefinePhotometric's.
-std::vector<RankedFit<PhotometricResult>> RefinePhotometricFromStarts(
+std::vector<RankedFit<PixelRefinement>> RefinePhotometricFromStarts(
     const Image8& image,
     const Camera& camera,
     const MarkerSpec& marker,

@@ -49,7 +49,7 @@ TEST(PhotometricRefinement, RecoversThePoseAndTheBlurFromAPerturbedStart) {
       SCOPED_TRACE(std::string(kind) + " blur " + std::to_string(blur));
       const Rigid3 truth = TiltedView(0.5, 30.0, 40.0);
       const RenderedFrame frame = RenderMarker(marker, truth, 0.005, blur, 7);
-      const std::optional<PhotometricResult> refined = RefinePhotometric(
+      const std::optional<PixelRefinement> refined = RefinePhotometric(
           frame.image, camera, marker, SlightlyPerturbed(truth, &rng), 1.0, std::sqrt(0.005));
       ASSERT_TRUE(refined);
       // Measured: 0.21-0.80 mm and 0.026-0.092° over these eight frames.
@@ -185,7 +185,7 @@ TEST(PhotometricRefinement, ModelsOverlappingHeavilyBlurredEdges) {
     SCOPED_TRACE("tilt " + std::to_string(c.tilt_deg) + " blur " + std::to_string(c.blur));
     const Rigid3 truth = TiltedView(0.6, c.tilt_deg, 40.0);
     const RenderedFrame frame = RenderMarker(marker, truth, 0.0, c.blur, 7);
-    const std::optional<PhotometricResult> refined =
+    const std::optional<PixelRefinement> refined =
         RefinePhotometric(frame.image, camera, marker, SlightlyPerturbed(truth, &rng), c.blur, 0.0);
     ASSERT_TRUE(refined);
     EXPECT_LE(PositionError(refined->fit.cam_from_marker, truth), 1e-3 * c.max_error_mm);
@@ -212,7 +212,7 @@ TEST(PhotometricRefinement, FitsANoiseFreeFrameToItsRounding) {
       const Rigid3 truth = TiltedView(0.6, tilt_deg, 40.0);
       const RenderedFrame frame = RenderMarker(marker, truth, 0.0, blur, 7);
       // The edges' σ, as the detector gives it: the blur with the pixel's area.
-      const std::optional<PhotometricResult> refined = RefinePhotometric(
+      const std::optional<PixelRefinement> refined = RefinePhotometric(
           frame.image, camera, marker, truth, std::sqrt(blur * blur + 1.0 / 12.0), 0.0);
       ASSERT_TRUE(refined);
       EXPECT_LE(PositionError(refined->fit.cam_from_marker, truth), 0.05e-3);
@@ -241,7 +241,7 @@ TEST(PhotometricRefinement, FitsANoiseFreeFrameThroughAWideLens) {
         FrameRequest request = SeededFrameRequest(marker, truth, 0.0, blur, 7, 3);
         request.scene.camera = camera;
         const RenderedFrame frame = RenderFrame(request);
-        const std::optional<PhotometricResult> refined = RefinePhotometric(
+        const std::optional<PixelRefinement> refined = RefinePhotometric(
             frame.image, camera, marker, truth, std::sqrt(blur * blur + 1.0 / 12.0), 0.0);
         ASSERT_TRUE(refined);
         EXPECT_LE(PositionError(refined->fit.cam_from_marker, truth), 0.06e-3);
@@ -267,7 +267,7 @@ TEST(PhotometricRefinement, FitsANoiseFreeFrameFromAStartMillimetresOff) {
       const Rigid3 truth = TiltedView(0.6, tilt_deg, roll_deg);
       const RenderedFrame frame = RenderMarker(marker, truth, 0.0, 0.0, 7);
       const Rigid3 start = SlightlyPerturbed(truth, &rng);
-      const std::optional<PhotometricResult> refined =
+      const std::optional<PixelRefinement> refined =
           RefinePhotometric(frame.image, camera, marker, start, std::sqrt(1.0 / 12.0), 0.0);
       ASSERT_TRUE(refined);
       EXPECT_LE(PositionError(refined->fit.cam_from_marker, truth), 0.05e-3);
@@ -384,9 +384,9 @@ AgainstRounds RefineAgainstRounds(const RenderedFrame& frame,
     return RefinePhotometric(
         frame.image, camera, marker, start, sigma_px, std::sqrt(noise_var), options);
   };
-  const std::optional<PhotometricResult> result = refine(PhotometricOptions());
-  const std::optional<PhotometricResult> with_fewer = refine(fewer);
-  const std::optional<PhotometricResult> with_more = refine(more);
+  const std::optional<PixelRefinement> result = refine(PhotometricOptions());
+  const std::optional<PixelRefinement> with_fewer = refine(fewer);
+  const std::optional<PixelRefinement> with_more = refine(more);
   EXPECT_TRUE(result && with_fewer && with_more);
   if (!(result && with_fewer && with_more)) return {};
   return {result->fit.cam_from_marker.translation == with_fewer->fit.cam_from_marker.translation,
@@ -497,7 +497,7 @@ TEST(PhotometricRefinement, FitsDisksModelledWholeThroughAWideLens) {
         FrameRequest request = SeededFrameRequest(marker, truth, 0.0, blur, 7, 3);
         request.scene.camera = camera;
         const RenderedFrame frame = RenderFrame(request);
-        const std::optional<PhotometricResult> refined =
+        const std::optional<PixelRefinement> refined =
             RefinePhotometric(frame.image, camera, marker, start, blur, 0.0);
         ASSERT_TRUE(refined);
         EXPECT_LE(PositionError(refined->fit.cam_from_marker, truth),

@@ -42,6 +42,13 @@ struct PixelFit {
   Eigen::Vector3d angle_axis = Eigen::Vector3d::Zero();
 };
 
+// A refinement on the pixels (photometric_refinement.h, design_refinement.h).
+struct PixelRefinement {
+  PixelFit fit;  // iterations over all rounds
+  int pixels = 0;
+  double noise_sigma = 0.0;  // the image's, 0-1, as its residuals show (the model's clipping)
+};
+
 // θ of a pose, σ and the levels (offset and gain per channel).
 inline Eigen::VectorXd PixelFitParameters(const Rigid3& cam_from_marker,
                                           double sigma_px,
