@@ -77,9 +77,10 @@ void BM_CircleDesignFullDetection(benchmark::State& state, const std::string& ki
 // predicts each frame from the ones before it (its pose, and its motion from two frames on).
 void TimeLastFramesOfVideos(benchmark::State& state,
                             const MarkerSpec& marker,
-                            const std::vector<std::vector<Image8>>& videos) {
+                            const std::vector<std::vector<Image8>>& videos,
+                            const CircleTrackerOptions& options = {}) {
   const Camera camera;
-  CircleTracker tracker;
+  CircleTracker tracker(options);
   size_t i = 0, ok = 0, in_region = 0, from_prediction = 0, on_pixels = 0;
   for (auto _ : state) {
     const size_t k = i++ % videos.front().size();
@@ -112,6 +113,20 @@ void BM_CircleTrackingMode(benchmark::State& state) {
   later.video_frame = 1;
   TimeLastFramesOfVideos(
       state, marker, {BenchmarkFrames(marker, 16), BenchmarkFrames(marker, 16, later)});
+}
+
+// The same without the refinement on the pixels (`photometric: false`): the fast path, each
+// frame's ellipses found by the detector's edge pass from the predicted ones.
+void BM_CircleTrackingModeEdgesOnly(benchmark::State& state) {
+  cv::setNumThreads(1);
+  const MarkerSpec marker = PaperMarker("circles_a");
+  BenchmarkFrameOptions later;
+  later.camera_move = RandomHandheldFrameMotion;
+  later.video_frame = 1;
+  CircleTrackerOptions options;
+  options.photometric = false;
+  TimeLastFramesOfVideos(
+      state, marker, {BenchmarkFrames(marker, 16), BenchmarkFrames(marker, 16, later)}, options);
 }
 
 // The camera's move `frames` video frames (30 fps) into the smooth shake of
@@ -252,6 +267,7 @@ BENCHMARK_CAPTURE(BM_CircleDesignFullDetection, circle_e, std::string("circle_e"
 BENCHMARK_CAPTURE(BM_CircleDesignFullDetection, circle_f, std::string("circle_f"))
     ->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_CircleTrackingMode)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_CircleTrackingModeEdgesOnly)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_CircleTrackingModeHandheld)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_CircleTrackingModeSteady)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_CirclePixelFit)->Unit(benchmark::kMillisecond);
