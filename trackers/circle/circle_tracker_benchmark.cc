@@ -115,8 +115,9 @@ void BM_CircleTrackingMode(benchmark::State& state) {
       state, marker, {BenchmarkFrames(marker, 16), BenchmarkFrames(marker, 16, later)});
 }
 
-// The same without the refinement on the pixels (`photometric: false`): the fast path, each
-// frame's ellipses found by the detector's edge pass from the predicted ones.
+// The same without the refinement on the pixels (`photometric: false`): each frame's ellipses
+// found by the detector's edge pass from the predicted ones, or by its search of the region
+// around them where they moved too far (predicted_fraction).
 void BM_CircleTrackingModeEdgesOnly(benchmark::State& state) {
   cv::setNumThreads(1);
   const MarkerSpec marker = PaperMarker("circles_a");
