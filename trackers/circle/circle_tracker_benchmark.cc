@@ -104,30 +104,26 @@ void TimeLastFramesOfVideos(benchmark::State& state,
 
 // Each frame followed by the next frame of a hand-held video with no history (the camera moved
 // by 5 mm and turned by 1°, each in a random direction, new noise): the second timed from the
-// first's pose.
-void BM_CircleTrackingMode(benchmark::State& state) {
+// first's pose, by a tracker of `options`.
+void TimeNextHandheldFrames(benchmark::State& state, const CircleTrackerOptions& options) {
   cv::setNumThreads(1);
   const MarkerSpec marker = PaperMarker("circles_a");
   BenchmarkFrameOptions later;
   later.camera_move = RandomHandheldFrameMotion;
   later.video_frame = 1;
   TimeLastFramesOfVideos(
-      state, marker, {BenchmarkFrames(marker, 16), BenchmarkFrames(marker, 16, later)});
+      state, marker, {BenchmarkFrames(marker, 16), BenchmarkFrames(marker, 16, later)}, options);
 }
+
+void BM_CircleTrackingMode(benchmark::State& state) { TimeNextHandheldFrames(state, {}); }
 
 // The same without the refinement on the pixels (`photometric: false`): each frame's ellipses
 // found by the detector's edge pass from the predicted ones, or by its search of the region
 // around them where they moved too far (predicted_fraction).
 void BM_CircleTrackingModeEdgesOnly(benchmark::State& state) {
-  cv::setNumThreads(1);
-  const MarkerSpec marker = PaperMarker("circles_a");
-  BenchmarkFrameOptions later;
-  later.camera_move = RandomHandheldFrameMotion;
-  later.video_frame = 1;
   CircleTrackerOptions options;
   options.photometric = false;
-  TimeLastFramesOfVideos(
-      state, marker, {BenchmarkFrames(marker, 16), BenchmarkFrames(marker, 16, later)}, options);
+  TimeNextHandheldFrames(state, options);
 }
 
 // The camera's move `frames` video frames (30 fps) into the smooth shake of
