@@ -4,12 +4,16 @@
 #include <yaml-cpp/yaml.h>
 
 #include <map>
+#include <memory>
+#include <optional>
 #include <set>
 #include <string>
 #include <vector>
 
 #include "core/camera_yaml.h"
+#include "core/config_error.h"
 #include "core/marker_yaml.h"
+#include "core/number_text.h"
 #include "core/yaml_reader.h"
 #include "renderer/render_frame.h"
 #include "renderer/test_scenes.h"
@@ -62,26 +66,74 @@ TEST(TrackerFactory, TrackersCanTrackTheirOwnMarkersOnly) {
   }
 }
 
+// The parameters that come with a tracker's name, not with its options (how AprilTag's and
+// ArUco's adapters find the pose, the pixel convention's offset): listed, never read.
+const std::map<std::string, std::set<std::string>> kFactsOfTheName = {
+    {"apriltag", {"pose", "pixel_offset_corrected"}},
+    {"apriltag-ippe", {"pose", "pixel_offset_corrected"}},
+    {"aruco", {"pose"}}};
+
+bool IsFactOfTheName(const std::string& name, const std::string& key) {
+  const auto named = kFactsOfTheName.find(name);
+  return named != kFactsOfTheName.end() && named->second.count(key);
+}
+
 // A run records each tracker's Parameters() (its manifest, `markerbench list trackers`): read
-// back as options they must build the same tracker, every key but the facts that come with a
-// tracker's name (how AprilTag's and ArUco's adapters find the pose, the pixel convention's
-// offset) read back as written.
+// back as options they must build the same tracker, every key but the name's facts read back as
+// written.
 TEST(TrackerFactory, ParametersReadBackAsOptionsGiveTheSameTracker) {
-  const std::map<std::string, std::set<std::string>> facts = {
-      {"apriltag", {"pose", "pixel_offset_corrected"}},
-      {"apriltag-ippe", {"pose", "pixel_offset_corrected"}},
-      {"aruco", {"pose"}}};
   for (const std::string& name : TrackerNames()) {
     const std::vector<std::pair<std::string, std::string>> parameters =
         MakeTracker(name, nullptr)->Parameters();
     ASSERT_FALSE(parameters.empty()) << name;
-    const auto named = facts.find(name);
     YAML::Node node(YAML::NodeType::Map);
     for (const auto& [key, value] : parameters) {
-      if (named == facts.end() || !named->second.count(key)) node[key] = YAML::Load(value);
+      if (!IsFactOfTheName(name, key)) node[key] = YAML::Load(value);
     }
     const YamlMap options(node, "parameters of " + name, "");
     EXPECT_EQ(MakeTracker(name, &options)->Parameters(), parameters) << name;
+  }
+}
+
+// Each number and switch of a tracker's Parameters() set alone to another value it accepts: the
+// tracker's parameters are its defaults with that key's value changed, and nothing else. A key
+// read into another field than the one it is written from, or read as the wrong type, fails.
+TEST(TrackerFactory, EachParameterSetAloneChangesItselfAlone) {
+  for (const std::string& name : TrackerNames()) {
+    const std::vector<std::pair<std::string, std::string>> defaults =
+        MakeTracker(name, nullptr)->Parameters();
+    for (size_t i = 0; i < defaults.size(); ++i) {
+      const auto& [key, text] = defaults[i];
+      if (IsFactOfTheName(name, key)) continue;
+      std::vector<std::string> others;
+      if (text == "true" || text == "false") {
+        others = {text == "true" ? "false" : "true"};
+      } else if (const std::optional<double> value = ParseFiniteNumber(text)) {
+        for (double other : {*value + 1.0, *value - 1.0, *value + 2.0, *value * 0.5}) {
+          others.push_back(NumberText(other));
+        }
+      } else {
+        continue;  // a name: its own tracker's tests read each
+      }
+      bool accepted = false;
+      for (const std::string& other : others) {
+        YAML::Node node(YAML::NodeType::Map);
+        node[key] = YAML::Load(other);
+        const YamlMap options(node, name + " with " + key + ": " + other, "");
+        std::unique_ptr<Tracker> tracker;
+        try {
+          tracker = MakeTracker(name, &options);
+        } catch (const ConfigError&) {
+          continue;  // outside the key's range: try the next value
+        }
+        std::vector<std::pair<std::string, std::string>> expected = defaults;
+        expected[i].second = other;
+        EXPECT_EQ(tracker->Parameters(), expected) << options.file();
+        accepted = true;
+        break;
+      }
+      EXPECT_TRUE(accepted) << name << ": no other value of " << key << " accepted";
+    }
   }
 }
 

@@ -11,6 +11,7 @@
 
 #include "core/marker_bits.h"
 #include "core/number_text.h"
+#include "core/option_fields.h"
 #include "core/yaml_reader.h"
 #include "trackers/grey_image.h"
 #include "trackers/square_pose.h"
@@ -24,6 +25,18 @@ constexpr double kAprilTagPixelOffset = 0.5;
 
 // AprilTag's tag frame has y down and z into the tag; ours has y up and z out.
 const Eigen::Matrix3d kTagFromMarker = Eigen::Vector3d(1.0, -1.0, -1.0).asDiagonal();
+
+// AprilTagOptions' keys, read and written (core/option_fields.h).
+template <typename Options, typename Fields>
+void VisitAprilTagFields(Options& o, Fields&& fields) {
+  fields("family", o.family);
+  fields("quad_decimate", o.quad_decimate);
+  fields("quad_sigma", o.quad_sigma);
+  fields("refine_edges", o.refine_edges);
+  fields("decode_sharpening", o.decode_sharpening);
+  fields("nthreads", o.nthreads);
+  fields("max_hamming", o.max_hamming);
+}
 
 struct DetectionsDeleter {
   void operator()(zarray_t* detections) const { apriltag_detections_destroy(detections); }
@@ -94,15 +107,12 @@ class AprilTagTracker final : public Tracker {
   }
 
   std::vector<std::pair<std::string, std::string>> Parameters() const override {
-    return {{"family", options_.family},
-            {"quad_decimate", NumberText(options_.quad_decimate)},
-            {"quad_sigma", NumberText(options_.quad_sigma)},
-            {"refine_edges", BoolText(options_.refine_edges)},
-            {"decode_sharpening", NumberText(options_.decode_sharpening)},
-            {"nthreads", NumberText(options_.nthreads)},
-            {"max_hamming", NumberText(options_.max_hamming)},
-            {"pose", pose_ == AprilTagPose::kNative ? "estimate_tag_pose" : "ippe_square"},
-            {"pixel_offset_corrected", NumberText(kAprilTagPixelOffset)}};
+    FieldWriter fields;
+    VisitAprilTagFields(options_, fields);
+    fields.parameters.push_back(
+        {"pose", pose_ == AprilTagPose::kNative ? "estimate_tag_pose" : "ippe_square"});
+    fields.parameters.push_back({"pixel_offset_corrected", NumberText(kAprilTagPixelOffset)});
+    return fields.parameters;
   }
 
  private:
@@ -163,13 +173,7 @@ bool AprilTagOptions::IsValid(std::string* error) const {
 
 AprilTagOptions AprilTagOptions::FromYaml(const YamlMap& map) {
   AprilTagOptions o;
-  o.family = map.GetOr<std::string>("family", o.family);
-  o.quad_decimate = map.GetOr<double>("quad_decimate", o.quad_decimate);
-  o.quad_sigma = map.GetOr<double>("quad_sigma", o.quad_sigma);
-  o.refine_edges = map.GetOr<bool>("refine_edges", o.refine_edges);
-  o.decode_sharpening = map.GetOr<double>("decode_sharpening", o.decode_sharpening);
-  o.nthreads = map.GetOr<int>("nthreads", o.nthreads);
-  o.max_hamming = map.GetOr<int>("max_hamming", o.max_hamming);
+  VisitAprilTagFields(o, FieldReader(map));
   FinishOptions(map, o);
   return o;
 }

@@ -5,7 +5,7 @@
 #include <sstream>
 #include <vector>
 
-#include "core/number_text.h"
+#include "core/option_fields.h"
 #include "core/random.h"
 #include "core/yaml_reader.h"
 #include "trackers/artkplus/contour_trace.h"
@@ -24,6 +24,30 @@ struct Detections {
   std::vector<Detection> decoded;
   int squares = 0;  // regions whose contour has four vertices
 };
+
+// ArtkPlusOptions' keys, read and written (core/option_fields.h).
+template <typename Options, typename Fields>
+void VisitArtkPlusFields(Options& o, Fields&& fields) {
+  fields.Choice("threshold_mode",
+                o.threshold_mode,
+                {{ArtkPlusThreshold::kAuto, "auto"}, {ArtkPlusThreshold::kFixed, "fixed"}});
+  fields("threshold", o.threshold);
+  fields("auto_threshold_retries", o.auto_threshold_retries);
+  fields("auto_threshold_seed", o.auto_threshold_seed);
+  fields("retry_only_without_squares", o.retry_only_without_squares);
+  fields("min_area_px", o.regions.min_area_px);
+  fields("max_area_px", o.regions.max_area_px);
+  fields("side_trim", o.quad.side_trim);
+  fields("subpixel_edges", o.quad.subpixel_edges);
+  fields("truncated_samples", o.pattern.truncated_samples);
+  fields("pattern_samples", o.pattern.samples_per_side);
+  fields("bits_at_threshold", o.bits_at_threshold);
+  fields("max_corrected_bits", o.pattern.max_corrected_bits);
+  fields("min_code_contrast", o.pattern.min_code_contrast);
+  fields("min_confidence", o.min_confidence);
+  fields.Choice(
+      "pose", o.pose, {{ArtkPlusPose::kRobustPlanar, "rpp"}, {ArtkPlusPose::kClassic, "classic"}});
+}
 
 class ArtkPlusTracker final : public Tracker {
  public:
@@ -81,23 +105,9 @@ class ArtkPlusTracker final : public Tracker {
   }
 
   std::vector<std::pair<std::string, std::string>> Parameters() const override {
-    const ArtkPlusOptions& o = options_;
-    return {{"threshold_mode", o.threshold_mode == ArtkPlusThreshold::kAuto ? "auto" : "fixed"},
-            {"threshold", NumberText(o.threshold)},
-            {"auto_threshold_retries", NumberText(o.auto_threshold_retries)},
-            {"auto_threshold_seed", NumberText(o.auto_threshold_seed)},
-            {"retry_only_without_squares", BoolText(o.retry_only_without_squares)},
-            {"min_area_px", NumberText(o.regions.min_area_px)},
-            {"max_area_px", NumberText(o.regions.max_area_px)},
-            {"side_trim", NumberText(o.quad.side_trim)},
-            {"subpixel_edges", BoolText(o.quad.subpixel_edges)},
-            {"truncated_samples", BoolText(o.pattern.truncated_samples)},
-            {"pattern_samples", NumberText(o.pattern.samples_per_side)},
-            {"bits_at_threshold", BoolText(o.bits_at_threshold)},
-            {"max_corrected_bits", NumberText(o.pattern.max_corrected_bits)},
-            {"min_code_contrast", NumberText(o.pattern.min_code_contrast)},
-            {"min_confidence", NumberText(o.min_confidence)},
-            {"pose", o.pose == ArtkPlusPose::kRobustPlanar ? "rpp" : "classic"}};
+    FieldWriter fields;
+    VisitArtkPlusFields(options_, fields);
+    return fields.parameters;
   }
 
  private:
@@ -222,32 +232,7 @@ ArtkPlusOptions ArtkPlusOptions::Improved() {
 
 ArtkPlusOptions ArtkPlusOptions::FromYaml(const YamlMap& map, const ArtkPlusOptions& base) {
   ArtkPlusOptions o = base;
-  const std::string threshold_mode = map.GetOr<std::string>(
-      "threshold_mode", base.threshold_mode == ArtkPlusThreshold::kAuto ? "auto" : "fixed");
-  if (threshold_mode != "auto" && threshold_mode != "fixed") {
-    map.Fail("threshold_mode", "auto or fixed");
-  }
-  o.threshold_mode =
-      threshold_mode == "auto" ? ArtkPlusThreshold::kAuto : ArtkPlusThreshold::kFixed;
-  o.threshold = map.GetOr<int>("threshold", o.threshold);
-  o.auto_threshold_retries = map.GetOr<int>("auto_threshold_retries", o.auto_threshold_retries);
-  o.auto_threshold_seed = map.GetOr<int>("auto_threshold_seed", o.auto_threshold_seed);
-  o.retry_only_without_squares =
-      map.GetOr<bool>("retry_only_without_squares", o.retry_only_without_squares);
-  o.regions.min_area_px = map.GetOr<int>("min_area_px", o.regions.min_area_px);
-  o.regions.max_area_px = map.GetOr<int>("max_area_px", o.regions.max_area_px);
-  o.quad.side_trim = map.GetOr<double>("side_trim", o.quad.side_trim);
-  o.quad.subpixel_edges = map.GetOr<bool>("subpixel_edges", o.quad.subpixel_edges);
-  o.pattern.truncated_samples = map.GetOr<bool>("truncated_samples", o.pattern.truncated_samples);
-  o.pattern.samples_per_side = map.GetOr<int>("pattern_samples", o.pattern.samples_per_side);
-  o.bits_at_threshold = map.GetOr<bool>("bits_at_threshold", o.bits_at_threshold);
-  o.pattern.max_corrected_bits = map.GetOr<int>("max_corrected_bits", o.pattern.max_corrected_bits);
-  o.pattern.min_code_contrast = map.GetOr<double>("min_code_contrast", o.pattern.min_code_contrast);
-  o.min_confidence = map.GetOr<double>("min_confidence", o.min_confidence);
-  const std::string pose =
-      map.GetOr<std::string>("pose", base.pose == ArtkPlusPose::kRobustPlanar ? "rpp" : "classic");
-  if (pose != "rpp" && pose != "classic") map.Fail("pose", "rpp or classic");
-  o.pose = pose == "rpp" ? ArtkPlusPose::kRobustPlanar : ArtkPlusPose::kClassic;
+  VisitArtkPlusFields(o, FieldReader(map));
   FinishOptions(map, o);
   return o;
 }

@@ -7,7 +7,7 @@
 #include <vector>
 
 #include "core/marker_bits.h"
-#include "core/number_text.h"
+#include "core/option_fields.h"
 #include "core/yaml_reader.h"
 #include "trackers/grey_image.h"
 #include "trackers/square_pose.h"
@@ -30,6 +30,25 @@ bool RefinementFromName(const std::string& name, cv::aruco::CornerRefineMethod* 
     }
   }
   return false;
+}
+
+// ArucoOptions' keys, read and written (core/option_fields.h).
+template <typename Options, typename Fields>
+void VisitArucoFields(Options& o, Fields&& fields) {
+  fields("dictionary", o.dictionary);
+  fields("corner_refinement", o.corner_refinement);
+  fields("adaptive_thresh_win_size_min", o.adaptive_thresh_win_size_min);
+  fields("adaptive_thresh_win_size_max", o.adaptive_thresh_win_size_max);
+  fields("adaptive_thresh_win_size_step", o.adaptive_thresh_win_size_step);
+  fields("adaptive_thresh_constant", o.adaptive_thresh_constant);
+  fields("min_marker_perimeter_rate", o.min_marker_perimeter_rate);
+  fields("min_pixels_per_cell", o.min_pixels_per_cell);
+  fields("max_marker_perimeter_rate", o.max_marker_perimeter_rate);
+  fields("polygonal_approx_accuracy_rate", o.polygonal_approx_accuracy_rate);
+  fields("corner_refinement_win_size", o.corner_refinement_win_size);
+  fields("corner_refinement_max_iterations", o.corner_refinement_max_iterations);
+  fields("corner_refinement_min_accuracy", o.corner_refinement_min_accuracy);
+  fields("error_correction_rate", o.error_correction_rate);
 }
 
 class ArucoTracker final : public Tracker {
@@ -97,22 +116,10 @@ class ArucoTracker final : public Tracker {
   }
 
   std::vector<std::pair<std::string, std::string>> Parameters() const override {
-    const ArucoOptions& o = options_;
-    return {{"dictionary", o.dictionary},
-            {"corner_refinement", o.corner_refinement},
-            {"adaptive_thresh_win_size_min", NumberText(o.adaptive_thresh_win_size_min)},
-            {"adaptive_thresh_win_size_max", NumberText(o.adaptive_thresh_win_size_max)},
-            {"adaptive_thresh_win_size_step", NumberText(o.adaptive_thresh_win_size_step)},
-            {"adaptive_thresh_constant", NumberText(o.adaptive_thresh_constant)},
-            {"min_marker_perimeter_rate", NumberText(o.min_marker_perimeter_rate)},
-            {"min_pixels_per_cell", NumberText(o.min_pixels_per_cell)},
-            {"max_marker_perimeter_rate", NumberText(o.max_marker_perimeter_rate)},
-            {"polygonal_approx_accuracy_rate", NumberText(o.polygonal_approx_accuracy_rate)},
-            {"corner_refinement_win_size", NumberText(o.corner_refinement_win_size)},
-            {"corner_refinement_max_iterations", NumberText(o.corner_refinement_max_iterations)},
-            {"corner_refinement_min_accuracy", NumberText(o.corner_refinement_min_accuracy)},
-            {"error_correction_rate", NumberText(o.error_correction_rate)},
-            {"pose", "ippe_square"}};
+    FieldWriter fields;
+    VisitArucoFields(options_, fields);
+    fields.parameters.push_back({"pose", "ippe_square"});
+    return fields.parameters;
   }
 
  private:
@@ -158,35 +165,12 @@ bool ArucoOptions::IsValid(std::string* error) const {
 
 ArucoOptions ArucoOptions::FromYaml(const YamlMap& map) {
   ArucoOptions o;
-  o.dictionary = map.GetOr<std::string>("dictionary", o.dictionary);
+  VisitArucoFields(o, FieldReader(map));
   try {
     ArucoDictionaryId(o.dictionary);
   } catch (const std::invalid_argument& e) {
     map.Fail("dictionary", e.what());
   }
-  o.corner_refinement = map.GetOr<std::string>("corner_refinement", o.corner_refinement);
-  o.adaptive_thresh_win_size_min =
-      map.GetOr<int>("adaptive_thresh_win_size_min", o.adaptive_thresh_win_size_min);
-  o.adaptive_thresh_win_size_max =
-      map.GetOr<int>("adaptive_thresh_win_size_max", o.adaptive_thresh_win_size_max);
-  o.adaptive_thresh_win_size_step =
-      map.GetOr<int>("adaptive_thresh_win_size_step", o.adaptive_thresh_win_size_step);
-  o.adaptive_thresh_constant =
-      map.GetOr<double>("adaptive_thresh_constant", o.adaptive_thresh_constant);
-  o.min_marker_perimeter_rate =
-      map.GetOr<double>("min_marker_perimeter_rate", o.min_marker_perimeter_rate);
-  o.min_pixels_per_cell = map.GetOr<double>("min_pixels_per_cell", o.min_pixels_per_cell);
-  o.max_marker_perimeter_rate =
-      map.GetOr<double>("max_marker_perimeter_rate", o.max_marker_perimeter_rate);
-  o.polygonal_approx_accuracy_rate =
-      map.GetOr<double>("polygonal_approx_accuracy_rate", o.polygonal_approx_accuracy_rate);
-  o.corner_refinement_win_size =
-      map.GetOr<int>("corner_refinement_win_size", o.corner_refinement_win_size);
-  o.corner_refinement_max_iterations =
-      map.GetOr<int>("corner_refinement_max_iterations", o.corner_refinement_max_iterations);
-  o.corner_refinement_min_accuracy =
-      map.GetOr<double>("corner_refinement_min_accuracy", o.corner_refinement_min_accuracy);
-  o.error_correction_rate = map.GetOr<double>("error_correction_rate", o.error_correction_rate);
   FinishOptions(map, o);
   return o;
 }

@@ -5,6 +5,7 @@
 #include <cmath>
 
 #include "core/number_text.h"
+#include "core/option_fields.h"
 #include "core/yaml_reader.h"
 #include "trackers/circle/blurred_disk_profile.h"
 #include "trackers/circle/conic.h"
@@ -204,6 +205,66 @@ double EdgeRmsPx(const RefinementProblem& problem, const Rigid3& cam_from_paper)
   return std::sqrt(sum / std::max<size_t>(1, count));
 }
 
+// CircleTrackerOptions' keys, read and written (core/option_fields.h).
+template <typename Options, typename Fields>
+void VisitCircleTrackerFields(Options& o, Fields&& fields) {
+  fields.Choice("cost",
+                o.refinement.cost,
+                {{RefinementCost::kEdges, ToString(RefinementCost::kEdges)},
+                 {RefinementCost::kConics, ToString(RefinementCost::kConics)}});
+  fields("huber_px", o.refinement.huber_px);
+  fields("point_weight", o.refinement.point_weight);
+  fields("max_iterations", o.refinement.max_iterations);
+  fields("k_normal", o.analytic.k_normal);
+  fields.Choice("depth",
+                o.analytic.depth,
+                {{AnalyticDepth::kRadius, ToString(AnalyticDepth::kRadius)},
+                 {AnalyticDepth::kLx, ToString(AnalyticDepth::kLx)}});
+  fields("refine", o.refine);
+  fields("photometric", o.photometric);
+  fields("tracking", o.tracking);
+  fields("predict_motion", o.predict_motion);
+  fields("roi_margin", o.roi_margin);
+  fields("max_prediction_error", o.max_prediction_error);
+  fields("max_edge_rms_px", o.max_edge_rms_px);
+  fields("max_appearance_misfit", o.appearance.max_misfit);
+  fields("max_appearance_block_misfit", o.appearance.max_block_misfit);
+  fields("appearance_blocks_per_side", o.appearance.blocks_per_side);
+  fields("appearance_min_significance", o.appearance.min_significance);
+  fields("appearance_design_image", o.appearance.design_image);
+  fields("min_contrast", o.detector.min_contrast);
+  fields("edge_passes", o.detector.edge_passes);
+  fields("max_rays", o.detector.edges.max_rays);
+  fields("max_blurred_dot_disks", o.detector.max_blurred_dot_disks);
+  fields("max_blurred_dot_peak", o.detector.max_blurred_dot_peak);
+  fields("min_dot_area_px", o.detector.min_dot_area_px);
+  fields("min_blurred_dot_radius_px", o.detector.min_blurred_dot_radius_px);
+  fields("min_dot_radius_px", o.detector.min_dot_radius_px);
+  fields("blurred_dot_min_significance", o.detector.blurred_dots.min_significance);
+  fields("min_branch_angle_rad", o.min_branch_angle_rad);
+  fields("max_other_tilt_log_ratio", o.max_other_tilt_log_ratio);
+  fields("min_design_radius_per_blur", o.min_design_radius_per_blur);
+  fields("max_second_hypothesis_log_ratio", o.max_second_hypothesis_log_ratio);
+  fields("max_carried_tilt_log_ratio", o.max_carried_tilt_log_ratio);
+  fields("pixel_band_sigmas", o.photometric_refinement.band_sigmas);
+  fields("pixel_band_px", o.photometric_refinement.band_px);
+  fields("design_band_sigmas", o.design_refinement.band_sigmas);
+  fields("design_band_px", o.design_refinement.band_px);
+  fields("design_max_other_tilt_log_ratio", o.design_refinement.max_first_round_log_ratio);
+  fields("edge_shift_alignment", o.edge_shift.enabled);
+  fields("edge_shift_first_rays", o.edge_shift.first.rays_per_circle);
+  fields("edge_shift_rays", o.edge_shift.second.rays_per_circle);
+  fields("edge_shift_max_px", o.edge_shift.first.max_shift_px);
+  fields("edge_shift_second_max_px", o.edge_shift.second.max_shift_px);
+  fields("edge_shift_step_px", o.edge_shift.sample_step_px);
+  fields("edge_shift_first_samples_across", o.edge_shift.first.samples_across);
+  fields("edge_shift_samples_across", o.edge_shift.second.samples_across);
+  fields("edge_shift_min_step_per_contrast", o.edge_shift.min_step_per_contrast);
+  fields("edge_shift_first_min_found_fraction", o.edge_shift.first.min_found_fraction);
+  fields("edge_shift_min_found_fraction", o.edge_shift.second.min_found_fraction);
+  fields("edge_shift_max_rms_px", o.edge_shift.max_rms_px);
+}
+
 }  // namespace
 
 bool CircleTrackerOptions::IsValid(std::string* error) const {
@@ -255,90 +316,7 @@ bool CircleTrackerOptions::IsValid(std::string* error) const {
 
 CircleTrackerOptions CircleTrackerOptions::FromYaml(const YamlMap& map) {
   CircleTrackerOptions o;
-  const std::string cost = map.GetOr<std::string>("cost", ToString(o.refinement.cost));
-  if (cost == "edges") {
-    o.refinement.cost = RefinementCost::kEdges;
-  } else if (cost == "conics") {
-    o.refinement.cost = RefinementCost::kConics;
-  } else {
-    map.Fail("cost", "'edges' (cost B) or 'conics' (cost A, the paper's eq. 19)");
-  }
-  const std::string depth = map.GetOr<std::string>("depth", ToString(o.analytic.depth));
-  if (depth == "radius") {
-    o.analytic.depth = AnalyticDepth::kRadius;
-  } else if (depth == "lx") {
-    o.analytic.depth = AnalyticDepth::kLx;
-  } else {
-    map.Fail("depth", "'radius' or 'lx'");
-  }
-  o.refinement.huber_px = map.GetOr<double>("huber_px", o.refinement.huber_px);
-  o.refinement.point_weight = map.GetOr<double>("point_weight", o.refinement.point_weight);
-  o.refinement.max_iterations = map.GetOr<int>("max_iterations", o.refinement.max_iterations);
-  o.analytic.k_normal = map.GetOr<bool>("k_normal", o.analytic.k_normal);
-  o.refine = map.GetOr<bool>("refine", o.refine);
-  o.photometric = map.GetOr<bool>("photometric", o.photometric);
-  o.tracking = map.GetOr<bool>("tracking", o.tracking);
-  o.predict_motion = map.GetOr<bool>("predict_motion", o.predict_motion);
-  o.roi_margin = map.GetOr<double>("roi_margin", o.roi_margin);
-  o.max_prediction_error = map.GetOr<double>("max_prediction_error", o.max_prediction_error);
-  o.max_edge_rms_px = map.GetOr<double>("max_edge_rms_px", o.max_edge_rms_px);
-  o.appearance.max_misfit = map.GetOr<double>("max_appearance_misfit", o.appearance.max_misfit);
-  o.appearance.max_block_misfit =
-      map.GetOr<double>("max_appearance_block_misfit", o.appearance.max_block_misfit);
-  o.appearance.blocks_per_side =
-      map.GetOr<int>("appearance_blocks_per_side", o.appearance.blocks_per_side);
-  o.appearance.min_significance =
-      map.GetOr<double>("appearance_min_significance", o.appearance.min_significance);
-  o.appearance.design_image = map.GetOr<bool>("appearance_design_image", o.appearance.design_image);
-  o.detector.min_contrast = map.GetOr<double>("min_contrast", o.detector.min_contrast);
-  o.detector.edge_passes = map.GetOr<int>("edge_passes", o.detector.edge_passes);
-  o.detector.edges.max_rays = map.GetOr<int>("max_rays", o.detector.edges.max_rays);
-  o.detector.max_blurred_dot_disks =
-      map.GetOr<int>("max_blurred_dot_disks", o.detector.max_blurred_dot_disks);
-  o.detector.max_blurred_dot_peak =
-      map.GetOr<double>("max_blurred_dot_peak", o.detector.max_blurred_dot_peak);
-  o.detector.min_dot_area_px = map.GetOr<double>("min_dot_area_px", o.detector.min_dot_area_px);
-  o.detector.min_blurred_dot_radius_px =
-      map.GetOr<double>("min_blurred_dot_radius_px", o.detector.min_blurred_dot_radius_px);
-  o.detector.min_dot_radius_px =
-      map.GetOr<double>("min_dot_radius_px", o.detector.min_dot_radius_px);
-  o.detector.blurred_dots.min_significance =
-      map.GetOr<double>("blurred_dot_min_significance", o.detector.blurred_dots.min_significance);
-  o.min_branch_angle_rad = map.GetOr<double>("min_branch_angle_rad", o.min_branch_angle_rad);
-  o.max_other_tilt_log_ratio =
-      map.GetOr<double>("max_other_tilt_log_ratio", o.max_other_tilt_log_ratio);
-  o.min_design_radius_per_blur =
-      map.GetOr<double>("min_design_radius_per_blur", o.min_design_radius_per_blur);
-  o.max_second_hypothesis_log_ratio =
-      map.GetOr<double>("max_second_hypothesis_log_ratio", o.max_second_hypothesis_log_ratio);
-  o.max_carried_tilt_log_ratio =
-      map.GetOr<double>("max_carried_tilt_log_ratio", o.max_carried_tilt_log_ratio);
-  o.photometric_refinement.band_sigmas =
-      map.GetOr<double>("pixel_band_sigmas", o.photometric_refinement.band_sigmas);
-  o.photometric_refinement.band_px =
-      map.GetOr<double>("pixel_band_px", o.photometric_refinement.band_px);
-  o.design_refinement.band_sigmas =
-      map.GetOr<double>("design_band_sigmas", o.design_refinement.band_sigmas);
-  o.design_refinement.band_px = map.GetOr<double>("design_band_px", o.design_refinement.band_px);
-  o.design_refinement.max_first_round_log_ratio = map.GetOr<double>(
-      "design_max_other_tilt_log_ratio", o.design_refinement.max_first_round_log_ratio);
-  EdgeShiftOptions& e = o.edge_shift;
-  e.enabled = map.GetOr<bool>("edge_shift_alignment", e.enabled);
-  e.first.rays_per_circle = map.GetOr<int>("edge_shift_first_rays", e.first.rays_per_circle);
-  e.second.rays_per_circle = map.GetOr<int>("edge_shift_rays", e.second.rays_per_circle);
-  e.first.max_shift_px = map.GetOr<double>("edge_shift_max_px", e.first.max_shift_px);
-  e.second.max_shift_px = map.GetOr<double>("edge_shift_second_max_px", e.second.max_shift_px);
-  e.sample_step_px = map.GetOr<double>("edge_shift_step_px", e.sample_step_px);
-  e.first.samples_across =
-      map.GetOr<int>("edge_shift_first_samples_across", e.first.samples_across);
-  e.second.samples_across = map.GetOr<int>("edge_shift_samples_across", e.second.samples_across);
-  e.min_step_per_contrast =
-      map.GetOr<double>("edge_shift_min_step_per_contrast", e.min_step_per_contrast);
-  e.first.min_found_fraction =
-      map.GetOr<double>("edge_shift_first_min_found_fraction", e.first.min_found_fraction);
-  e.second.min_found_fraction =
-      map.GetOr<double>("edge_shift_min_found_fraction", e.second.min_found_fraction);
-  e.max_rms_px = map.GetOr<double>("edge_shift_max_rms_px", e.max_rms_px);
+  VisitCircleTrackerFields(o, FieldReader(map));
   FinishOptions(map, o);
   return o;
 }
@@ -352,59 +330,9 @@ bool CircleTracker::CanTrack(const MarkerSpec& marker) const {
 }
 
 std::vector<std::pair<std::string, std::string>> CircleTracker::Parameters() const {
-  const CircleTrackerOptions& o = options_;
-  return {
-      {"cost", ToString(o.refinement.cost)},
-      {"huber_px", NumberText(o.refinement.huber_px)},
-      {"point_weight", NumberText(o.refinement.point_weight)},
-      {"max_iterations", std::to_string(o.refinement.max_iterations)},
-      {"k_normal", BoolText(o.analytic.k_normal)},
-      {"depth", ToString(o.analytic.depth)},
-      {"refine", BoolText(o.refine)},
-      {"photometric", BoolText(o.photometric)},
-      {"tracking", BoolText(o.tracking)},
-      {"predict_motion", BoolText(o.predict_motion)},
-      {"roi_margin", NumberText(o.roi_margin)},
-      {"max_prediction_error", NumberText(o.max_prediction_error)},
-      {"max_edge_rms_px", NumberText(o.max_edge_rms_px)},
-      {"max_appearance_misfit", NumberText(o.appearance.max_misfit)},
-      {"max_appearance_block_misfit", NumberText(o.appearance.max_block_misfit)},
-      {"appearance_blocks_per_side", std::to_string(o.appearance.blocks_per_side)},
-      {"appearance_min_significance", NumberText(o.appearance.min_significance)},
-      {"appearance_design_image", BoolText(o.appearance.design_image)},
-      {"min_contrast", NumberText(o.detector.min_contrast)},
-      {"edge_passes", std::to_string(o.detector.edge_passes)},
-      {"max_rays", std::to_string(o.detector.edges.max_rays)},
-      {"max_blurred_dot_disks", std::to_string(o.detector.max_blurred_dot_disks)},
-      {"max_blurred_dot_peak", NumberText(o.detector.max_blurred_dot_peak)},
-      {"min_dot_area_px", NumberText(o.detector.min_dot_area_px)},
-      {"min_blurred_dot_radius_px", NumberText(o.detector.min_blurred_dot_radius_px)},
-      {"min_dot_radius_px", NumberText(o.detector.min_dot_radius_px)},
-      {"blurred_dot_min_significance", NumberText(o.detector.blurred_dots.min_significance)},
-      {"min_branch_angle_rad", NumberText(o.min_branch_angle_rad)},
-      {"max_other_tilt_log_ratio", NumberText(o.max_other_tilt_log_ratio)},
-      {"min_design_radius_per_blur", NumberText(o.min_design_radius_per_blur)},
-      {"max_second_hypothesis_log_ratio", NumberText(o.max_second_hypothesis_log_ratio)},
-      {"max_carried_tilt_log_ratio", NumberText(o.max_carried_tilt_log_ratio)},
-      {"pixel_band_sigmas", NumberText(o.photometric_refinement.band_sigmas)},
-      {"pixel_band_px", NumberText(o.photometric_refinement.band_px)},
-      {"design_band_sigmas", NumberText(o.design_refinement.band_sigmas)},
-      {"design_band_px", NumberText(o.design_refinement.band_px)},
-      {"design_max_other_tilt_log_ratio",
-       NumberText(o.design_refinement.max_first_round_log_ratio)},
-      {"edge_shift_alignment", BoolText(o.edge_shift.enabled)},
-      {"edge_shift_first_rays", std::to_string(o.edge_shift.first.rays_per_circle)},
-      {"edge_shift_rays", std::to_string(o.edge_shift.second.rays_per_circle)},
-      {"edge_shift_max_px", NumberText(o.edge_shift.first.max_shift_px)},
-      {"edge_shift_second_max_px", NumberText(o.edge_shift.second.max_shift_px)},
-      {"edge_shift_step_px", NumberText(o.edge_shift.sample_step_px)},
-      {"edge_shift_first_samples_across", std::to_string(o.edge_shift.first.samples_across)},
-      {"edge_shift_samples_across", std::to_string(o.edge_shift.second.samples_across)},
-      {"edge_shift_min_step_per_contrast", NumberText(o.edge_shift.min_step_per_contrast)},
-      {"edge_shift_first_min_found_fraction", NumberText(o.edge_shift.first.min_found_fraction)},
-      {"edge_shift_min_found_fraction", NumberText(o.edge_shift.second.min_found_fraction)},
-      {"edge_shift_max_rms_px", NumberText(o.edge_shift.max_rms_px)},
-  };
+  FieldWriter fields;
+  VisitCircleTrackerFields(options_, fields);
+  return fields.parameters;
 }
 
 TrackResult CircleTracker::Track(const Observation& observation) {

@@ -4,7 +4,7 @@
 #include <sstream>
 
 #include "core/codes/runetag_cyclic_code.h"
-#include "core/number_text.h"
+#include "core/option_fields.h"
 #include "core/yaml_reader.h"
 #include "trackers/grey_image.h"
 
@@ -79,48 +79,58 @@ TrackResult RuneTagTracker::Track(const Observation& obs) {
   return result;
 }
 
+namespace {
+
+// RuneTagOptions' keys, read and written (core/option_fields.h).
+template <typename Options, typename Fields>
+void VisitRuneTagFields(Options& o, Fields&& fields) {
+  fields.Choice("dot_detector", o.original_dots, {{true, "original"}, {false, "ours"}});
+  fields("ellipse_block_size_px", o.ellipses.block_size_px);
+  fields("ellipse_threshold_offset", o.ellipses.threshold_offset);
+  fields("ellipse_min_contour_points", o.ellipses.min_contour_points);
+  fields("ellipse_max_contour_points", o.ellipses.max_contour_points);
+  fields("ellipse_min_area_px", o.ellipses.min_area_px);
+  fields("ellipse_max_area_px", o.ellipses.max_area_px);
+  fields("ellipse_min_axis_ratio", o.ellipses.min_axis_ratio);
+  fields("ellipse_max_fit_error", o.ellipses.max_fit_error);
+  fields("ellipse_size_compensation_px", o.ellipses.size_compensation_px);
+  fields("smoothing_per_noise", o.dots.smoothing_per_noise);
+  fields("max_smoothing_px", o.dots.max_smoothing_px);
+  fields("block_size_px", o.dots.block_size_px);
+  fields("threshold_offset", o.dots.threshold_offset);
+  fields("offset_per_noise", o.dots.offset_per_noise);
+  fields("min_area_px", o.dots.min_area_px);
+  fields("max_area_px", o.dots.max_area_px);
+  fields("min_axis_ratio", o.dots.min_axis_ratio);
+  fields("min_contrast", o.dots.min_contrast);
+  fields("contrast_per_noise", o.dots.contrast_per_noise);
+  fields("max_fit_error", o.dots.max_fit_error);
+  fields("ring_tolerance_px", o.rings.ring_tolerance_px);
+  fields("ring_tolerance_radii", o.rings.ring_tolerance_radii);
+  fields("neighbour_reach", o.rings.neighbour_reach);
+  fields("radius_tolerance", o.rings.radius_tolerance);
+  fields("angle_tolerance", o.rings.angle_tolerance);
+  fields("min_slot_contrast", o.rings.min_slot_contrast);
+  fields("slot_contrast_per_noise", o.rings.slot_contrast_per_noise);
+  fields("slot_margin", o.rings.slot_margin);
+  fields("max_dot_growth", o.rings.max_dot_growth);
+  fields("exclude_next_to_errors", o.rings.exclude_next_to_errors);
+  fields("read_slot_levels", o.rings.read_slot_levels);
+  fields("decode_missing_dots", o.rings.decode_missing_dots);
+  fields("undistort_dots", o.rings.undistort_dots);
+  fields("max_ransac_iterations", o.rings.max_ransac_iterations);
+  fields("ransac", o.pose.ransac);
+  fields("ransac_reprojection_px", o.pose.ransac_reprojection_px);
+  fields("refinement_passes", o.pose.refinement_passes);
+  fields("ransac_seed", o.ransac_seed);
+}
+
+}  // namespace
+
 std::vector<std::pair<std::string, std::string>> RuneTagTracker::Parameters() const {
-  const RuneTagOptions& o = options_;
-  const OriginalEllipseOptions& e = o.ellipses;
-  return {{"dot_detector", o.original_dots ? "original" : "ours"},
-          {"ellipse_block_size_px", NumberText(e.block_size_px)},
-          {"ellipse_threshold_offset", NumberText(e.threshold_offset)},
-          {"ellipse_min_contour_points", NumberText(e.min_contour_points)},
-          {"ellipse_max_contour_points", NumberText(e.max_contour_points)},
-          {"ellipse_min_area_px", NumberText(e.min_area_px)},
-          {"ellipse_max_area_px", NumberText(e.max_area_px)},
-          {"ellipse_min_axis_ratio", NumberText(e.min_axis_ratio)},
-          {"ellipse_max_fit_error", NumberText(e.max_fit_error)},
-          {"ellipse_size_compensation_px", NumberText(e.size_compensation_px)},
-          {"smoothing_per_noise", NumberText(o.dots.smoothing_per_noise)},
-          {"max_smoothing_px", NumberText(o.dots.max_smoothing_px)},
-          {"block_size_px", NumberText(o.dots.block_size_px)},
-          {"threshold_offset", NumberText(o.dots.threshold_offset)},
-          {"offset_per_noise", NumberText(o.dots.offset_per_noise)},
-          {"min_area_px", NumberText(o.dots.min_area_px)},
-          {"max_area_px", NumberText(o.dots.max_area_px)},
-          {"min_axis_ratio", NumberText(o.dots.min_axis_ratio)},
-          {"min_contrast", NumberText(o.dots.min_contrast)},
-          {"contrast_per_noise", NumberText(o.dots.contrast_per_noise)},
-          {"max_fit_error", NumberText(o.dots.max_fit_error)},
-          {"ring_tolerance_px", NumberText(o.rings.ring_tolerance_px)},
-          {"ring_tolerance_radii", NumberText(o.rings.ring_tolerance_radii)},
-          {"neighbour_reach", NumberText(o.rings.neighbour_reach)},
-          {"radius_tolerance", NumberText(o.rings.radius_tolerance)},
-          {"angle_tolerance", NumberText(o.rings.angle_tolerance)},
-          {"min_slot_contrast", NumberText(o.rings.min_slot_contrast)},
-          {"slot_contrast_per_noise", NumberText(o.rings.slot_contrast_per_noise)},
-          {"slot_margin", NumberText(o.rings.slot_margin)},
-          {"max_dot_growth", NumberText(o.rings.max_dot_growth)},
-          {"exclude_next_to_errors", BoolText(o.rings.exclude_next_to_errors)},
-          {"read_slot_levels", BoolText(o.rings.read_slot_levels)},
-          {"decode_missing_dots", BoolText(o.rings.decode_missing_dots)},
-          {"undistort_dots", BoolText(o.rings.undistort_dots)},
-          {"max_ransac_iterations", NumberText(o.rings.max_ransac_iterations)},
-          {"ransac", BoolText(o.pose.ransac)},
-          {"ransac_reprojection_px", NumberText(o.pose.ransac_reprojection_px)},
-          {"refinement_passes", NumberText(o.pose.refinement_passes)},
-          {"ransac_seed", NumberText(o.ransac_seed)}};
+  FieldWriter fields;
+  VisitRuneTagFields(options_, fields);
+  return fields.parameters;
 }
 
 bool RuneTagOptions::IsValid(std::string* error) const {
@@ -195,55 +205,7 @@ RuneTagOptions RuneTagOptions::Improved() {
 
 RuneTagOptions RuneTagOptions::FromYaml(const YamlMap& map, const RuneTagOptions& base) {
   RuneTagOptions o = base;
-  const std::string detector =
-      map.GetOr<std::string>("dot_detector", base.original_dots ? "original" : "ours");
-  if (detector != "original" && detector != "ours") map.Fail("dot_detector", "original or ours");
-  o.original_dots = detector == "original";
-  OriginalEllipseOptions& e = o.ellipses;
-  e.block_size_px = map.GetOr<int>("ellipse_block_size_px", e.block_size_px);
-  e.threshold_offset = map.GetOr<double>("ellipse_threshold_offset", e.threshold_offset);
-  e.min_contour_points = map.GetOr<int>("ellipse_min_contour_points", e.min_contour_points);
-  e.max_contour_points = map.GetOr<int>("ellipse_max_contour_points", e.max_contour_points);
-  e.min_area_px = map.GetOr<double>("ellipse_min_area_px", e.min_area_px);
-  e.max_area_px = map.GetOr<double>("ellipse_max_area_px", e.max_area_px);
-  e.min_axis_ratio = map.GetOr<double>("ellipse_min_axis_ratio", e.min_axis_ratio);
-  e.max_fit_error = map.GetOr<double>("ellipse_max_fit_error", e.max_fit_error);
-  e.size_compensation_px =
-      map.GetOr<double>("ellipse_size_compensation_px", e.size_compensation_px);
-  o.dots.smoothing_per_noise = map.GetOr<double>("smoothing_per_noise", o.dots.smoothing_per_noise);
-  o.dots.max_smoothing_px = map.GetOr<double>("max_smoothing_px", o.dots.max_smoothing_px);
-  o.dots.block_size_px = map.GetOr<int>("block_size_px", o.dots.block_size_px);
-  o.dots.threshold_offset = map.GetOr<double>("threshold_offset", o.dots.threshold_offset);
-  o.dots.offset_per_noise = map.GetOr<double>("offset_per_noise", o.dots.offset_per_noise);
-  o.dots.min_area_px = map.GetOr<double>("min_area_px", o.dots.min_area_px);
-  o.dots.max_area_px = map.GetOr<double>("max_area_px", o.dots.max_area_px);
-  o.dots.min_axis_ratio = map.GetOr<double>("min_axis_ratio", o.dots.min_axis_ratio);
-  o.dots.min_contrast = map.GetOr<double>("min_contrast", o.dots.min_contrast);
-  o.dots.contrast_per_noise = map.GetOr<double>("contrast_per_noise", o.dots.contrast_per_noise);
-  o.dots.max_fit_error = map.GetOr<double>("max_fit_error", o.dots.max_fit_error);
-  o.rings.ring_tolerance_px = map.GetOr<double>("ring_tolerance_px", o.rings.ring_tolerance_px);
-  o.rings.ring_tolerance_radii =
-      map.GetOr<double>("ring_tolerance_radii", o.rings.ring_tolerance_radii);
-  o.rings.neighbour_reach = map.GetOr<double>("neighbour_reach", o.rings.neighbour_reach);
-  o.rings.radius_tolerance = map.GetOr<double>("radius_tolerance", o.rings.radius_tolerance);
-  o.rings.angle_tolerance = map.GetOr<double>("angle_tolerance", o.rings.angle_tolerance);
-  o.rings.min_slot_contrast = map.GetOr<double>("min_slot_contrast", o.rings.min_slot_contrast);
-  o.rings.slot_contrast_per_noise =
-      map.GetOr<double>("slot_contrast_per_noise", o.rings.slot_contrast_per_noise);
-  o.rings.slot_margin = map.GetOr<double>("slot_margin", o.rings.slot_margin);
-  o.rings.max_dot_growth = map.GetOr<double>("max_dot_growth", o.rings.max_dot_growth);
-  o.rings.exclude_next_to_errors =
-      map.GetOr<bool>("exclude_next_to_errors", o.rings.exclude_next_to_errors);
-  o.rings.read_slot_levels = map.GetOr<bool>("read_slot_levels", o.rings.read_slot_levels);
-  o.rings.decode_missing_dots = map.GetOr<bool>("decode_missing_dots", o.rings.decode_missing_dots);
-  o.rings.undistort_dots = map.GetOr<bool>("undistort_dots", o.rings.undistort_dots);
-  o.rings.max_ransac_iterations =
-      map.GetOr<int>("max_ransac_iterations", o.rings.max_ransac_iterations);
-  o.pose.ransac = map.GetOr<bool>("ransac", o.pose.ransac);
-  o.pose.ransac_reprojection_px =
-      map.GetOr<double>("ransac_reprojection_px", o.pose.ransac_reprojection_px);
-  o.pose.refinement_passes = map.GetOr<int>("refinement_passes", o.pose.refinement_passes);
-  o.ransac_seed = map.GetOr<int>("ransac_seed", o.ransac_seed);
+  VisitRuneTagFields(o, FieldReader(map));
   FinishOptions(map, o);
   return o;
 }
