@@ -100,9 +100,14 @@ std::vector<DesignPixel> PixelsNearDesignEdges(const Image8& image,
     double farthest_m = 0.0, largest_reach_m = 0.0;
     for (const auto& [u, v] : {std::pair{ua, va}, {ub, va}, {ua, vb}, {ub, vb}}) {
       const PlaneLook corner = view.LookAlong(camera.CamFromImg(Eigen::Vector2d(u, v)));
-      if (!(corner.homogeneous > 0.0)) return true;
-      farthest_m = std::max(farthest_m, (corner.point - center.point).norm());
-      largest_reach_m = std::max(largest_reach_m, reach_px * LargestStretch(corner.plane_from_px));
+      const double apart_m = (corner.point - center.point).norm();
+      const double reach_m = reach_px * LargestStretch(corner.plane_from_px);
+      // Near the horizon a point may overflow: such a tile is tested pixel by pixel.
+      if (!(corner.homogeneous > 0.0) || !std::isfinite(apart_m) || !std::isfinite(reach_m)) {
+        return true;
+      }
+      farthest_m = std::max(farthest_m, apart_m);
+      largest_reach_m = std::max(largest_reach_m, reach_m);
     }
     return near_an_outline(center.point, kTileMargin * (farthest_m + largest_reach_m));
   };
