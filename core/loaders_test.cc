@@ -154,7 +154,7 @@ TEST(YamlFiles, DuplicateKeysNameBothLines) {
 
 TEST(YamlFiles, ComplexKeysAreRefused) {
   EXPECT_THAT(CameraError(std::string(kGoodCamera) + "? [a, b]\n: 1\n"),
-              HasSubstr(":9: a key must be a plain name, got a list of 2"));
+              HasSubstr(":9: a key must be a plain name, got [a, b]"));
   EXPECT_THAT(MarkerError(std::string(kGoodCirclesA) + "? {a: 1}\n: 1\n"),
               HasSubstr("a key must be a plain name, got a mapping"));
 }

@@ -11,10 +11,20 @@
 namespace markerbench {
 namespace {
 
+// A short list of plain values is shown as written, so that the message says which value is out
+// of range; a longer or nested one by its length.
 std::string Describe(const YAML::Node& node) {
   if (!node.IsDefined() || node.IsNull()) return "nothing";
   if (node.IsScalar()) return "'" + node.Scalar() + "'";
-  if (node.IsSequence()) return "a list of " + std::to_string(node.size());
+  if (node.IsSequence()) {
+    constexpr size_t kMaxShownItems = 8;
+    bool plain = node.size() <= kMaxShownItems;
+    for (const YAML::Node& item : node) plain = plain && item.IsScalar();
+    if (!plain) return "a list of " + std::to_string(node.size());
+    std::string shown = "[";
+    for (const YAML::Node& item : node) shown += (shown.size() > 1 ? ", " : "") + item.Scalar();
+    return shown + "]";
+  }
   return "a mapping";
 }
 

@@ -5,6 +5,8 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "core/number_text.h"
+
 namespace markerbench {
 namespace {
 
@@ -93,7 +95,7 @@ Rigid3 SamplePairedPose(const PoseSamplerOptions& options,
     }
   }
   throw std::runtime_error("no pose in 1000 draws puts every marker inside the image at " +
-                           std::to_string(options.distance_m) +
+                           NumberText(options.distance_m) +
                            " m; increase distance_m or reduce max_offset_px");
 }
 

@@ -1,5 +1,6 @@
 #include "bench/plan/pose_sampler.h"
 
+#include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
 #include "bench/plan/frame_plan.h"
@@ -62,7 +63,12 @@ TEST(PoseSampler, ImpossibleFitThrows) {
   const std::vector<MarkerSpec> markers = {LoadMarkerYaml("scenarios/markers/apriltag.yaml")};
   PoseSamplerOptions options;
   options.distance_m = 0.05;
-  EXPECT_THROW(SamplePairedPose(options, Camera(), markers, 1), std::runtime_error);
+  try {
+    SamplePairedPose(options, Camera(), markers, 1);
+    ADD_FAILURE() << "no exception";
+  } catch (const std::runtime_error& e) {
+    EXPECT_THAT(e.what(), testing::HasSubstr("inside the image at 0.05 m; increase distance_m"));
+  }
 }
 
 TEST(FramePlan, PairsPosesAcrossMarkersAndAppliesTheSweep) {

@@ -11,6 +11,7 @@
 #include "core/joined.h"
 #include "core/marker_scaling.h"
 #include "core/marker_yaml.h"
+#include "core/number_text.h"
 #include "core/sha256.h"
 #include "core/yaml_reader.h"
 #include "trackers/external/external_tracker.h"
@@ -26,8 +27,7 @@ void ReadRange(
   if (!map.Has(key)) return;
   const std::vector<double> range = map.Get<std::vector<double>>(key);
   if (range.size() != 2 || !(range[0] >= lo && range[1] <= hi && range[0] <= range[1])) {
-    map.Fail(key,
-             "[min, max] with " + std::to_string(lo) + " <= min <= max <= " + std::to_string(hi));
+    map.Fail(key, "[min, max] with " + NumberText(lo) + " <= min <= max <= " + NumberText(hi));
   }
   *min = range[0];
   *max = range[1];

@@ -146,6 +146,15 @@ TEST(Scenario, GridErrorsNameTheirKey) {
                         "a grid's first axis)"));
 }
 
+TEST(Scenario, ARangeErrorShowsItsBoundsAndTheValuesGiven) {
+  EXPECT_THAT(
+      ErrorOf(Replace(GoodScenario(), "tilt_deg: [0, 40]", "tilt_deg: [0, 89.5]")),
+      HasSubstr(":10: key 'poses.tilt_deg': expected [min, max] with 0 <= min <= max <= 89, "
+                "got [0, 89.5]"));
+  EXPECT_THAT(ErrorOf(Replace(GoodScenario(), "tilt_deg: [0, 40]", "tilt_deg: [0, 10, 40]")),
+              HasSubstr("got [0, 10, 40]"));
+}
+
 TEST(Scenario, TheBoundCanBeTurnedOff) {
   EXPECT_FALSE(LoadScenario(WriteTestFile("scenario.yaml", GoodScenario() + "crlb: false\n")).crlb);
   EXPECT_THAT(ErrorOf(GoodScenario() + "crlb: sometimes\n"), HasSubstr("key 'crlb'"));
