@@ -1,5 +1,6 @@
 #include "core/yaml_reader.h"
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <limits>
@@ -18,8 +19,10 @@ std::string Describe(const YAML::Node& node) {
   if (node.IsScalar()) return "'" + node.Scalar() + "'";
   if (node.IsSequence()) {
     constexpr size_t kMaxShownItems = 8;
-    bool plain = node.size() <= kMaxShownItems;
-    for (const YAML::Node& item : node) plain = plain && item.IsScalar();
+    const bool plain = node.size() <= kMaxShownItems &&
+                       std::all_of(node.begin(), node.end(), [](const YAML::Node& item) {
+                         return item.IsScalar();
+                       });
     if (!plain) return "a list of " + std::to_string(node.size());
     std::string shown = "[";
     for (const YAML::Node& item : node) shown += (shown.size() > 1 ? ", " : "") + item.Scalar();
