@@ -6,11 +6,11 @@
 
 namespace markerbench {
 
-// `items` separated by `separator`; empty for no items.
+// `items` separated by `separator` (an empty item too); empty for no items.
 inline std::string Joined(const std::vector<std::string>& items,
                           const std::string& separator = ", ") {
   std::string text;
-  for (const std::string& item : items) text += (text.empty() ? "" : separator) + item;
+  for (size_t i = 0; i < items.size(); ++i) text += (i == 0 ? "" : separator) + items[i];
   return text;
 }
 

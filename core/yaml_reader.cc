@@ -7,6 +7,7 @@
 #include <map>
 #include <sstream>
 
+#include "core/joined.h"
 #include "core/regular_file.h"
 
 namespace markerbench {
@@ -24,9 +25,9 @@ std::string Describe(const YAML::Node& node) {
                          return item.IsScalar();
                        });
     if (!plain) return "a list of " + std::to_string(node.size());
-    std::string shown = "[";
-    for (const YAML::Node& item : node) shown += (shown.size() > 1 ? ", " : "") + item.Scalar();
-    return shown + "]";
+    std::vector<std::string> items;
+    for (const YAML::Node& item : node) items.push_back(item.Scalar());
+    return "[" + Joined(items) + "]";
   }
   return "a mapping";
 }

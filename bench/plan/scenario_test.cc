@@ -153,6 +153,9 @@ TEST(Scenario, ARangeErrorShowsItsBoundsAndTheValuesGiven) {
                 "got [0, 89.5]"));
   EXPECT_THAT(ErrorOf(Replace(GoodScenario(), "tilt_deg: [0, 40]", "tilt_deg: [0, 10, 40]")),
               HasSubstr("got [0, 10, 40]"));
+  // An empty item keeps its place.
+  EXPECT_THAT(ErrorOf(Replace(GoodScenario(), "tilt_deg: [0, 40]", "tilt_deg: ['', 40]")),
+              HasSubstr("got [, 40]"));
 }
 
 TEST(Scenario, TheBoundCanBeTurnedOff) {
