@@ -547,18 +547,16 @@ def paper_phrases():
 
 
 def circle_accuracy_phrases():
-    """What the 1 m blur σ = 10 and 3.5 m rows of results/circle_accuracy allow and leave."""
+    """What the 1 m blur σ = 10 and 3.5 m rows of results/circle_accuracy allow and leave, and
+    what a colour camera's JPEG costs circles_a and circle_d."""
     rows = read_summary("results/circle_accuracy/summary.csv")
     (blur,) = cell(rows, "circle_accuracy_1m_blur10", 10.0, "circle")
     (far,) = cell(rows, "circle_accuracy_3.5m", 3.5, "circle")
     allowed = [100 * number(r["success_at_bound"]) for r in (blur, far)]
     found = [100 * number(r["success_rate"]) for r in (blur, far)]
-    jpeg = {(marker, quality): cell(rows, "circle_accuracy_0.6m_jpeg", quality, "circle",
-                                    marker)[0]
-            for marker in ("circles_a", "circle_d") for quality in (0.0, 95.0, 75.0)}
 
-    def shown(marker, quality):
-        r = jpeg[(marker, quality)]
+    def shown(marker, jpeg_quality):
+        (r,) = cell(rows, "circle_accuracy_0.6m_jpeg", jpeg_quality, "circle", marker)
         return [significant(1e3 * number(r["position_error_median_m"])),
                 f"{number(r['efficiency']):.2f}"]
 
